@@ -37,7 +37,11 @@ fn item_16_quaternion_from_unit_axis_and_angle() {
     let [w, i, j, k] = quat::to_wijk(q);
     let s = (theta / 2.0).sin();
     assert!((w - (theta / 2.0).cos()).abs() < EPS);
-    assert!((i - axis.x * s).abs() < EPS && (j - axis.y * s).abs() < EPS && (k - axis.z * s).abs() < EPS);
+    assert!(
+        (i - axis.x * s).abs() < EPS
+            && (j - axis.y * s).abs() < EPS
+            && (k - axis.z * s).abs() < EPS
+    );
     assert!(quat::from_unit_axis_angle(Vec3::new(1.0, 2.0, 2.0), theta).is_err());
 }
 
