@@ -1,4 +1,26 @@
 #![doc = include_str!("../README.md")]
 
+pub mod contact;
+pub mod impulse;
+pub mod integrate;
+pub mod material;
+pub mod momentum;
+
+mod body;
+mod error;
+mod mass;
+mod softness;
+mod solver_body;
+mod step_context;
+
 /// The math layer this crate builds on.
 pub use rebound_math as math;
+
+pub use body::{BodyDesc, BodyType, Integrator, RigidBody};
+pub use contact::{Bias, Contact, ContactPoint, ContactSolver, MAX_CONTACT_POINTS};
+pub use error::DynamicsError;
+pub use mass::MassProperties;
+pub use material::CombineRule;
+pub use softness::Softness;
+pub use solver_body::{BodyParams, Motion, SolverBody};
+pub use step_context::{SolverSettings, StepContext};

@@ -1,0 +1,468 @@
+//! The contact-constraint kernel: soft non-penetration with a push-out speed cap, Coulomb friction on two
+//! tangents with a circular cone, and restitution. Stages: *prepare* → per substep *warm start*, *solve*
+//! (bias on), *relax* (bias off) → *restitution* (once) → *store impulses*.
+//!
+//! Contacts arrive as plain data ([`Contact`]); the collision backend (or a test) makes them. Bodies are
+//! referred to by their index into the solver arrays ([`SolverBody`], [`BodyParams`]).
+//!
+//! # The model (Box2D v3 soft step; Catto, "Solver2D", 2024)
+//!
+//! For a contact point with anchors `r_a`, `r_b`, normal `n` (from A to B) and the current separation
+//!
+//! ```text
+//! s = s₀ + n·[(Δp_b + Δq_b·r_b − r_b) − (Δp_a + Δq_a·r_a − r_a)]     (negative = overlap)
+//! v_n = n·[(v_b + ω_b × r_b) − (v_a + ω_a × r_a)]
+//! ```
+//!
+//! the normal impulse is
+//!
+//! ```text
+//! s > 0 (speculative):   bias = s/h,                       mass_scale = 1, impulse_scale = 0
+//! s ≤ 0, bias on:        bias = max(bias_rate·s, −v_max),  soft coefficients (crate::Softness)
+//! s ≤ 0, relax:          bias = 0,                         mass_scale = 1, impulse_scale = 0
+//! Δλ = −m_n·mass_scale·(v_n + bias) − impulse_scale·λ,   λ ← max(λ + Δλ, 0)
+//! ```
+//!
+//! so a speculative contact lets the bodies close exactly the gap in this substep and no more, an overlap is
+//! pushed out softly at no more than `v_max`, and the relax pass removes the push-out velocity so that resting
+//! bodies do not gain energy. Friction: `λ_t ← clamp_circle(λ_t − M_t·v_t, μ·λ)`. Restitution, once after
+//! the substeps, drives `v_n` to `−C_r·v_n⁻` where `v_n⁻` is the pre-step approach speed, for contacts that
+//! approached faster than the threshold and carried an impulse.
+
+use crate::{BodyParams, Softness, SolverBody, StepContext};
+use rebound_math::{Vec2, Vec3};
+
+/// The most points a contact manifold carries (a face on a face needs four).
+pub const MAX_CONTACT_POINTS: usize = 4;
+
+/// Whether the solve applies the position-correcting bias (the two passes of a soft substep).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Bias {
+    /// Solve with the soft bias: corrects overlap.
+    On,
+    /// Relax: solve the velocity constraint only, removing the bias velocity.
+    Off,
+}
+
+/// One point of a contact manifold, as the collision stage reports it.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactPoint {
+    /// The contact point relative to body A's centre of mass at the start of the step, world axes (m).
+    pub anchor_a: Vec3,
+    /// The contact point relative to body B's centre of mass at the start of the step, world axes (m).
+    pub anchor_b: Vec3,
+    /// Signed distance between the surfaces along the normal (m): negative when they overlap, positive for a
+    /// speculative point not yet touching.
+    pub separation: f32,
+    /// Normal impulse (N·s): the warm-start value on input, the step's accumulated impulse after
+    /// [`ContactSolver::store_impulses`].
+    pub normal_impulse: f32,
+    /// Friction impulse as a world vector (N·s), likewise. Stored as a vector so that it survives a change of
+    /// tangent basis between steps.
+    pub tangent_impulse: Vec3,
+    /// Identifies the pair of features that touch, for matching points between steps (warm starting).
+    pub feature_id: u32,
+}
+
+/// A contact manifold between two bodies, as the collision stage reports it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// Index of body A in the solver arrays.
+    pub body_a: usize,
+    /// Index of body B in the solver arrays.
+    pub body_b: usize,
+    /// Unit normal from A to B.
+    pub normal: Vec3,
+    /// Combined friction coefficient μ (dimensionless, ≥ 0).
+    pub friction: f32,
+    /// Combined coefficient of restitution `C_r` (dimensionless, in `[0, 1]`).
+    pub restitution: f32,
+    /// The points; only the first `point_count` are used.
+    pub points: [ContactPoint; MAX_CONTACT_POINTS],
+    /// How many points are in use (0 to [`MAX_CONTACT_POINTS`]).
+    pub point_count: usize,
+}
+
+impl Contact {
+    /// A manifold between bodies `body_a` and `body_b` with normal `normal` (unit, A → B) and no points yet.
+    #[must_use]
+    pub fn new(
+        body_a: usize,
+        body_b: usize,
+        normal: Vec3,
+        friction: f32,
+        restitution: f32,
+    ) -> Self {
+        Self {
+            body_a,
+            body_b,
+            normal,
+            friction,
+            restitution,
+            points: [ContactPoint::default(); MAX_CONTACT_POINTS],
+            point_count: 0,
+        }
+    }
+
+    /// Adds a point; returns `false` (and adds nothing) when the manifold is full.
+    pub fn push_point(&mut self, point: ContactPoint) -> bool {
+        if self.point_count == MAX_CONTACT_POINTS {
+            return false;
+        }
+        self.points[self.point_count] = point;
+        self.point_count += 1;
+        true
+    }
+
+    /// The points in use.
+    #[must_use]
+    pub fn points(&self) -> &[ContactPoint] {
+        &self.points[..self.point_count.min(MAX_CONTACT_POINTS)]
+    }
+}
+
+/// A prepared contact point: anchors, effective masses, the angular Jacobian terms and the accumulated
+/// impulses. The angular terms `r × d` and `I⁻¹·(r × d)` are computed once at prepare so that the solve loop
+/// does no matrix products.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct PreparedPoint {
+    anchor_a: Vec3,
+    anchor_b: Vec3,
+    separation: f32,
+    /// Normal relative velocity before the step (m/s); negative when approaching.
+    relative_velocity: f32,
+    normal_impulse: f32,
+    tangent_impulse: Vec2,
+    max_normal_impulse: f32,
+    normal_mass: f32,
+    tangent_mass: [f32; 2],
+    rn_a: Vec3,
+    rn_b: Vec3,
+    wn_a: Vec3,
+    wn_b: Vec3,
+    rt_a: [Vec3; 2],
+    rt_b: [Vec3; 2],
+    wt_a: [Vec3; 2],
+    wt_b: [Vec3; 2],
+}
+
+/// A prepared contact manifold.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PreparedContact {
+    /// Index of the source [`Contact`] in the slice given to `prepare`.
+    source: usize,
+    body_a: usize,
+    body_b: usize,
+    normal: Vec3,
+    tangents: [Vec3; 2],
+    friction: f32,
+    restitution: f32,
+    inv_mass_a: f32,
+    inv_mass_b: f32,
+    softness: Softness,
+    points: [PreparedPoint; MAX_CONTACT_POINTS],
+    point_count: usize,
+}
+
+/// The contact solver: holds the prepared constraints between stages and reuses its buffer from step to
+/// step (no allocation once it has grown to the scene's contact count).
+#[derive(Debug, Clone, Default)]
+pub struct ContactSolver {
+    contacts: Vec<PreparedContact>,
+}
+
+impl ContactSolver {
+    /// An empty solver.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The number of prepared manifolds.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.contacts.len()
+    }
+
+    /// Whether no manifold is prepared.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.contacts.is_empty()
+    }
+
+    /// Stage *prepare*: computes tangents, effective masses, angular terms and pre-step normal velocities of
+    /// `contacts` against the bodies' start-of-step state. Warm-start impulses are taken from the points if
+    /// `ctx.warm_starting`, else zeroed.
+    ///
+    /// Malformed contacts — a body index out of range, a body against itself, a normal that is not finite —
+    /// are skipped, never solved; the return value counts them (0 when the collision stage is sound).
+    pub fn prepare(
+        &mut self,
+        contacts: &[Contact],
+        bodies: &[SolverBody],
+        params: &[BodyParams],
+        ctx: &StepContext,
+    ) -> usize {
+        self.contacts.clear();
+        self.contacts.reserve(contacts.len());
+        let body_count = bodies.len().min(params.len());
+        let mut skipped = 0;
+        for (source, contact) in contacts.iter().enumerate() {
+            if contact.body_a >= body_count
+                || contact.body_b >= body_count
+                || contact.body_a == contact.body_b
+                || !contact.normal.is_finite()
+            {
+                skipped += 1;
+                continue;
+            }
+            let (pa, pb) = (&params[contact.body_a], &params[contact.body_b]);
+            let (sa, sb) = (&bodies[contact.body_a], &bodies[contact.body_b]);
+            let normal = contact.normal;
+            let (t1, t2) = normal.any_orthonormal_pair();
+            let tangents = [t1, t2];
+            let softness = if pa.is_dynamic() && pb.is_dynamic() {
+                ctx.contact_softness
+            } else {
+                ctx.static_softness
+            };
+            let mut prepared = PreparedContact {
+                source,
+                body_a: contact.body_a,
+                body_b: contact.body_b,
+                normal,
+                tangents,
+                friction: contact.friction,
+                restitution: contact.restitution,
+                inv_mass_a: pa.inv_mass,
+                inv_mass_b: pb.inv_mass,
+                softness,
+                points: [PreparedPoint::default(); MAX_CONTACT_POINTS],
+                point_count: contact.point_count.min(MAX_CONTACT_POINTS),
+            };
+            for (point, out) in contact.points().iter().zip(&mut prepared.points) {
+                let (ra, rb) = (point.anchor_a, point.anchor_b);
+                let rn_a = ra.cross(normal);
+                let rn_b = rb.cross(normal);
+                let wn_a = pa.inv_inertia_world * rn_a;
+                let wn_b = pb.inv_inertia_world * rn_b;
+                let k_normal = pa.inv_mass + pb.inv_mass + rn_a.dot(wn_a) + rn_b.dot(wn_b);
+                let mut rt_a = [Vec3::ZERO; 2];
+                let mut rt_b = [Vec3::ZERO; 2];
+                let mut wt_a = [Vec3::ZERO; 2];
+                let mut wt_b = [Vec3::ZERO; 2];
+                let mut tangent_mass = [0.0; 2];
+                for (i, t) in tangents.iter().enumerate() {
+                    rt_a[i] = ra.cross(*t);
+                    rt_b[i] = rb.cross(*t);
+                    wt_a[i] = pa.inv_inertia_world * rt_a[i];
+                    wt_b[i] = pb.inv_inertia_world * rt_b[i];
+                    let k = pa.inv_mass + pb.inv_mass + rt_a[i].dot(wt_a[i]) + rt_b[i].dot(wt_b[i]);
+                    tangent_mass[i] = if k > 0.0 { 1.0 / k } else { 0.0 };
+                }
+                let dv = sb.velocity_at(rb) - sa.velocity_at(ra);
+                let (normal_impulse, tangent_impulse) = if ctx.warm_starting {
+                    (
+                        point.normal_impulse,
+                        Vec2::new(point.tangent_impulse.dot(t1), point.tangent_impulse.dot(t2)),
+                    )
+                } else {
+                    (0.0, Vec2::ZERO)
+                };
+                *out = PreparedPoint {
+                    anchor_a: ra,
+                    anchor_b: rb,
+                    separation: point.separation,
+                    relative_velocity: dv.dot(normal),
+                    normal_impulse,
+                    tangent_impulse,
+                    max_normal_impulse: 0.0,
+                    normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
+                    tangent_mass,
+                    rn_a,
+                    rn_b,
+                    wn_a,
+                    wn_b,
+                    rt_a,
+                    rt_b,
+                    wt_a,
+                    wt_b,
+                };
+            }
+            self.contacts.push(prepared);
+        }
+        skipped
+    }
+
+    /// Stage *warm start*: applies the accumulated impulses of the last substep (or the last step) again, so
+    /// the iterations start from the previous answer.
+    pub fn warm_start(&self, bodies: &mut [SolverBody]) {
+        for c in &self.contacts {
+            let (mut a, mut b) = (bodies[c.body_a], bodies[c.body_b]);
+            for p in &c.points[..c.point_count] {
+                let linear = c.normal * p.normal_impulse
+                    + c.tangents[0] * p.tangent_impulse.x
+                    + c.tangents[1] * p.tangent_impulse.y;
+                a.linear_velocity -= linear * c.inv_mass_a;
+                b.linear_velocity += linear * c.inv_mass_b;
+                a.angular_velocity -= p.wn_a * p.normal_impulse
+                    + p.wt_a[0] * p.tangent_impulse.x
+                    + p.wt_a[1] * p.tangent_impulse.y;
+                b.angular_velocity += p.wn_b * p.normal_impulse
+                    + p.wt_b[0] * p.tangent_impulse.x
+                    + p.wt_b[1] * p.tangent_impulse.y;
+            }
+            write_pair(bodies, c.body_a, a, c.body_b, b);
+        }
+    }
+
+    /// Stages *solve* (`Bias::On`) and *relax* (`Bias::Off`): one Gauss–Seidel pass over every contact,
+    /// normal impulses first, then friction clamped to the circle of radius μ·λ_n.
+    pub fn solve(&mut self, bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
+        for c in &mut self.contacts {
+            let (mut a, mut b) = (bodies[c.body_a], bodies[c.body_b]);
+            let normal = c.normal;
+            for p in &mut c.points[..c.point_count] {
+                let s = p.separation
+                    + normal
+                        .dot(b.anchor_displacement(p.anchor_b) - a.anchor_displacement(p.anchor_a));
+                let (velocity_bias, mass_scale, impulse_scale) = if s > 0.0 {
+                    (s * ctx.inv_h, 1.0, 0.0)
+                } else if bias == Bias::On {
+                    (
+                        (c.softness.bias_rate * s).max(-ctx.max_push_out_speed),
+                        c.softness.mass_scale,
+                        c.softness.impulse_scale,
+                    )
+                } else {
+                    (0.0, 1.0, 0.0)
+                };
+                let vn = normal.dot(b.linear_velocity - a.linear_velocity)
+                    + b.angular_velocity.dot(p.rn_b)
+                    - a.angular_velocity.dot(p.rn_a);
+                let delta = -p.normal_mass * mass_scale * (vn + velocity_bias)
+                    - impulse_scale * p.normal_impulse;
+                let accumulated = (p.normal_impulse + delta).max(0.0);
+                let applied = accumulated - p.normal_impulse;
+                p.normal_impulse = accumulated;
+                p.max_normal_impulse = p.max_normal_impulse.max(applied);
+                apply_normal(
+                    &mut a,
+                    &mut b,
+                    c.inv_mass_a,
+                    c.inv_mass_b,
+                    normal,
+                    p,
+                    applied,
+                );
+            }
+            for p in &mut c.points[..c.point_count] {
+                let dv = b.velocity_at(p.anchor_b) - a.velocity_at(p.anchor_a);
+                let vt = Vec2::new(dv.dot(c.tangents[0]), dv.dot(c.tangents[1]));
+                let candidate = p.tangent_impulse
+                    - Vec2::new(p.tangent_mass[0] * vt.x, p.tangent_mass[1] * vt.y);
+                let limit = c.friction * p.normal_impulse;
+                let accumulated = candidate.clamp_length_max(limit);
+                let applied = accumulated - p.tangent_impulse;
+                p.tangent_impulse = accumulated;
+                let linear = c.tangents[0] * applied.x + c.tangents[1] * applied.y;
+                a.linear_velocity -= linear * c.inv_mass_a;
+                b.linear_velocity += linear * c.inv_mass_b;
+                a.angular_velocity -= p.wt_a[0] * applied.x + p.wt_a[1] * applied.y;
+                b.angular_velocity += p.wt_b[0] * applied.x + p.wt_b[1] * applied.y;
+            }
+            write_pair(bodies, c.body_a, a, c.body_b, b);
+        }
+    }
+
+    /// Stage *restitution* (once, after the substeps): for each point that approached faster than the
+    /// threshold and carried an impulse, drives the normal velocity to `−C_r·v_n⁻`.
+    pub fn apply_restitution(&mut self, bodies: &mut [SolverBody], ctx: &StepContext) {
+        let threshold = ctx.restitution_threshold;
+        for c in &mut self.contacts {
+            if c.restitution == 0.0 {
+                continue;
+            }
+            let (mut a, mut b) = (bodies[c.body_a], bodies[c.body_b]);
+            for p in &mut c.points[..c.point_count] {
+                if p.relative_velocity > -threshold || p.max_normal_impulse == 0.0 {
+                    continue;
+                }
+                let vn = c.normal.dot(b.linear_velocity - a.linear_velocity)
+                    + b.angular_velocity.dot(p.rn_b)
+                    - a.angular_velocity.dot(p.rn_a);
+                let delta = -p.normal_mass * (vn + c.restitution * p.relative_velocity);
+                let accumulated = (p.normal_impulse + delta).max(0.0);
+                let applied = accumulated - p.normal_impulse;
+                p.normal_impulse = accumulated;
+                p.max_normal_impulse = p.max_normal_impulse.max(applied);
+                apply_normal(
+                    &mut a,
+                    &mut b,
+                    c.inv_mass_a,
+                    c.inv_mass_b,
+                    c.normal,
+                    p,
+                    applied,
+                );
+            }
+            write_pair(bodies, c.body_a, a, c.body_b, b);
+        }
+    }
+
+    /// Stage *store impulses*: writes the accumulated impulses back into `contacts` (the slice given to
+    /// [`ContactSolver::prepare`]) for warm starting the next step and for reporting.
+    pub fn store_impulses(&self, contacts: &mut [Contact]) {
+        for prepared in &self.contacts {
+            let Some(contact) = contacts.get_mut(prepared.source) else {
+                continue;
+            };
+            let count = prepared.point_count;
+            for (p, out) in prepared.points[..count]
+                .iter()
+                .zip(&mut contact.points[..count])
+            {
+                out.normal_impulse = p.normal_impulse;
+                out.tangent_impulse = prepared.tangents[0] * p.tangent_impulse.x
+                    + prepared.tangents[1] * p.tangent_impulse.y;
+            }
+        }
+    }
+
+    /// For each prepared manifold, the index of its source contact and the largest normal impulse any of its
+    /// points applied in one iteration this step (N·s) — what contact events report as the hit strength.
+    pub fn max_normal_impulses(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
+        self.contacts.iter().map(|c| {
+            let max = c.points[..c.point_count]
+                .iter()
+                .map(|p| p.max_normal_impulse)
+                .fold(0.0, f32::max);
+            (c.source, max)
+        })
+    }
+}
+
+#[inline]
+fn apply_normal(
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    inv_mass_a: f32,
+    inv_mass_b: f32,
+    normal: Vec3,
+    p: &PreparedPoint,
+    impulse: f32,
+) {
+    a.linear_velocity -= normal * (impulse * inv_mass_a);
+    b.linear_velocity += normal * (impulse * inv_mass_b);
+    a.angular_velocity -= p.wn_a * impulse;
+    b.angular_velocity += p.wn_b * impulse;
+}
+
+/// Writes two solver bodies back. A fixed body's copy is written too, unchanged (its inverse mass and inertia
+/// are zero, so nothing was added); when both indices are equal the second write wins, which is only
+/// reachable with a malformed contact.
+#[inline]
+fn write_pair(bodies: &mut [SolverBody], ia: usize, a: SolverBody, ib: usize, b: SolverBody) {
+    bodies[ia] = a;
+    bodies[ib] = b;
+}

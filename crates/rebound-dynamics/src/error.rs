@@ -1,0 +1,32 @@
+//! Typed errors for invalid dynamics input (checked where values enter: body creation, setters, mass
+//! properties). Not part of any step stage; the step trusts validated data.
+
+use rebound_math::{Mat3, MathError};
+
+/// An invalid input to a body, mass-property or impulse function. Nothing is changed when one is returned.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum DynamicsError {
+    /// A number or vector failed a basic check (non-finite, zero, negative, non-unit); the message names the
+    /// field and the value.
+    #[error(transparent)]
+    Math(#[from] MathError),
+    /// An inertia tensor given by hand was not symmetric positive semi-definite.
+    #[error(
+        "`{field}` must be a symmetric positive semi-definite inertia tensor (kg·m²), got {value}"
+    )]
+    InvalidInertia {
+        /// The name of the offending field or argument.
+        field: &'static str,
+        /// The value that was given.
+        value: Mat3,
+    },
+    /// [`crate::MassProperties::combine`] was given no parts, or parts whose masses sum to zero.
+    #[error("mass parts must have a positive total mass, got {total_mass} kg from {count} parts")]
+    NoMass {
+        /// The number of parts given.
+        count: usize,
+        /// Their total mass (kg).
+        total_mass: f32,
+    },
+}
