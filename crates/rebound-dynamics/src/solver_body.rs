@@ -133,7 +133,8 @@ impl BodyParams {
             linear_damping: body.linear_damping(),
             angular_damping: body.angular_damping(),
             motion,
-            gyroscopic: body.gyroscopic(),
+            // ω × I·ω vanishes for an isotropic tensor (balls, cubes): skip the solve, not just the result.
+            gyroscopic: body.gyroscopic() && !is_isotropic(&mass.local_inertia()),
         }
     }
 
@@ -159,4 +160,10 @@ impl BodyParams {
         }
         body.clear_forces();
     }
+}
+
+/// Whether an inertia tensor is a multiple of the identity (every axis principal, equal moments).
+fn is_isotropic(inertia: &Mat3) -> bool {
+    let d = inertia.x_axis.x;
+    *inertia == Mat3::from_diagonal(Vec3::splat(d))
 }
