@@ -7,6 +7,7 @@ use rebound_math::{Mat3, Pose, Quat, Vec3, inertia};
 
 /// How a body takes part in the simulation.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum BodyType {
     /// Moved by forces, gravity, contacts and constraints. Default.
     #[default]
@@ -19,6 +20,7 @@ pub enum BodyType {
 
 /// How a body's state is advanced over a substep of length `h`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum Integrator {
     /// Semi-implicit (symplectic) Euler: `v ← v + a·h`, then `x ← x + v·h` with the new velocity, after the
     /// constraints have corrected it. Energy stays bounded; the engine's default.
@@ -41,6 +43,7 @@ pub enum Integrator {
 /// # Ok::<(), rebound_dynamics::DynamicsError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BodyDesc {
     /// Dynamic, fixed or kinematic. Default: dynamic.
     pub body_type: BodyType,
@@ -198,6 +201,7 @@ impl BodyDesc {
 /// A rigid body's state. Built from a [`BodyDesc`] by [`RigidBody::new`], which checks every field; every
 /// setter checks its input and changes nothing on error.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RigidBody {
     body_type: BodyType,
     pose: Pose,
@@ -611,20 +615,23 @@ impl RigidBody {
         Ok(())
     }
 
-    /// Writes a solver result back: the new pose and velocities. For the solver pipeline (`rebound-world`),
-    /// which has validated everything it computes from.
-    pub fn set_state_unchecked(
+    /// Writes a solver result back: the new pose and velocities. Refuses (and changes nothing) if any of them
+    /// is not finite or the rotation is not unit, so a solver fault can never put NaN into a body.
+    ///
+    /// # Errors
+    /// As [`RigidBody::set_pose`], [`RigidBody::set_linear_velocity`], [`RigidBody::set_angular_velocity`].
+    pub fn set_solver_state(
         &mut self,
         pose: Pose,
         linear_velocity: Vec3,
         angular_velocity: Vec3,
-    ) {
-        debug_assert!(
-            pose.position.is_finite() && pose.rotation.is_finite(),
-            "solver produced a non-finite pose"
-        );
+    ) -> Result<(), DynamicsError> {
+        let pose = Pose::try_new(pose.position, pose.rotation)?;
+        check_finite_vec3("linear_velocity", linear_velocity)?;
+        check_finite_vec3("angular_velocity", angular_velocity)?;
         self.pose = pose;
         self.linear_velocity = linear_velocity;
         self.angular_velocity = angular_velocity;
+        Ok(())
     }
 }

@@ -26,11 +26,13 @@
 //! so a speculative contact lets the bodies close exactly the gap in this substep and no more, an overlap is
 //! pushed out softly at no more than `v_max`, and the relax pass removes the push-out velocity so that resting
 //! bodies do not gain energy. Friction: `λ_t ← clamp_circle(λ_t − M_t·v_t, μ·λ)`. Restitution, once after
-//! the substeps, drives `v_n` to `−C_r·v_n⁻` where `v_n⁻` is the pre-step approach speed, for contacts that
-//! approached faster than the threshold and carried an impulse.
+//! the substeps, drives `v_n` to `−C_r·v_n⁻` where `v_n⁻` is the approach speed — the most negative normal
+//! velocity the bias passes met before applying their impulse, so a body that keeps falling for part of the
+//! step rebounds from its speed at impact, not its speed when the step began — for contacts that approached
+//! faster than the threshold and carried an impulse.
 
 use crate::{BodyParams, Softness, SolverBody, StepContext};
-use rebound_math::{Vec2, Vec3};
+use rebound_math::{Mat3, Vec2, Vec3};
 
 /// The most points a contact manifold carries (a face on a face needs four).
 pub const MAX_CONTACT_POINTS: usize = 4;
@@ -77,6 +79,10 @@ pub struct Contact {
     pub friction: f32,
     /// Combined coefficient of restitution `C_r` (dimensionless, in `[0, 1]`).
     pub restitution: f32,
+    /// Rolling resistance as a lever arm (m, ≥ 0): the relative angular velocity of the two bodies (rolling
+    /// and spinning) is resisted by a torque of at most `rolling_friction × normal force`. Default: 0 (ideal
+    /// rolling: a ball set rolling on flat ground rolls forever, as in rapier and Box2D's default).
+    pub rolling_friction: f32,
     /// The points; only the first `point_count` are used.
     pub points: [ContactPoint; MAX_CONTACT_POINTS],
     /// How many points are in use (0 to [`MAX_CONTACT_POINTS`]).
@@ -99,9 +105,17 @@ impl Contact {
             normal,
             friction,
             restitution,
+            rolling_friction: 0.0,
             points: [ContactPoint::default(); MAX_CONTACT_POINTS],
             point_count: 0,
         }
+    }
+
+    /// Sets the rolling resistance lever arm (m).
+    #[must_use]
+    pub fn with_rolling_friction(mut self, rolling_friction: f32) -> Self {
+        self.rolling_friction = rolling_friction;
+        self
     }
 
     /// Adds a point; returns `false` (and adds nothing) when the manifold is full.
@@ -129,7 +143,8 @@ struct PreparedPoint {
     anchor_a: Vec3,
     anchor_b: Vec3,
     separation: f32,
-    /// Normal relative velocity before the step (m/s); negative when approaching.
+    /// The most negative normal relative velocity seen before an impulse in any bias pass of the step (m/s);
+    /// negative when approaching. Restitution reverses it.
     relative_velocity: f32,
     normal_impulse: f32,
     tangent_impulse: Vec2,
@@ -162,6 +177,18 @@ struct PreparedContact {
     softness: Softness,
     points: [PreparedPoint; MAX_CONTACT_POINTS],
     point_count: usize,
+    rolling: Rolling,
+}
+
+/// The rolling-resistance block of a manifold: an angular constraint `ω_b − ω_a = 0` whose accumulated
+/// impulse is clamped to `rolling_friction × Σλ_n`. Effective mass `(I_a⁻¹ + I_b⁻¹)⁻¹`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Rolling {
+    friction: f32,
+    impulse: Vec3,
+    mass: Mat3,
+    inv_inertia_a: Mat3,
+    inv_inertia_b: Mat3,
 }
 
 /// The contact solver: holds the prepared constraints between stages and reuses its buffer from step to
@@ -239,6 +266,13 @@ impl ContactSolver {
                 softness,
                 points: [PreparedPoint::default(); MAX_CONTACT_POINTS],
                 point_count: contact.point_count.min(MAX_CONTACT_POINTS),
+                rolling: Rolling {
+                    friction: contact.rolling_friction.max(0.0),
+                    impulse: Vec3::ZERO,
+                    mass: angular_mass(pa.inv_inertia_world + pb.inv_inertia_world),
+                    inv_inertia_a: pa.inv_inertia_world,
+                    inv_inertia_b: pb.inv_inertia_world,
+                },
             };
             for (point, out) in contact.points().iter().zip(&mut prepared.points) {
                 let (ra, rb) = (point.anchor_a, point.anchor_b);
@@ -312,6 +346,8 @@ impl ContactSolver {
                     + p.wt_b[0] * p.tangent_impulse.x
                     + p.wt_b[1] * p.tangent_impulse.y;
             }
+            a.angular_velocity -= c.rolling.inv_inertia_a * c.rolling.impulse;
+            b.angular_velocity += c.rolling.inv_inertia_b * c.rolling.impulse;
             write_pair(bodies, c.body_a, a, c.body_b, b);
         }
     }
@@ -340,6 +376,11 @@ impl ContactSolver {
                 let vn = normal.dot(b.linear_velocity - a.linear_velocity)
                     + b.angular_velocity.dot(p.rn_b)
                     - a.angular_velocity.dot(p.rn_a);
+                if bias == Bias::On {
+                    // The approach speed restitution reverses is the fastest seen before an impulse acted,
+                    // substep by substep: gravity keeps accelerating a falling body after the step began.
+                    p.relative_velocity = p.relative_velocity.min(vn);
+                }
                 let delta = -p.normal_mass * mass_scale * (vn + velocity_bias)
                     - impulse_scale * p.normal_impulse;
                 let accumulated = (p.normal_impulse + delta).max(0.0);
@@ -370,6 +411,19 @@ impl ContactSolver {
                 b.linear_velocity += linear * c.inv_mass_b;
                 a.angular_velocity -= p.wt_a[0] * applied.x + p.wt_a[1] * applied.y;
                 b.angular_velocity += p.wt_b[0] * applied.x + p.wt_b[1] * applied.y;
+            }
+            if c.rolling.friction > 0.0 {
+                let total_normal: f32 = c.points[..c.point_count]
+                    .iter()
+                    .map(|p| p.normal_impulse)
+                    .sum();
+                let r = &mut c.rolling;
+                let candidate = r.impulse - r.mass * (b.angular_velocity - a.angular_velocity);
+                let accumulated = candidate.clamp_length_max(r.friction * total_normal);
+                let applied = accumulated - r.impulse;
+                r.impulse = accumulated;
+                a.angular_velocity -= r.inv_inertia_a * applied;
+                b.angular_velocity += r.inv_inertia_b * applied;
             }
             write_pair(bodies, c.body_a, a, c.body_b, b);
         }
@@ -440,6 +494,21 @@ impl ContactSolver {
             (c.source, max)
         })
     }
+}
+
+/// The effective mass of an angular constraint, `K⁻¹`; a singular `K` (both bodies unable to turn about some
+/// axis) inverts per axis with zero for the locked directions.
+fn angular_mass(k: Mat3) -> Mat3 {
+    let det = k.determinant();
+    if det > f32::MIN_POSITIVE && det.is_finite() {
+        return k.inverse();
+    }
+    let invert = |v: f32| if v > 0.0 { 1.0 / v } else { 0.0 };
+    Mat3::from_diagonal(Vec3::new(
+        invert(k.x_axis.x),
+        invert(k.y_axis.y),
+        invert(k.z_axis.z),
+    ))
 }
 
 #[inline]

@@ -12,6 +12,7 @@ use rebound_math::{Mat3, Pose, Vec3, inertia};
 
 /// Mass, centre of mass and inertia of a body. Always valid: built only through checked constructors.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MassProperties {
     mass: f32,
     local_center_of_mass: Vec3,

@@ -6,6 +6,7 @@
 /// When the two surfaces name different rules, the one later in this list wins (`Max` beats everything),
 /// as in rapier.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum CombineRule {
     /// `(a + b) / 2`. Default.
     #[default]

@@ -109,6 +109,24 @@ pub struct BodyParams {
 }
 
 impl BodyParams {
+    /// A fixed body at the origin with identity rotation: the anchor of constraints attached to a world point.
+    pub const WORLD: Self = Self {
+        inv_mass: 0.0,
+        inv_inertia_world: Mat3::ZERO,
+        local_inertia: Mat3::ZERO,
+        local_inv_inertia: Mat3::ZERO,
+        rotation: Quat::IDENTITY,
+        center_of_mass: Vec3::ZERO,
+        local_center_of_mass: Vec3::ZERO,
+        force: Vec3::ZERO,
+        torque: Vec3::ZERO,
+        gravity_scale: 0.0,
+        linear_damping: 0.0,
+        angular_damping: 0.0,
+        motion: Motion::Fixed,
+        gyroscopic: false,
+    };
+
     /// The constants of `body` for the step about to run.
     #[must_use]
     pub fn from_body(body: &RigidBody) -> Self {
@@ -146,19 +164,22 @@ impl BodyParams {
     }
 
     /// Writes the solver's result into `body`: pose from the deltas, velocities; clears the force
-    /// accumulators (the *finalize* stage).
-    pub fn write_back(&self, state: &SolverBody, body: &mut RigidBody) {
-        if self.motion != Motion::Fixed {
-            let rotation = (state.delta_rotation * self.rotation).normalize();
-            let center = self.center_of_mass + state.delta_position;
-            let position = center - rotation * self.local_center_of_mass;
-            body.set_state_unchecked(
-                Pose::new(position, rotation),
-                state.linear_velocity,
-                state.angular_velocity,
-            );
-        }
+    /// accumulators (the *finalize* stage). Returns `false`, leaving the pose and velocities as they were,
+    /// if the result is not finite — which only a solver fault produces; the world reports it.
+    pub fn write_back(&self, state: &SolverBody, body: &mut RigidBody) -> bool {
         body.clear_forces();
+        if self.motion == Motion::Fixed {
+            return true;
+        }
+        let rotation = (state.delta_rotation * self.rotation).normalize();
+        let center = self.center_of_mass + state.delta_position;
+        let position = center - rotation * self.local_center_of_mass;
+        body.set_solver_state(
+            Pose::new(position, rotation),
+            state.linear_velocity,
+            state.angular_velocity,
+        )
+        .is_ok()
     }
 }
 

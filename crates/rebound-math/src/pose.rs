@@ -10,6 +10,7 @@ use crate::{MathError, Quat, Transform, Vec3};
 /// The pose of a body is the placement of its body frame: `position` is the frame's origin in world space (m)
 /// and `rotation` (a unit quaternion) its orientation.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Pose {
     /// Position (m). Default: origin.
     pub position: Vec3,

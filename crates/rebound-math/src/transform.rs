@@ -26,6 +26,7 @@ const UNIFORM_SCALE_TOLERANCE: f32 = 1e-6;
 /// Build one with [`Transform::try_new`] to have it checked; the fields are public for reading and for
 /// struct-update syntax, and [`Transform::is_valid`] checks one built by hand.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Transform {
     /// Translation (m). Default: zero.
     pub translation: Vec3,

@@ -91,7 +91,10 @@ impl Harness {
         self.solver.apply_restitution(&mut self.states, &ctx);
         self.solver.store_impulses(&mut contacts);
         for ((body, state), params) in self.bodies.iter_mut().zip(&self.states).zip(&self.params) {
-            params.write_back(state, body);
+            assert!(
+                params.write_back(state, body),
+                "the solver produced a non-finite state"
+            );
         }
         self.contacts = contacts;
     }
