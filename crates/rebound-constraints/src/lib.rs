@@ -1,4 +1,44 @@
 #![doc = include_str!("../README.md")]
 
+pub mod part;
+
+mod ball;
+mod coordinate;
+mod error;
+mod fixed;
+mod hinge;
+mod joint;
+mod limits;
+mod motor;
+mod pair;
+mod prismatic;
+mod rod;
+mod rope;
+mod settings;
+mod soft_spring;
+mod solver;
+pub mod spring;
+pub mod tether;
+mod wheel;
+
 /// The dynamics layer this crate builds on.
 pub use rebound_dynamics as dynamics;
+/// The math layer.
+pub use rebound_math as math;
+
+pub use ball::BallJoint;
+pub use error::ConstraintError;
+pub use fixed::FixedJoint;
+pub use hinge::{HingeJoint, twist_angle};
+pub use joint::{Joint, JointBodies, JointKind, JointState, basis_from_axes, basis_from_axis};
+pub use limits::Limits;
+pub use motor::Motor;
+pub use pair::{Anchors, BodyPair, Distance, MIN_AXIS_LENGTH};
+pub use prismatic::PrismaticJoint;
+pub use rod::Rod;
+pub use rope::Rope;
+pub use settings::JointSettings;
+pub use soft_spring::{JointSpring, SoftSpring};
+pub use solver::JointSolver;
+pub use spring::{Spring, SpringModel};
+pub use wheel::WheelJoint;

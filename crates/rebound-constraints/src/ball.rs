@@ -1,0 +1,52 @@
+//! The ball (spherical) joint: two anchor points held together, rotation free. Stages: *prepare*, *warm
+//! start*, *solve* and *relax*.
+
+use crate::part::{PointPart, block_target};
+use crate::solver::Stage;
+use crate::{BodyPair, JointState};
+use rebound_dynamics::SolverBody;
+
+/// A ball joint. It has no parameters: the anchors of the [`crate::Joint`] are the
+/// pivot.
+///
+/// ```text
+/// C = d = p_b − p_a = 0                                 (m, 3 rows)
+/// Ċ = v_b + ω_b × r_b − v_a − ω_a × r_a,   J = [ −1   [r_a]×   1   −[r_b]× ]
+/// K = (1/m_a + 1/m_b)·1 − [r_a]×·I_a⁻¹·[r_a]× − [r_b]×·I_b⁻¹·[r_b]×,    M_eff = K⁻¹
+/// ```
+///
+/// Softness: the joint softness of [`crate::JointSettings`] in the bias pass, none in the relax pass.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct BallJoint;
+
+impl BallJoint {
+    /// A ball joint.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self
+    }
+}
+
+pub(crate) fn warm_start(
+    pair: &BodyPair,
+    state: &JointState,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+) {
+    let anchors = pair.anchors(a, b);
+    PointPart::new(pair, anchors.r_a, anchors.r_b).apply(pair, a, b, state.linear_impulse);
+}
+
+pub(crate) fn solve(
+    pair: &BodyPair,
+    state: &mut JointState,
+    a: &mut SolverBody,
+    b: &mut SolverBody,
+    stage: &Stage,
+) {
+    let anchors = pair.anchors(a, b);
+    let part = PointPart::new(pair, anchors.r_a, anchors.r_b);
+    let target = block_target(anchors.d, stage.bias, stage.joint_softness);
+    part.solve(pair, a, b, target, &mut state.linear_impulse);
+}

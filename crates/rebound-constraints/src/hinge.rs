@@ -1,0 +1,234 @@
+//! The hinge (revolute) joint (course item 6): the anchors held together and the joint axes of the two bodies
+//! kept parallel, leaving one rotation free — with optional angle limits, a motor and a spring on the angle.
+//! Stages: *prepare*, *warm start*, *solve* and *relax*.
+
+use crate::coordinate::CoordinateRows;
+use crate::error::check_in_range;
+use crate::limits::Limits;
+use crate::motor::Motor;
+use crate::part::{AlignPart, AnglePart};
+use crate::soft_spring::JointSpring;
+use crate::solver::Stage;
+use crate::{BodyPair, ConstraintError, JointState, ball};
+use core::f32::consts::{PI, TAU};
+use rebound_dynamics::{Softness, SolverBody, StepContext};
+use rebound_math::{Quat, Vec3};
+
+/// A hinge joint. Free by default: no limits, no motor, no spring.
+///
+/// The hinge axis is the X axis of each body's joint frame ([`crate::Joint::local_basis_a`]); the angle θ is
+/// the twist of frame B relative to frame A about it, zero when the frames' Y axes coincide.
+///
+/// ```text
+/// point:   C = d = 0 (3 rows)                                    see crate::part::PointPart
+/// axis:    C = (a·b₁, a·b₂) = 0 (2 rows), a = F_a·x̂, bᵢ = F_b·ŷ, F_b·ẑ    see crate::part::AlignPart
+/// angle:   θ = 2·atan2(q_x, q_w) of q = F_a⁻¹·F_b,  wrapped to (−π, π]
+///          Ċ = a·(ω_b − ω_a),   J = [ 0  −aᵀ  0  aᵀ ],   m_eff = 1/(a·I_a⁻¹·a + a·I_b⁻¹·a)
+/// limits:  θ − θ_min ≥ 0 (λ ≥ 0),  θ − θ_max ≤ 0 (λ ≤ 0), speculative inside, joint softness outside
+/// motor:   Ċ → ω_target, |λ| ≤ τ_max·h
+/// spring:  C = θ − θ_target, soft with its own SoftSpring (bias pass only)
+/// ```
+///
+/// Row order in an iteration: spring, motor, limits, axis, point — the point last so that holding the bodies
+/// together wins (Box2D's and Jolt's order).
+///
+/// Limitation: the angle wraps at ±π, so limits should lie inside (−π, π) with some margin; a hinge spun past
+/// ±π while at a limit near ±π sees the angle jump.
+///
+/// # Examples
+///
+/// ```
+/// use rebound_constraints::{HingeJoint, Motor};
+/// let door = HingeJoint::new()
+///     .with_limits(-1.5, 1.5)?
+///     .with_motor(Motor::new(0.5, 20.0)?);
+/// assert_eq!(door.limits().map(|l| l.upper()), Some(1.5));
+/// assert!(HingeJoint::new().with_limits(1.0, -1.0).is_err());
+/// # Ok::<(), rebound_constraints::ConstraintError>(())
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct HingeJoint {
+    limits: Option<Limits>,
+    motor: Option<Motor>,
+    spring: Option<JointSpring>,
+}
+
+impl HingeJoint {
+    /// A free hinge.
+    #[must_use]
+    pub const fn new() -> Self {
+        Self {
+            limits: None,
+            motor: None,
+            spring: None,
+        }
+    }
+
+    /// Limits the angle to `[lower, upper]` (rad, each in `[−π, π]`).
+    ///
+    /// # Errors
+    /// Non-finite bounds, bounds outside `[−π, π]`, `lower > upper`.
+    pub fn with_limits(mut self, lower: f32, upper: f32) -> Result<Self, ConstraintError> {
+        self.set_limits(Some(Limits::new(lower, upper)?))?;
+        Ok(self)
+    }
+
+    /// Adds a motor (target speed rad/s, max torque N·m).
+    #[must_use]
+    pub const fn with_motor(mut self, motor: Motor) -> Self {
+        self.motor = Some(motor);
+        self
+    }
+
+    /// Adds a spring on the angle (target rad, stiffness in Hz/ζ or N·m/rad and N·m·s/rad).
+    #[must_use]
+    pub const fn with_spring(mut self, spring: JointSpring) -> Self {
+        self.spring = Some(spring);
+        self
+    }
+
+    /// The angle limits (rad), if any.
+    #[must_use]
+    pub fn limits(&self) -> Option<Limits> {
+        self.limits
+    }
+
+    /// The motor, if any.
+    #[must_use]
+    pub fn motor(&self) -> Option<Motor> {
+        self.motor
+    }
+
+    /// The spring, if any.
+    #[must_use]
+    pub fn spring(&self) -> Option<JointSpring> {
+        self.spring
+    }
+
+    /// Sets or removes the angle limits; nothing changes on error.
+    ///
+    /// # Errors
+    /// Bounds outside `[−π, π]` ([`ConstraintError::OutOfRange`]).
+    pub fn set_limits(&mut self, limits: Option<Limits>) -> Result<(), ConstraintError> {
+        if let Some(l) = limits {
+            check_in_range("lower", l.lower(), -PI, PI)?;
+            check_in_range("upper", l.upper(), -PI, PI)?;
+        }
+        self.limits = limits;
+        Ok(())
+    }
+
+    /// Sets or removes the motor.
+    pub fn set_motor(&mut self, motor: Option<Motor>) {
+        self.motor = motor;
+    }
+
+    /// Sets or removes the spring.
+    pub fn set_spring(&mut self, spring: Option<JointSpring>) {
+        self.spring = spring;
+    }
+
+    pub(crate) fn prepare(&self, ctx: &StepContext, state: &mut JointState) -> PreparedHinge {
+        let rows = CoordinateRows {
+            spring: self.spring,
+            spring_softness: self
+                .spring
+                .map_or(Softness::RIGID, |s| s.spring().softness(0.0, ctx.h)),
+            motor: self.motor,
+            limits: self.limits,
+        };
+        rows.clear_unused(state);
+        state.angular_impulse.z = 0.0;
+        PreparedHinge { rows }
+    }
+}
+
+/// The twist angle θ (rad, in (−π, π]) of `frame_b` relative to `frame_a` about `frame_a`'s X axis.
+#[inline]
+#[must_use]
+pub fn twist_angle(frame_a: Quat, frame_b: Quat) -> f32 {
+    let q = frame_a.conjugate() * frame_b;
+    wrap_angle(2.0 * q.x.atan2(q.w))
+}
+
+/// `angle` wrapped to (−π, π] (for inputs in (−3π, 3π]).
+#[inline]
+#[must_use]
+pub(crate) fn wrap_angle(angle: f32) -> f32 {
+    if angle > PI {
+        angle - TAU
+    } else if angle <= -PI {
+        angle + TAU
+    } else {
+        angle
+    }
+}
+
+/// A hinge ready for the substeps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PreparedHinge {
+    rows: CoordinateRows,
+}
+
+impl PreparedHinge {
+    pub(crate) fn warm_start(
+        &self,
+        pair: &BodyPair,
+        state: &JointState,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
+        let (fa, fb) = pair.frames(a, b);
+        let axis = fa * Vec3::X;
+        AnglePart::new(pair, axis).apply(a, b, CoordinateRows::accumulated(state));
+        AlignPart::new(pair, axis, [fb * Vec3::Y, fb * Vec3::Z]).apply(
+            a,
+            b,
+            state.angular_impulse.truncate(),
+        );
+        ball::warm_start(pair, state, a, b);
+    }
+
+    pub(crate) fn solve(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        stage: &Stage,
+    ) {
+        let (fa, fb) = pair.frames(a, b);
+        let axis = fa * Vec3::X;
+        let part = AnglePart::new(pair, axis);
+        self.rows
+            .solve(&part, pair, twist_angle(fa, fb), state, a, b, stage);
+        let align = AlignPart::new(pair, axis, [fb * Vec3::Y, fb * Vec3::Z]);
+        let mut lambda = state.angular_impulse.truncate();
+        align.solve(a, b, stage.bias, stage.joint_softness, &mut lambda);
+        state.angular_impulse = lambda.extend(0.0);
+        ball::solve(pair, state, a, b, stage);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_twist_angle_is_the_rotation_about_x_and_ignores_swing() {
+        let a = Quat::from_rotation_y(0.7);
+        for angle in [-3.0f32, -1.0, 0.0, 0.4, 2.5, PI] {
+            let b = a * Quat::from_rotation_x(angle);
+            assert!(
+                (twist_angle(a, b) - wrap_angle(angle)).abs() < 1e-5,
+                "{angle}"
+            );
+        }
+        // Past ±π it wraps.
+        let b = a * Quat::from_rotation_x(3.5);
+        assert!((twist_angle(a, b) - (3.5 - TAU)).abs() < 1e-5);
+        // A pure swing (about a perpendicular axis) has no twist.
+        assert!(twist_angle(Quat::IDENTITY, Quat::from_rotation_z(0.8)).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,106 @@
+//! The 2-DOF axis alignment (Jolt's `HingeRotationConstraintPart`): an axis fixed in body A stays parallel to
+//! an axis fixed in body B, leaving rotation about it free. Hinge and wheel joints use it.
+//!
+//! With `a` the axis of A and `b₁`, `b₂` two unit vectors of B perpendicular to B's axis (world):
+//!
+//! ```text
+//! C = (a·b₁, a·b₂)                       zero when a ∥ B's axis (rad, to first order)
+//! Ċᵢ = uᵢ·(ω_b − ω_a),   uᵢ = bᵢ × a       since d(a·bᵢ)/dt = (ω_a × a)·bᵢ + a·(ω_b × bᵢ)
+//! K = [ uᵢ·(I_a⁻¹ + I_b⁻¹)·uⱼ ]            (2×2, 1/(kg·m²))
+//! impulse λ (N·m·s): ω_a −= I_a⁻¹·(u₁λ₁ + u₂λ₂),  ω_b += I_b⁻¹·(u₁λ₁ + u₂λ₂)
+//! ```
+
+use super::{inverse2_or_zero, solve_block2};
+use crate::BodyPair;
+use rebound_dynamics::{Bias, Softness, SolverBody};
+use rebound_math::{Mat2, Vec2, Vec3};
+
+/// An axis-alignment block, built each iteration (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AlignPart {
+    u: [Vec3; 2],
+    w_a: [Vec3; 2],
+    w_b: [Vec3; 2],
+    error: Vec2,
+    effective_mass: Mat2,
+}
+
+impl AlignPart {
+    /// The block keeping `axis_a` (unit, world, fixed in A) perpendicular to `perpendicular_b`, two unit
+    /// world vectors fixed in B and perpendicular to B's axis.
+    #[inline]
+    #[must_use]
+    pub fn new(pair: &BodyPair, axis_a: Vec3, perpendicular_b: [Vec3; 2]) -> Self {
+        let u = [
+            perpendicular_b[0].cross(axis_a),
+            perpendicular_b[1].cross(axis_a),
+        ];
+        let w_a = [pair.inv_inertia_a * u[0], pair.inv_inertia_a * u[1]];
+        let w_b = [pair.inv_inertia_b * u[0], pair.inv_inertia_b * u[1]];
+        let k01 = u[0].dot(w_a[1] + w_b[1]);
+        let k = Mat2::from_cols(
+            Vec2::new(u[0].dot(w_a[0] + w_b[0]), k01),
+            Vec2::new(k01, u[1].dot(w_a[1] + w_b[1])),
+        );
+        Self {
+            u,
+            w_a,
+            w_b,
+            error: Vec2::new(
+                axis_a.dot(perpendicular_b[0]),
+                axis_a.dot(perpendicular_b[1]),
+            ),
+            effective_mass: inverse2_or_zero(&k),
+        }
+    }
+
+    /// The alignment error `C` (rad, to first order).
+    #[inline]
+    #[must_use]
+    pub fn error(&self) -> Vec2 {
+        self.error
+    }
+
+    /// `Ċ` (rad/s).
+    #[inline]
+    #[must_use]
+    pub fn velocity(&self, a: &SolverBody, b: &SolverBody) -> Vec2 {
+        let w = b.angular_velocity - a.angular_velocity;
+        Vec2::new(self.u[0].dot(w), self.u[1].dot(w))
+    }
+
+    /// Applies the impulse `impulse` (N·m·s, in the block's two directions).
+    #[inline]
+    pub fn apply(&self, a: &mut SolverBody, b: &mut SolverBody, impulse: Vec2) {
+        if impulse == Vec2::ZERO {
+            return;
+        }
+        a.angular_velocity -= self.w_a[0] * impulse.x + self.w_a[1] * impulse.y;
+        b.angular_velocity += self.w_b[0] * impulse.x + self.w_b[1] * impulse.y;
+    }
+
+    /// One iteration toward `C = 0` (soft in the bias pass, velocity only in the relax pass); returns the
+    /// applied increment.
+    #[inline]
+    pub fn solve(
+        &self,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        bias: Bias,
+        joint_softness: Softness,
+        accumulated: &mut Vec2,
+    ) -> Vec2 {
+        let target = match bias {
+            Bias::On => (joint_softness.bias_rate * self.error, joint_softness),
+            Bias::Off => (Vec2::ZERO, Softness::RIGID),
+        };
+        let applied = solve_block2(
+            &self.effective_mass,
+            self.velocity(a, b),
+            target,
+            accumulated,
+        );
+        self.apply(a, b, applied);
+        applied
+    }
+}

@@ -1,0 +1,113 @@
+//! The linear one-degree-of-freedom part (Jolt's `AxisConstraintPart`, the block of Box2D's distance joint):
+//! the relative velocity of two anchor points along a unit axis. Springs, ropes and rods are one of these;
+//! prismatic and wheel joints use them for the directions across and along their axis.
+//!
+//! ```text
+//! Ċ = n·(v_b + ω_b × r_b − v_a − ω_a × r_a)
+//! J = [ −nᵀ   −(r_a × n)ᵀ   nᵀ   (r_b × n)ᵀ ]
+//! K = J·M⁻¹·Jᵀ = 1/m_a + 1/m_b + (r_a × n)·I_a⁻¹·(r_a × n) + (r_b × n)·I_b⁻¹·(r_b × n)     (1/kg)
+//! impulse λ along n: v_a −= λ·n/m_a, ω_a −= λ·I_a⁻¹·(r_a × n), v_b += λ·n/m_b, ω_b += λ·I_b⁻¹·(r_b × n)
+//! ```
+//!
+//! `r_a`, `r_b` are the lever arms from each centre of mass; a prismatic joint passes `r_a + d` for body A so
+//! that both bodies are pushed at the same point (the exact Jacobian of `C = n_a·d` with `n_a` turning with A,
+//! and no spurious torque: angular momentum is conserved).
+
+use super::{RowTarget, inverse_or_zero, solve_row};
+use crate::BodyPair;
+use rebound_dynamics::SolverBody;
+use rebound_math::Vec3;
+
+/// A linear row, built each iteration from the current geometry (see the module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AxisPart {
+    axis: Vec3,
+    rn_a: Vec3,
+    rn_b: Vec3,
+    w_a: Vec3,
+    w_b: Vec3,
+    effective_mass: f32,
+}
+
+impl AxisPart {
+    /// The row along the unit `axis` with lever arms `r_a`, `r_b` (m, world axes, from each centre of mass).
+    #[inline]
+    #[must_use]
+    pub fn new(pair: &BodyPair, axis: Vec3, r_a: Vec3, r_b: Vec3) -> Self {
+        let rn_a = r_a.cross(axis);
+        let rn_b = r_b.cross(axis);
+        let w_a = pair.inv_inertia_a * rn_a;
+        let w_b = pair.inv_inertia_b * rn_b;
+        let k = pair.inv_mass_a + pair.inv_mass_b + rn_a.dot(w_a) + rn_b.dot(w_b);
+        Self {
+            axis,
+            rn_a,
+            rn_b,
+            w_a,
+            w_b,
+            effective_mass: inverse_or_zero(k),
+        }
+    }
+
+    /// The unit axis.
+    #[inline]
+    #[must_use]
+    pub fn axis(&self) -> Vec3 {
+        self.axis
+    }
+
+    /// `1/K` (kg); 0 when neither body can move along the axis.
+    #[inline]
+    #[must_use]
+    pub fn effective_mass(&self) -> f32 {
+        self.effective_mass
+    }
+
+    /// `Ċ`: the relative velocity of the anchors along the axis (m/s), positive when B moves away from A
+    /// along `n`.
+    #[inline]
+    #[must_use]
+    pub fn velocity(&self, a: &SolverBody, b: &SolverBody) -> f32 {
+        self.axis.dot(b.linear_velocity - a.linear_velocity) + self.rn_b.dot(b.angular_velocity)
+            - self.rn_a.dot(a.angular_velocity)
+    }
+
+    /// Applies the impulse `impulse` (N·s) along the axis: `+` on B, `−` on A. Zero applies nothing (not even
+    /// a rounding: a slack rope leaves the bodies bit-identical).
+    #[inline]
+    pub fn apply(&self, pair: &BodyPair, a: &mut SolverBody, b: &mut SolverBody, impulse: f32) {
+        if impulse == 0.0 {
+            return;
+        }
+        a.linear_velocity -= self.axis * (impulse * pair.inv_mass_a);
+        a.angular_velocity -= self.w_a * impulse;
+        b.linear_velocity += self.axis * (impulse * pair.inv_mass_b);
+        b.angular_velocity += self.w_b * impulse;
+    }
+
+    /// One iteration of the row: the impulse from [`solve_row`], clamped to `[lower, upper]`, applied.
+    /// Returns the applied increment (N·s).
+    #[inline]
+    pub fn solve(
+        &self,
+        pair: &BodyPair,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        target: RowTarget,
+        accumulated: &mut f32,
+        lower: f32,
+        upper: f32,
+    ) -> f32 {
+        let velocity = self.velocity(a, b);
+        let applied = solve_row(
+            self.effective_mass,
+            velocity,
+            target,
+            accumulated,
+            lower,
+            upper,
+        );
+        self.apply(pair, a, b, applied);
+        applied
+    }
+}

@@ -1,0 +1,113 @@
+//! The rod: a fixed distance between two anchors (a massless rigid rod with ball ends; Box2D's rigid distance
+//! joint). Stages: *prepare*, *warm start*, *solve* and *relax*.
+
+use crate::part::{AxisPart, RowTarget};
+use crate::solver::Stage;
+use crate::spring::initial_axis;
+use crate::{BodyPair, ConstraintError, JointState};
+use rebound_dynamics::SolverBody;
+use rebound_math::Vec3;
+use rebound_math::validity::check_positive;
+
+/// A rod of fixed length.
+///
+/// ```text
+/// C = |d| − L = 0                                      (m)
+/// Ċ = n·(v_b + ω_b × r_b − v_a − ω_a × r_a),   n = d/|d|,   J = [ −nᵀ  −(r_a × n)ᵀ  nᵀ  (r_b × n)ᵀ ]
+/// m_eff = 1 / (1/m_a + 1/m_b + (r_a × n)·I_a⁻¹·(r_a × n) + (r_b × n)·I_b⁻¹·(r_b × n))
+/// ```
+///
+/// Softness: the joint softness of [`crate::JointSettings`] in the bias pass, none (velocity only) in the
+/// relax pass. The impulse is unclamped: a rod pushes and pulls.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Rod {
+    length: f32,
+}
+
+impl Rod {
+    /// A rod of `length` (m, > 0; for zero length use a [`crate::BallJoint`]).
+    ///
+    /// # Errors
+    /// A non-finite or non-positive `length`.
+    pub fn new(length: f32) -> Result<Self, ConstraintError> {
+        Ok(Self {
+            length: check_positive("length", length)?,
+        })
+    }
+
+    /// The length (m).
+    #[must_use]
+    pub fn length(&self) -> f32 {
+        self.length
+    }
+
+    /// Changes the length (m); nothing changes on error.
+    ///
+    /// # Errors
+    /// A non-finite or non-positive `length`.
+    pub fn set_length(&mut self, length: f32) -> Result<(), ConstraintError> {
+        self.length = check_positive("length", length)?;
+        Ok(())
+    }
+
+    pub(crate) fn prepare(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> PreparedRod {
+        PreparedRod {
+            length: self.length,
+            fallback_axis: initial_axis(pair, a, b),
+        }
+    }
+}
+
+/// A rod ready for the substeps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PreparedRod {
+    length: f32,
+    fallback_axis: Vec3,
+}
+
+impl PreparedRod {
+    pub(crate) fn length(&self) -> f32 {
+        self.length
+    }
+
+    pub(crate) fn warm_start(
+        &self,
+        pair: &BodyPair,
+        state: &JointState,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
+        let dist = pair.distance(a, b, self.fallback_axis);
+        AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b).apply(
+            pair,
+            a,
+            b,
+            state.axial_impulse,
+        );
+    }
+
+    pub(crate) fn solve(
+        &mut self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        stage: &Stage,
+    ) {
+        let dist = pair.distance(a, b, self.fallback_axis);
+        self.fallback_axis = dist.axis;
+        let part = AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b);
+        let target =
+            RowTarget::equality(dist.length - self.length, stage.bias, stage.joint_softness);
+        part.solve(
+            pair,
+            a,
+            b,
+            target,
+            &mut state.axial_impulse,
+            f32::NEG_INFINITY,
+            f32::INFINITY,
+        );
+    }
+}

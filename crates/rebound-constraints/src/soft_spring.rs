@@ -1,0 +1,172 @@
+//! Spring parameters shared by every soft spring in the crate (the `Soft` model of [`crate::Spring`], hinge,
+//! prismatic and wheel springs), turned into [`Softness`] coefficients at *prepare* (frequency form) or in each
+//! iteration (stiffness form, which needs the current effective mass).
+//!
+//! A soft spring is a spring-damper `F = −k·C − c·Ċ` integrated with implicit Euler (Catto, "Soft
+//! Constraints", GDC 2011): stable for any stiffness and step. The two parameterisations are related through
+//! the row's effective mass `m_eff`: `k = m_eff·ω²`, `c = 2·m_eff·ζ·ω`, `ω = 2π·f`.
+
+use crate::ConstraintError;
+use rebound_dynamics::Softness;
+use rebound_math::validity::{check_finite, check_non_negative};
+
+/// The stiffness of a soft (implicit) spring, in one of two parameterisations.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum SoftSpring {
+    /// A natural frequency and a damping ratio: the stiffness follows the effective mass, so the spring feels
+    /// the same on a pebble and a truck (Box2D, Jolt's `ESpringMode::FrequencyAndDamping`).
+    Frequency {
+        /// Undamped natural frequency `f` (Hz), > 0.
+        frequency_hz: f32,
+        /// Damping ratio ζ (dimensionless; 0 = undamped, 1 = critical), ≥ 0.
+        damping_ratio: f32,
+    },
+    /// A physical stiffness and damping coefficient (Jolt's `ESpringMode::StiffnessAndDamping`).
+    Stiffness {
+        /// Stiffness k (N/m; N·m/rad for an angular spring), ≥ 0 (may be +∞: rigid).
+        stiffness: f32,
+        /// Damping coefficient c (N·s/m; N·m·s/rad for an angular spring), ≥ 0.
+        damping: f32,
+    },
+}
+
+impl Default for SoftSpring {
+    /// 5 Hz, damping ratio 0.7: a firm, slightly under-damped spring.
+    fn default() -> Self {
+        Self::Frequency {
+            frequency_hz: 5.0,
+            damping_ratio: 0.7,
+        }
+    }
+}
+
+impl SoftSpring {
+    /// A spring of natural frequency `frequency_hz` (Hz) and `damping_ratio` (dimensionless).
+    ///
+    /// # Errors
+    /// `frequency_hz` must be finite and > 0 (a 0 Hz spring would have no stiffness at all; leave the spring
+    /// out instead); `damping_ratio` finite and ≥ 0.
+    pub fn frequency(frequency_hz: f32, damping_ratio: f32) -> Result<Self, ConstraintError> {
+        Self::Frequency {
+            frequency_hz,
+            damping_ratio,
+        }
+        .validated()
+    }
+
+    /// A spring of `stiffness` k (N/m or N·m/rad) and `damping` c (N·s/m or N·m·s/rad).
+    ///
+    /// # Errors
+    /// `stiffness` must be ≥ 0 (+∞ is accepted: rigid); `damping` finite and ≥ 0.
+    pub fn stiffness(stiffness: f32, damping: f32) -> Result<Self, ConstraintError> {
+        Self::Stiffness { stiffness, damping }.validated()
+    }
+
+    /// Returns `self` if its parameters are valid (the variants' fields are public, so values built by hand
+    /// are checked where they enter a constraint).
+    ///
+    /// # Errors
+    /// As [`SoftSpring::frequency`] and [`SoftSpring::stiffness`].
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        match self {
+            Self::Frequency {
+                frequency_hz,
+                damping_ratio,
+            } => {
+                rebound_math::validity::check_positive("frequency_hz", frequency_hz)?;
+                check_non_negative("damping_ratio", damping_ratio)?;
+            }
+            Self::Stiffness { stiffness, damping } => {
+                check_non_negative_allowing_infinity("stiffness", stiffness)?;
+                check_non_negative("damping", damping)?;
+            }
+        }
+        Ok(self)
+    }
+
+    /// Whether the softness depends on the effective mass (stiffness form), so that it must be computed in
+    /// each iteration rather than once at prepare.
+    #[inline]
+    #[must_use]
+    pub fn depends_on_mass(&self) -> bool {
+        matches!(self, Self::Stiffness { .. })
+    }
+
+    /// The soft-constraint coefficients for a row of effective mass `effective_mass` (kg or kg·m²) and
+    /// substep `h` (s). An infinite stiffness gives the rigid limit `bias_rate = 1/h`.
+    #[inline]
+    #[must_use]
+    pub fn softness(&self, effective_mass: f32, h: f32) -> Softness {
+        match *self {
+            Self::Frequency {
+                frequency_hz,
+                damping_ratio,
+            } => Softness::new(frequency_hz, damping_ratio, h),
+            Self::Stiffness { stiffness, damping } => {
+                if stiffness.is_infinite() {
+                    Softness {
+                        bias_rate: if h > 0.0 { 1.0 / h } else { 0.0 },
+                        mass_scale: 1.0,
+                        impulse_scale: 0.0,
+                    }
+                } else {
+                    Softness::from_stiffness(stiffness, damping, effective_mass, h)
+                }
+            }
+        }
+    }
+}
+
+fn check_non_negative_allowing_infinity(
+    field: &'static str,
+    value: f32,
+) -> Result<f32, ConstraintError> {
+    if value.is_infinite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Ok(check_non_negative(field, value)?)
+    }
+}
+
+/// A soft spring on a joint coordinate (a hinge angle, a slide distance): relaxed at `target`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct JointSpring {
+    target: f32,
+    spring: SoftSpring,
+}
+
+impl JointSpring {
+    /// A spring relaxed at `target` (m for a prismatic joint, rad for a hinge) with stiffness `spring`.
+    ///
+    /// # Errors
+    /// A non-finite `target` (field `target`); an invalid `spring` (see [`SoftSpring::validated`]).
+    pub fn new(target: f32, spring: SoftSpring) -> Result<Self, ConstraintError> {
+        check_finite("target", target)?;
+        Ok(Self {
+            target,
+            spring: spring.validated()?,
+        })
+    }
+
+    /// A spring relaxed at 0 (parameters already validated).
+    pub(crate) const fn relaxed_at_zero(spring: SoftSpring) -> Self {
+        Self {
+            target: 0.0,
+            spring,
+        }
+    }
+
+    /// The coordinate at which the spring is relaxed (m or rad).
+    #[must_use]
+    pub fn target(&self) -> f32 {
+        self.target
+    }
+
+    /// The stiffness.
+    #[must_use]
+    pub fn spring(&self) -> SoftSpring {
+        self.spring
+    }
+}
