@@ -1,4 +1,33 @@
 #![doc = include_str!("../README.md")]
 
+mod arena;
+mod body_set;
+mod error;
+mod events;
+mod handles;
+mod islands;
+mod manifold;
+mod report;
+mod settings;
+mod step;
+mod world;
+
+pub mod testing;
+
 /// The constraints layer this crate builds on.
 pub use rebound_constraints as constraints;
+/// The dynamics layer.
+pub use rebound_dynamics as dynamics;
+/// The math layer.
+pub use rebound_math as math;
+
+pub use body_set::BodySet;
+pub use error::WorldError;
+pub use events::Event;
+pub use handles::{BodyHandle, JointHandle};
+pub use manifold::{
+    CollisionBackend, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint, NoCollision,
+};
+pub use report::{AdvanceReport, Profile, StepReport, StepSkipped};
+pub use settings::WorldSettings;
+pub use world::{RemovedBody, World, WorldSnapshot};

@@ -1,0 +1,227 @@
+//! A generational arena: the storage behind [`crate::BodyHandle`] and [`crate::JointHandle`] (rapier's
+//! `Arena`, Box2D's id pool). Not a step stage.
+//!
+//! A slot is reused after removal with a higher generation, so a handle to the removed value can never reach
+//! the new one: a stale handle finds nothing. Free slots are kept in a LIFO list, part of the snapshot, so
+//! that a restored world hands out the same handles as the one that never stopped.
+
+/// A slot index and the generation it was issued with.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Index {
+    /// Slot in the arena.
+    pub index: u32,
+    /// Generation of the slot when the handle was issued.
+    pub generation: u32,
+}
+
+impl Index {
+    /// An index that no arena ever issues.
+    pub const INVALID: Self = Self {
+        index: u32::MAX,
+        generation: u32::MAX,
+    };
+}
+
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+enum Slot<T> {
+    Occupied { generation: u32, value: T },
+    Free { generation: u32 },
+}
+
+/// Values behind generational indices.
+///
+/// New slots start at generation `generation_base`; a world picks a different base for each arena it makes,
+/// so that an index from another world (same slot, same count of reuses) is still refused.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Arena<T> {
+    slots: Vec<Slot<T>>,
+    free: Vec<u32>,
+    len: usize,
+    generation_base: u32,
+}
+
+impl<T> Default for Arena<T> {
+    fn default() -> Self {
+        Self::with_generation_base(0)
+    }
+}
+
+impl<T> Arena<T> {
+    /// An empty arena whose new slots start at `generation_base`.
+    #[must_use]
+    pub const fn with_generation_base(generation_base: u32) -> Self {
+        Self {
+            slots: Vec::new(),
+            free: Vec::new(),
+            len: 0,
+            generation_base,
+        }
+    }
+
+    /// Stores `value` and returns its index. `None` only when 2³² − 1 slots are in use.
+    pub fn insert(&mut self, value: T) -> Option<Index> {
+        if let Some(slot) = self.free.pop() {
+            let entry = &mut self.slots[slot as usize];
+            let generation = match entry {
+                Slot::Free { generation } => *generation,
+                Slot::Occupied { .. } => unreachable_free_slot(),
+            };
+            *entry = Slot::Occupied { generation, value };
+            self.len += 1;
+            return Some(Index {
+                index: slot,
+                generation,
+            });
+        }
+        let index = u32::try_from(self.slots.len())
+            .ok()
+            .filter(|i| *i != u32::MAX)?;
+        let generation = self.generation_base;
+        self.slots.push(Slot::Occupied { generation, value });
+        self.len += 1;
+        Some(Index { index, generation })
+    }
+
+    /// Removes and returns the value at `index`, if `index` is current.
+    pub fn remove(&mut self, index: Index) -> Option<T> {
+        let entry = self.slots.get_mut(index.index as usize)?;
+        match entry {
+            Slot::Occupied { generation, .. } if *generation == index.generation => {
+                let next = Slot::Free {
+                    generation: generation.wrapping_add(1),
+                };
+                let Slot::Occupied { value, .. } = core::mem::replace(entry, next) else {
+                    return None;
+                };
+                self.free.push(index.index);
+                self.len -= 1;
+                Some(value)
+            }
+            _ => None,
+        }
+    }
+
+    /// The value at `index`, if `index` is current.
+    #[must_use]
+    pub fn get(&self, index: Index) -> Option<&T> {
+        match self.slots.get(index.index as usize)? {
+            Slot::Occupied { generation, value } if *generation == index.generation => Some(value),
+            _ => None,
+        }
+    }
+
+    /// The value at `index`, mutably, if `index` is current.
+    pub fn get_mut(&mut self, index: Index) -> Option<&mut T> {
+        match self.slots.get_mut(index.index as usize)? {
+            Slot::Occupied { generation, value } if *generation == index.generation => Some(value),
+            _ => None,
+        }
+    }
+
+    /// Whether `index` is current.
+    #[must_use]
+    pub fn contains(&self, index: Index) -> bool {
+        self.get(index).is_some()
+    }
+
+    /// The number of values stored.
+    #[must_use]
+    pub const fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the arena is empty.
+    #[must_use]
+    pub const fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// One more than the highest slot ever used: the size of a per-slot side table.
+    #[must_use]
+    pub fn capacity(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// Values with their indices, in slot order (deterministic).
+    pub fn iter(&self) -> impl Iterator<Item = (Index, &T)> {
+        self.slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, slot)| match slot {
+                Slot::Occupied { generation, value } => Some((
+                    Index {
+                        index: i as u32,
+                        generation: *generation,
+                    },
+                    value,
+                )),
+                Slot::Free { .. } => None,
+            })
+    }
+
+    /// Values with their indices, mutably, in slot order.
+    pub fn iter_mut(&mut self) -> impl Iterator<Item = (Index, &mut T)> {
+        self.slots
+            .iter_mut()
+            .enumerate()
+            .filter_map(|(i, slot)| match slot {
+                Slot::Occupied { generation, value } => Some((
+                    Index {
+                        index: i as u32,
+                        generation: *generation,
+                    },
+                    value,
+                )),
+                Slot::Free { .. } => None,
+            })
+    }
+}
+
+#[cold]
+fn unreachable_free_slot() -> u32 {
+    // The free list only ever holds slots that `remove` turned free; reaching this is a bug in this file.
+    debug_assert!(false, "invariant: the free list names only free slots");
+    0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stale_indices_find_nothing_after_reuse() {
+        let mut arena = Arena::default();
+        let a = arena.insert("a").unwrap();
+        let b = arena.insert("b").unwrap();
+        assert_eq!(arena.remove(a), Some("a"));
+        assert_eq!(arena.remove(a), None, "removing twice");
+        let c = arena.insert("c").unwrap();
+        assert_eq!(c.index, a.index, "the slot is reused");
+        assert_ne!(c.generation, a.generation);
+        assert_eq!(
+            arena.get(a),
+            None,
+            "the stale index does not reach the new value"
+        );
+        assert_eq!(arena.get(c), Some(&"c"));
+        assert_eq!(arena.get(b), Some(&"b"));
+        assert_eq!(arena.len(), 2);
+        assert_eq!(arena.get(Index::INVALID), None);
+        // An arena with another base refuses the first arena's indices.
+        let mut other = Arena::with_generation_base(0x5EED);
+        let d = other.insert("d").unwrap();
+        assert_eq!(d.index, 0);
+        assert_eq!(
+            other.get(Index {
+                index: 0,
+                generation: 0
+            }),
+            None
+        );
+        let order: Vec<_> = arena.iter().map(|(_, v)| *v).collect();
+        assert_eq!(order, ["c", "b"], "slot order");
+    }
+}
