@@ -194,7 +194,6 @@ proptest! {
         solver.warm_start(&mut states);
         solver.solve(&mut states, &ctx, Bias::On);
         solver.solve(&mut states, &ctx, Bias::Off);
-        solver.apply_restitution(&mut states, &ctx);
         let (l1, a1) = momenta(&states);
         let scale = 1.0 + l0.length() + a0.length() + 20.0 * warm;
         prop_assert!((l1 - l0).length() < 1e-4 * scale, "linear {l0} → {l1}");

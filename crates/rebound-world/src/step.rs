@@ -8,7 +8,7 @@
 //!                  anchor); contact and joint constraints
 //! 4. substeps      integrate velocities → spring forces → warm start → solve (bias) → integrate positions →
 //!                  relax (no bias)
-//! 5. restitution   contacts, then ropes
+//! 5. restitution   ropes (contacts bounce inside the solve: their target velocity is +C_r·approach)
 //! 6. store         impulses back into manifolds and joint states; broken joints
 //! 7. finalize      write back poses and velocities; islands and sleep; events
 //! ```
@@ -56,6 +56,9 @@ pub(crate) struct Scratch {
     touching: Vec<(BodyHandle, BodyHandle)>,
     /// For each manifold of this step, the approach speed before the step (m/s), for contact events.
     approach_speeds: Vec<f32>,
+    /// For each manifold of this step, whether the solver pushed with it (a contact that touched during the
+    /// step, even one that bounced off and ended with no accumulated impulse).
+    pushed: Vec<bool>,
     union_find: UnionFind,
     can_rest: Vec<bool>,
     island_ok: Vec<bool>,
@@ -214,7 +217,14 @@ impl<B: CollisionBackend> World<B> {
         loop {
             to_wake.clear();
             for m in &manifolds {
-                if m.is_touching() {
+                // Touching, or closing the gap within this step: a sleeping body about to be hit must be in
+                // the solver when the hit comes.
+                let gap = m
+                    .points()
+                    .iter()
+                    .map(|p| p.separation)
+                    .fold(f32::INFINITY, f32::min);
+                if gap <= approach_speed(m, &self.state.bodies) * dt {
                     collect_wake(&self.state.bodies, m.body_a, m.body_b, &mut to_wake);
                 }
             }
@@ -402,10 +412,10 @@ impl<B: CollisionBackend> World<B> {
         }
     }
 
-    /// Stage *restitution*.
+    /// Stage *restitution*: ropes that went taut jerk back. (Contacts bounce inside the solve, where impulses
+    /// can pass along a row of touching bodies — Newton's cradle — see `rebound_dynamics::contact`.)
     fn apply_restitution(&mut self, ctx: &StepContext) {
         let s = &mut self.scratch;
-        s.contact_solver.apply_restitution(&mut s.states, ctx);
         s.joint_solver.apply_restitution(&mut s.states, ctx);
     }
 
@@ -419,6 +429,13 @@ impl<B: CollisionBackend> World<B> {
             for (point, solved) in manifold.points.iter_mut().zip(contact.points()) {
                 point.normal_impulse = solved.normal_impulse;
                 point.tangent_impulse = solved.tangent_impulse;
+            }
+        }
+        s.pushed.clear();
+        s.pushed.resize(s.manifolds.len(), false);
+        for (contact, max_impulse) in s.contact_solver.max_normal_impulses() {
+            if let Some(&source) = s.contact_sources.get(contact) {
+                s.pushed[source] = max_impulse > 0.0;
             }
         }
         s.broken.clear();
@@ -483,14 +500,11 @@ impl<B: CollisionBackend> World<B> {
         let moving = |i: usize| s.params.get(i).is_some_and(BodyParams::is_dynamic);
         let mut links = core::mem::take(&mut s.links);
         links.clear();
+        // Every manifold links its bodies, speculative ones too: bodies within the speculative margin of
+        // each other can meet within a step, so they sleep and wake together (a row of balls 1 mm apart
+        // must all be awake when the first is struck).
         for contact in &s.contacts {
-            if contact
-                .points()
-                .iter()
-                .any(|p| p.separation <= 0.0 || p.normal_impulse > 0.0)
-                && moving(contact.body_a)
-                && moving(contact.body_b)
-            {
+            if moving(contact.body_a) && moving(contact.body_b) {
                 links.push((contact.body_a as u32, contact.body_b as u32));
             }
         }
@@ -560,9 +574,9 @@ impl<B: CollisionBackend> World<B> {
     fn emit_events(&mut self) {
         let s = &mut self.scratch;
         s.touching.clear();
-        for m in &self.state.manifolds {
-            // Touching: overlapping, or pushed this step (a speculative contact that closed its gap).
-            if m.is_touching() || m.points().iter().any(|p| p.normal_impulse > 0.0) {
+        for (m, &pushed) in self.state.manifolds.iter().zip(&s.pushed) {
+            // Touching: overlapping, or pushed this step (a speculative contact that closed its gap, a bounce).
+            if m.is_touching() || pushed {
                 let pair = if m.body_a <= m.body_b {
                     (m.body_a, m.body_b)
                 } else {

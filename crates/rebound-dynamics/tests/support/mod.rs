@@ -88,7 +88,6 @@ impl Harness {
             integrate_positions(&mut self.states, &self.params, &ctx);
             self.solver.solve(&mut self.states, &ctx, Bias::Off);
         }
-        self.solver.apply_restitution(&mut self.states, &ctx);
         self.solver.store_impulses(&mut contacts);
         for ((body, state), params) in self.bodies.iter_mut().zip(&self.states).zip(&self.params) {
             assert!(
