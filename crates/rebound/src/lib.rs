@@ -1,5 +1,20 @@
 #![doc = include_str!("../README.md")]
 
+mod arena;
+mod backend;
+mod broad_phase;
+mod collider;
+mod collider_handle;
+mod collider_set;
+mod error;
+mod events;
+mod narrow_phase;
+mod physics_world;
+mod query;
+mod sensors;
+mod shape;
+mod snapshot;
+
 /// The collision library, re-exported so users get the same version Rebound uses.
 pub use parry3d;
 
@@ -14,3 +29,40 @@ pub use rebound_constraints as constraints;
 
 /// The world and its step (`rebound-world`).
 pub use rebound_world as world;
+
+// Everything the layers below export, at the crate root. Items defined here (`Event`) take precedence over
+// the world's of the same name, which stays reachable as `rebound::world::Event`.
+pub use rebound_constraints::*;
+pub use rebound_dynamics::*;
+pub use rebound_math::*;
+pub use rebound_world::*;
+
+pub use backend::ParryBackend;
+pub use collider::{Collider, ColliderDesc, CollisionGroups};
+pub use collider_handle::ColliderHandle;
+pub use collider_set::ColliderSet;
+pub use error::{Error, ShapeError};
+pub use events::Event;
+pub use physics_world::PhysicsWorld;
+pub use query::{PickHit, PointHit, QueryFilter, RayHit, ShapeHit};
+pub use shape::{ColliderShape, MAX_SHAPE_COORDINATE};
+pub use snapshot::PhysicsSnapshot;
+
+/// What most programs need: `use rebound::prelude::*;`.
+pub mod prelude {
+    pub use crate::{
+        Collider, ColliderDesc, ColliderHandle, ColliderShape, CollisionGroups, Error, Event,
+        PhysicsSnapshot, PhysicsWorld, PickHit, PointHit, QueryFilter, RayHit, ShapeError,
+        ShapeHit,
+    };
+    pub use rebound_constraints::{
+        BallJoint, ConstraintError, FixedJoint, HingeJoint, Joint, JointKind, Limits, Motor,
+        PrismaticJoint, Rod, Rope, SoftSpring, Spring, SpringModel, WheelJoint,
+    };
+    pub use rebound_dynamics::{BodyDesc, BodyType, CombineRule, DynamicsError, MassProperties};
+    pub use rebound_math::{MathError, Pose, Quat, Vec3};
+    pub use rebound_world::{
+        AdvanceReport, BodyHandle, ContactManifold, JointHandle, StepReport, WorldError,
+        WorldSettings,
+    };
+}

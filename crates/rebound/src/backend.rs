@@ -1,0 +1,86 @@
+//! `ParryBackend`: the world's [`CollisionBackend`] on parry3d (stage 2 of the step, *collide*). It owns the
+//! colliders, the broad phase (BVH), the narrow-phase pair cache and the set of body pairs whose contacts a
+//! joint disabled. The world calls [`CollisionBackend::collide`] once per step; everything else is driven by
+//! [`crate::PhysicsWorld`].
+
+use crate::broad_phase::BroadPhase;
+use crate::narrow_phase::NarrowPhase;
+use crate::{Collider, ColliderHandle, ColliderSet};
+use rebound_world::{BodyHandle, BodySet, CollisionBackend, ContactManifold, WorldSettings};
+use std::collections::BTreeSet;
+
+/// Colliders on parry3d shapes, a BVH broad phase and parry's persistent contact manifolds. Reach it through
+/// [`crate::PhysicsWorld::world`]`().backend()` to read the colliders and counters.
+#[derive(Debug, Clone, Default)]
+pub struct ParryBackend {
+    pub(crate) colliders: ColliderSet,
+    pub(crate) broad_phase: BroadPhase,
+    pub(crate) narrow_phase: NarrowPhase,
+    /// Body pairs (lower handle first) whose contacts a joint disabled.
+    pub(crate) disabled_pairs: BTreeSet<(BodyHandle, BodyHandle)>,
+}
+
+impl ParryBackend {
+    pub(crate) fn with_generation_base(base: u32) -> Self {
+        Self {
+            colliders: ColliderSet::with_generation_base(base),
+            ..Self::default()
+        }
+    }
+
+    /// The colliders.
+    #[must_use]
+    pub fn colliders(&self) -> &ColliderSet {
+        &self.colliders
+    }
+
+    /// The collider behind `handle`.
+    #[must_use]
+    pub fn collider(&self, handle: ColliderHandle) -> Option<&Collider> {
+        self.colliders.get(handle)
+    }
+
+    /// The candidate pairs of the last step (sorted, lower handle first).
+    #[must_use]
+    pub fn candidate_pairs(&self) -> &[(ColliderHandle, ColliderHandle)] {
+        &self.broad_phase.pairs
+    }
+
+    /// The number of collider pairs the narrow phase keeps a cache for.
+    #[must_use]
+    pub fn cached_pair_count(&self) -> usize {
+        self.narrow_phase.pair_count()
+    }
+
+    /// Body pairs (lower handle first) whose contacts are disabled by a joint.
+    #[must_use]
+    pub fn disabled_body_pairs(&self) -> &BTreeSet<(BodyHandle, BodyHandle)> {
+        &self.disabled_pairs
+    }
+}
+
+impl CollisionBackend for ParryBackend {
+    fn collide(
+        &mut self,
+        bodies: &BodySet,
+        settings: &WorldSettings,
+        dt: f32,
+        out: &mut Vec<ContactManifold>,
+    ) {
+        self.broad_phase.find_pairs(
+            &self.colliders,
+            bodies,
+            &self.disabled_pairs,
+            settings.speculative_margin,
+            dt,
+        );
+        self.narrow_phase.collide(
+            &self.broad_phase,
+            &self.colliders,
+            bodies,
+            settings.speculative_margin,
+            dt,
+            out,
+        );
+    }
+}

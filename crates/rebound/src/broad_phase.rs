@@ -1,0 +1,264 @@
+//! The broad phase (first half of the collide stage) and the spatial index queries use: parry3d's incremental
+//! [`Bvh`] over every collider's bounding box.
+//!
+//! **At the start of a step** every leaf gets the collider's box at the current pose, fattened by the
+//! speculative margin of its body:
+//!
+//! ```text
+//! margin = settings.speculative_margin + (|v| + |ω|·r)·dt      (awake, non-fixed bodies; 0 otherwise)
+//! ```
+//!
+//! where `r` bounds the distance from the centre of mass to the box, so the box covers everything the body can
+//! reach during the step (rotation included). The tree is refitted, each collider of a moving body queries
+//! it, and the candidate pairs that pass the filters (same body, enabled, sensor, groups, disabled body pairs,
+//! at least one dynamic body) are sorted by collider handle: the order never depends on the tree's shape.
+//!
+//! **At the end of a step** (and whenever the world is edited through the facade) the leaves get the tight
+//! boxes of the new poses, so queries between steps see the current state. After `body_mut` the tree may be
+//! stale; queries then test every collider's current box instead (slower, always correct) until the next
+//! step or [`crate::PhysicsWorld::refresh_queries`].
+//!
+//! The boxes are recomputed from the poses every step rather than kept while they still contain the shape
+//! (rapier's change detection): the candidate pairs are then a function of the current state alone, which
+//! is what makes a restored snapshot step like the world that never stopped.
+
+use crate::shape::to_parry_pose;
+use crate::{Collider, ColliderHandle, ColliderSet};
+use parry3d::bounding_volume::{Aabb, BoundingVolume};
+use parry3d::partitioning::{Bvh, BvhWorkspace};
+use rebound_dynamics::{BodyType, RigidBody};
+use rebound_math::Pose;
+use rebound_world::{BodyHandle, BodySet};
+use std::collections::BTreeSet;
+
+/// The largest fattening margin (m). A margin beyond this (absurd velocities or steps) already makes every
+/// box overlap every other; capping it keeps the tree's arithmetic finite.
+const MAX_MARGIN: f32 = 1.0e7;
+
+/// A body that moves and may push or be pushed this step: awake and not fixed.
+pub(crate) fn is_active(body: &RigidBody) -> bool {
+    !body.is_sleeping() && body.body_type() != BodyType::Fixed
+}
+
+/// The world-space box of `collider` on a body at `body`'s pose.
+pub(crate) fn world_aabb(collider: &Collider, body: &RigidBody) -> Aabb {
+    aabb_at(collider, body.pose())
+}
+
+/// The world-space box of `collider` on a body at `body_pose`.
+pub(crate) fn aabb_at(collider: &Collider, body_pose: Pose) -> Aabb {
+    collider
+        .shape
+        .compute_aabb(&to_parry_pose(collider.world_pose(body_pose)))
+}
+
+/// Whether two colliders (on existing bodies) may touch: different bodies, both enabled, neither a sensor,
+/// groups that accept each other, contacts not disabled by a joint, and at least one dynamic body.
+pub(crate) fn can_collide(
+    c1: &Collider,
+    b1: &RigidBody,
+    c2: &Collider,
+    b2: &RigidBody,
+    disabled_pairs: &BTreeSet<(BodyHandle, BodyHandle)>,
+) -> bool {
+    c1.body != c2.body
+        && c1.desc.enabled
+        && c2.desc.enabled
+        && !c1.desc.is_sensor
+        && !c2.desc.is_sensor
+        && c1.desc.groups.interacts_with(c2.desc.groups)
+        && (b1.is_dynamic() || b2.is_dynamic())
+        && !disabled_pairs.contains(&ordered(c1.body, c2.body))
+}
+
+/// A pair in ascending order.
+pub(crate) fn ordered<T: Ord>(a: T, b: T) -> (T, T) {
+    if a <= b { (a, b) } else { (b, a) }
+}
+
+/// The BVH and the candidate pairs of the last step.
+#[derive(Clone, Default)]
+pub(crate) struct BroadPhase {
+    bvh: Bvh,
+    workspace: BvhWorkspace,
+    /// Whether every leaf holds the collider's box at its body's current pose.
+    query_ready: bool,
+    /// Candidate pairs of the last step, sorted, lower handle first.
+    pub(crate) pairs: Vec<(ColliderHandle, ColliderHandle)>,
+    /// Colliders of moving bodies and their fattened boxes (scratch).
+    movers: Vec<(u32, Aabb)>,
+    /// Per collider slot, how far rotation can move the collider's surface per second this step: |ω|·r (m/s;
+    /// 0 for colliders of inactive bodies). Read by the narrow phase's prediction distance.
+    pub(crate) rotation_reach: Vec<f32>,
+}
+
+impl core::fmt::Debug for BroadPhase {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("BroadPhase")
+            .field("leaf_count", &self.bvh.leaf_count())
+            .field("query_ready", &self.query_ready)
+            .field("pairs", &self.pairs.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl BroadPhase {
+    /// Stage *collide*, part 1: fattened boxes, refit, sorted candidate pairs.
+    pub(crate) fn find_pairs(
+        &mut self,
+        colliders: &ColliderSet,
+        bodies: &BodySet,
+        disabled_pairs: &BTreeSet<(BodyHandle, BodyHandle)>,
+        speculative_margin: f32,
+        dt: f32,
+    ) {
+        self.movers.clear();
+        self.rotation_reach.clear();
+        for (handle, collider) in colliders.iter() {
+            let slot = handle.0.index;
+            let Some(body) = bodies.get(collider.body) else {
+                self.bvh.remove(slot);
+                continue;
+            };
+            let aabb = world_aabb(collider, body);
+            let active = is_active(body);
+            let margin = if active {
+                let r =
+                    (aabb.center() - body.center_of_mass()).length() + aabb.half_extents().length();
+                let reach = body.angular_velocity().length() * r;
+                let slot_index = slot as usize;
+                if self.rotation_reach.len() <= slot_index {
+                    self.rotation_reach.resize(slot_index + 1, 0.0);
+                }
+                self.rotation_reach[slot_index] = reach;
+                let speed = body.linear_velocity().length() + reach;
+                (speculative_margin + speed * dt).min(MAX_MARGIN)
+            } else {
+                0.0
+            };
+            let fat = aabb.loosened(margin);
+            let _ = self.bvh.insert_or_update_partially(fat, slot, 0.0);
+            if active && collider.desc.enabled && !collider.desc.is_sensor {
+                self.movers.push((slot, fat));
+            }
+        }
+        self.bvh.refit(&mut self.workspace);
+        // Moving leaves degrade the tree; parry rebuilds a few subtrees per call (rapier does this per step).
+        self.bvh.optimize_incremental(&mut self.workspace);
+        self.query_ready = false;
+
+        self.pairs.clear();
+        let is_mover =
+            |c: &Collider, b: &RigidBody| is_active(b) && c.desc.enabled && !c.desc.is_sensor;
+        for &(slot, fat) in &self.movers {
+            let Some((h1, c1)) = colliders.at_slot(slot) else {
+                continue;
+            };
+            let Some(b1) = bodies.get(c1.body) else {
+                continue;
+            };
+            for other in self.bvh.intersect_aabb(&fat) {
+                let Some((h2, c2)) = colliders.at_slot(other) else {
+                    continue;
+                };
+                let Some(b2) = bodies.get(c2.body) else {
+                    continue;
+                };
+                // A pair of two movers is found from both sides; keep it from the lower slot's query.
+                if other == slot || (other < slot && is_mover(c2, b2)) {
+                    continue;
+                }
+                if can_collide(c1, b1, c2, b2, disabled_pairs) {
+                    self.pairs.push(ordered(h1, h2));
+                }
+            }
+        }
+        self.pairs.sort_unstable();
+        self.pairs.dedup();
+    }
+
+    /// Puts the tight box of every collider at its body's current pose into the tree (end of a step, after
+    /// a restore, on request).
+    pub(crate) fn refresh(&mut self, colliders: &ColliderSet, bodies: &BodySet) {
+        for (handle, collider) in colliders.iter() {
+            let slot = handle.0.index;
+            match bodies.get(collider.body) {
+                Some(body) => {
+                    let _ =
+                        self.bvh
+                            .insert_or_update_partially(world_aabb(collider, body), slot, 0.0);
+                }
+                None => self.bvh.remove(slot),
+            }
+        }
+        self.bvh.refit(&mut self.workspace);
+        self.query_ready = true;
+    }
+
+    /// A new tree holding every collider (after a restore): same leaves, whatever the old tree's shape.
+    pub(crate) fn rebuild(&mut self, colliders: &ColliderSet, bodies: &BodySet) {
+        self.bvh = Bvh::new();
+        self.pairs.clear();
+        self.rotation_reach.clear();
+        self.refresh(colliders, bodies);
+    }
+
+    /// |ω|·r of the collider in `slot` this step (m/s).
+    pub(crate) fn rotation_reach(&self, handle: ColliderHandle) -> f32 {
+        self.rotation_reach
+            .get(handle.0.index as usize)
+            .copied()
+            .unwrap_or(0.0)
+    }
+
+    /// Adds or updates one collider's leaf, keeping the tree valid for queries.
+    pub(crate) fn insert_leaf(
+        &mut self,
+        handle: ColliderHandle,
+        collider: &Collider,
+        body_pose: Pose,
+    ) {
+        self.bvh
+            .insert(aabb_at(collider, body_pose), handle.0.index);
+    }
+
+    /// Removes one collider's leaf.
+    pub(crate) fn remove_leaf(&mut self, handle: ColliderHandle) {
+        self.bvh.remove(handle.0.index);
+    }
+
+    /// Marks the boxes as possibly stale (a body may have moved): queries test every collider until the next
+    /// refresh.
+    pub(crate) fn mark_stale(&mut self) {
+        self.query_ready = false;
+    }
+
+    /// The colliders whose current box passes `test`, sorted by handle (so results never depend on the
+    /// tree's shape).
+    pub(crate) fn candidates(
+        &self,
+        colliders: &ColliderSet,
+        bodies: &BodySet,
+        test: impl Fn(&Aabb) -> bool,
+        out: &mut Vec<ColliderHandle>,
+    ) {
+        out.clear();
+        if self.query_ready {
+            out.extend(
+                self.bvh
+                    .leaves(|node| test(&node.aabb()))
+                    .filter_map(|slot| colliders.at_slot(slot).map(|(h, _)| h)),
+            );
+        } else {
+            for (handle, collider) in colliders.iter() {
+                if let Some(body) = bodies.get(collider.body)
+                    && test(&world_aabb(collider, body))
+                {
+                    out.push(handle);
+                }
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+}

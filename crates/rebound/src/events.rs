@@ -1,0 +1,79 @@
+//! The facade's events: the world's (contacts, joints, sleep) plus sensor overlaps, produced after each step
+//! in a deterministic order — the world's events first (contact events in body-pair order, then broken
+//! joints, sleep changes and wakes), then sensor events: entries in (sensor, collider) order, then exits in
+//! (sensor, collider) order.
+
+use crate::ColliderHandle;
+use rebound_world::{BodyHandle, JointHandle};
+use serde::{Deserialize, Serialize};
+
+/// Something that happened during the last step (or the steps of the last `advance`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub enum Event {
+    /// Two bodies started touching.
+    ContactBegan {
+        /// Body A of the pair (the lower handle).
+        body_a: BodyHandle,
+        /// Body B of the pair.
+        body_b: BodyHandle,
+        /// How fast they approached along the normal when they met (m/s, ≥ 0).
+        approach_speed: f32,
+    },
+    /// Two bodies stopped touching (or one was removed, or their contacts were disabled).
+    ContactEnded {
+        /// Body A of the pair.
+        body_a: BodyHandle,
+        /// Body B of the pair.
+        body_b: BodyHandle,
+    },
+    /// A joint's impulse exceeded its break force or torque; it is now disabled.
+    JointBroken {
+        /// The joint.
+        joint: JointHandle,
+    },
+    /// A body fell asleep with its island.
+    BodyFellAsleep {
+        /// The body.
+        body: BodyHandle,
+    },
+    /// A sleeping body woke up.
+    BodyWoke {
+        /// The body.
+        body: BodyHandle,
+    },
+    /// A collider started overlapping a sensor (at the poses after the step).
+    SensorEntered {
+        /// The sensor collider.
+        sensor: ColliderHandle,
+        /// The collider that entered it.
+        collider: ColliderHandle,
+    },
+    /// A collider stopped overlapping a sensor (it left, was removed or disabled, or the sensor was).
+    SensorExited {
+        /// The sensor collider.
+        sensor: ColliderHandle,
+        /// The collider that left it.
+        collider: ColliderHandle,
+    },
+}
+
+impl From<rebound_world::Event> for Event {
+    fn from(event: rebound_world::Event) -> Self {
+        use rebound_world::Event as W;
+        match event {
+            W::ContactBegan {
+                body_a,
+                body_b,
+                approach_speed,
+            } => Self::ContactBegan {
+                body_a,
+                body_b,
+                approach_speed,
+            },
+            W::ContactEnded { body_a, body_b } => Self::ContactEnded { body_a, body_b },
+            W::JointBroken { joint } => Self::JointBroken { joint },
+            W::BodyFellAsleep { body } => Self::BodyFellAsleep { body },
+            W::BodyWoke { body } => Self::BodyWoke { body },
+        }
+    }
+}

@@ -1,0 +1,382 @@
+//! The narrow phase (second half of the collide stage): parry3d's persistent contact manifolds for each
+//! candidate pair, turned into the world's plain-data [`ContactManifold`] at one seam,
+//! [`to_world_manifold`].
+//!
+//! # Pair cache
+//!
+//! Each candidate pair keeps its parry manifolds and its [`ContactManifoldsWorkspace`] (the sub-shape
+//! bookkeeping of meshes, height fields and compounds) in an ordered map keyed by the ordered collider pair
+//! (a vector sorted by key, merged with the step's sorted candidate list in one pass), so iteration is in
+//! handle order and pairs that stop being candidates are dropped.
+//!
+//! The prediction distance of a pair — how far apart its colliders may be for parry to report points — is
+//! the speculative margin plus what the pair can close in the step: `(|v₁ − v₂| + |ω₁|·r₁ + |ω₂|·r₂)·dt`,
+//! with `r` bounding each collider's reach from its body's centre of mass (computed by the broad phase).
+//!
+//! # History independence (why the cache may be thrown away)
+//!
+//! parry's generators read two pieces of history from a cached manifold: the old contact points, which
+//! `try_update_contacts` reuses (only refreshing their separations) while the relative pose changes by less
+//! than 1° and 1 mm, and the old normal, which seeds GJK. Both make the contact points depend on the path
+//! that led to the current poses, so a world restored from a snapshot (whose cache starts empty) would
+//! generate different bits than the world that never stopped. Before each query the seam therefore clears
+//! every cached manifold's points and normals: contact generation depends on the current poses only, and the
+//! cache keeps what is worth keeping — its allocations and the composite shapes' sub-shape manifolds and
+//! workspaces. Warm starting does not need parry's history either: the world matches each new point to last
+//! step's impulses by collider pair (`key`) and feature id, and those impulses live in the world's manifolds,
+//! which every snapshot contains. The price is that parry's coherence shortcut is not taken (a full
+//! manifold computation per pair per step).
+//!
+//! # The seam
+//!
+//! parry's points are in each shape's (or sub-shape's) local frame; the world wants them in each body's
+//! frame relative to the body origin, with the normal in world space from A to B, at most
+//! [`MAX_MANIFOLD_POINTS`] points, a 32-bit feature id per point and a 64-bit key that is stable for a
+//! collider pair and sub-shape pair.
+
+use crate::broad_phase::BroadPhase;
+use crate::shape::{from_parry_pose, to_parry_pose};
+use crate::{Collider, ColliderHandle, ColliderSet};
+use parry3d::query::{
+    ContactManifold as ParryManifold, ContactManifoldsWorkspace, DefaultQueryDispatcher,
+    PersistentQueryDispatcher, TrackedContact,
+};
+use rebound_dynamics::{CombineRule, RigidBody};
+use rebound_math::{Pose, Vec3};
+use rebound_world::{BodySet, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint};
+
+/// The largest prediction distance (m); see the broad phase's margin cap.
+const MAX_PREDICTION: f32 = 1.0e7;
+
+/// parry's manifolds and workspace for one collider pair.
+#[derive(Clone, Default)]
+pub(crate) struct PairCache {
+    manifolds: Vec<ParryManifold<(), ()>>,
+    workspace: Option<ContactManifoldsWorkspace>,
+}
+
+impl PairCache {
+    /// Forgets the contact points and normals of every cached manifold (see the module docs).
+    fn forget_history(&mut self) {
+        for manifold in &mut self.manifolds {
+            manifold.points.clear();
+            manifold.local_n1 = Vec3::ZERO;
+            manifold.local_n2 = Vec3::ZERO;
+        }
+    }
+}
+
+/// The pair cache: one entry per candidate pair of the last step, sorted by the ordered collider pair (an
+/// ordered map kept as a sorted vector: the step's sorted candidate list is merged into it in one linear
+/// pass, instead of a tree lookup per pair).
+#[derive(Clone, Default)]
+pub(crate) struct NarrowPhase {
+    pairs: Vec<((ColliderHandle, ColliderHandle), PairCache)>,
+}
+
+impl core::fmt::Debug for NarrowPhase {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("NarrowPhase")
+            .field("pairs", &self.pairs.len())
+            .finish()
+    }
+}
+
+impl NarrowPhase {
+    /// Drops every cached pair (on restore). Contacts do not change: see the module docs.
+    pub(crate) fn clear(&mut self) {
+        self.pairs.clear();
+    }
+
+    /// The number of cached pairs.
+    pub(crate) fn pair_count(&self) -> usize {
+        self.pairs.len()
+    }
+
+    /// Stage *collide*, part 2: the manifolds of every candidate pair (in pair order) into `out`.
+    pub(crate) fn collide(
+        &mut self,
+        broad_phase: &BroadPhase,
+        colliders: &ColliderSet,
+        bodies: &BodySet,
+        speculative_margin: f32,
+        dt: f32,
+        out: &mut Vec<ContactManifold>,
+    ) {
+        let old = core::mem::take(&mut self.pairs);
+        self.pairs.reserve(broad_phase.pairs.len());
+        let mut old = old.into_iter().peekable();
+        for &(h1, h2) in &broad_phase.pairs {
+            // Both lists are sorted: drop the old pairs before this one, reuse this one's cache if present.
+            while old.next_if(|(key, _)| *key < (h1, h2)).is_some() {}
+            let cached = old
+                .next_if(|(key, _)| *key == (h1, h2))
+                .map(|(_, cache)| cache);
+            let (Some(c1), Some(c2)) = (colliders.get(h1), colliders.get(h2)) else {
+                continue;
+            };
+            let (Some(b1), Some(b2)) = (bodies.get(c1.body), bodies.get(c2.body)) else {
+                continue;
+            };
+            let mut cache = cached.unwrap_or_default();
+            cache.forget_history();
+            let pose1 = to_parry_pose(c1.world_pose(b1.pose()));
+            let pose2 = to_parry_pose(c2.world_pose(b2.pose()));
+            let pos12 = pose1.inv_mul(&pose2);
+            let closing = (b1.linear_velocity() - b2.linear_velocity()).length()
+                + broad_phase.rotation_reach(h1)
+                + broad_phase.rotation_reach(h2);
+            let prediction = (speculative_margin + closing * dt).min(MAX_PREDICTION);
+            let dispatched = DefaultQueryDispatcher.contact_manifolds(
+                &pos12,
+                c1.shape.as_ref(),
+                c2.shape.as_ref(),
+                prediction,
+                &mut cache.manifolds,
+                &mut cache.workspace,
+            );
+            if dispatched.is_err() {
+                // A shape pair parry has no algorithm for: no contacts, nothing to cache.
+                continue;
+            }
+            let key_base = pair_key(h1, h2);
+            out.extend(
+                cache
+                    .manifolds
+                    .iter()
+                    .filter_map(|m| to_world_manifold(key_base, c1, b1, c2, m)),
+            );
+            self.pairs.push(((h1, h2), cache));
+        }
+    }
+}
+
+/// FNV-1a over the two colliders' slot indices: the base of every manifold key of the pair.
+///
+/// Slots, not generations: generations start at a per-world base, and the key orders the manifolds of one
+/// body pair (hence the solver's order), so two worlds built by the same calls must get the same keys. Two
+/// live colliders never share a slot, so keys stay unique within a step.
+fn pair_key(h1: ColliderHandle, h2: ColliderHandle) -> u64 {
+    let (i1, _) = h1.into_raw_parts();
+    let (i2, _) = h2.into_raw_parts();
+    fnv1a(0xcbf2_9ce4_8422_2325, &[i1, i2])
+}
+
+fn fnv1a(mut hash: u64, words: &[u32]) -> u64 {
+    for word in words {
+        for byte in word.to_le_bytes() {
+            hash ^= u64::from(byte);
+            hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    hash
+}
+
+/// Packs parry's two feature ids (2-bit kind + 30-bit index each) into one `u32`: the first rotated by 16
+/// bits, xor the second. Exact (no two feature pairs collide) while both indices are below 2¹⁴ = 16384,
+/// which covers every primitive and, per sub-shape manifold, every triangle; beyond that ids may collide,
+/// which only costs a warm start.
+fn pack_feature_id(point: &TrackedContact<()>) -> u32 {
+    point.fid1.0.rotate_left(16) ^ point.fid2.0
+}
+
+/// The frame of a (sub-)shape in its body's frame: the collider's local pose, then the sub-shape's pose in
+/// the collider's shape (compounds).
+fn shape_frame(collider: &Collider, subshape_pose: Option<&parry3d::math::Pose>) -> Pose {
+    match subshape_pose {
+        Some(sub) => collider.desc.local_pose.mul_pose(&from_parry_pose(sub)),
+        None => collider.desc.local_pose,
+    }
+}
+
+/// **The seam**: one parry manifold of the collider pair (`c1`, `c2`) as the world's [`ContactManifold`].
+///
+/// - body A is `c1`'s body, body B is `c2`'s; the normal is parry's `local_n1` (outward from shape 1,
+///   towards shape 2) rotated into world space;
+/// - anchors: parry's `local_p1`/`local_p2` (in each sub-shape's frame) through the sub-shape pose and the
+///   collider's local pose into each body's frame, relative to the body origin;
+/// - separation: parry's signed `dist` (negative when overlapping, positive for speculative points);
+/// - feature ids: `fid1`/`fid2` packed into a `u32` ([`pack_feature_id`]);
+/// - key: the collider pair's hash extended with the sub-shape ids, stable from step to step;
+/// - material: friction, restitution and rolling friction combined with each collider's rules;
+/// - more than [`MAX_MANIFOLD_POINTS`] points are reduced to the 4 that keep the deepest point and the
+///   largest contact area ([`reduce_points`]).
+///
+/// `None` for a manifold without points (or, defensively, without a usable normal or finite points).
+pub(crate) fn to_world_manifold(
+    key_base: u64,
+    c1: &Collider,
+    b1: &RigidBody,
+    c2: &Collider,
+    m: &ParryManifold<(), ()>,
+) -> Option<ContactManifold> {
+    let frame1 = shape_frame(c1, m.subshape_pos1());
+    let frame2 = shape_frame(c2, m.subshape_pos2());
+    let normal = (b1.rotation() * (frame1.rotation * m.local_n1)).try_normalize()?;
+    let (chosen, count) = reduce_points(&m.points);
+    if count == 0 {
+        return None;
+    }
+    let (d1, d2) = (&c1.desc, &c2.desc);
+    let friction = CombineRule::combine(
+        d1.friction,
+        d1.friction_combine_rule,
+        d2.friction,
+        d2.friction_combine_rule,
+    );
+    let restitution = CombineRule::combine(
+        d1.restitution,
+        d1.restitution_combine_rule,
+        d2.restitution,
+        d2.restitution_combine_rule,
+    );
+    let key = fnv1a(key_base, &[m.subshape1, m.subshape2]);
+    let mut manifold = ContactManifold::new(c1.body, c2.body, key, normal, friction, restitution);
+    manifold.rolling_friction = CombineRule::combine(
+        d1.rolling_friction,
+        d1.friction_combine_rule,
+        d2.rolling_friction,
+        d2.friction_combine_rule,
+    );
+    for point in chosen[..count].iter().map(|&i| &m.points[i]) {
+        manifold.push_point(ManifoldPoint {
+            local_anchor_a: frame1.transform_point(point.local_p1),
+            local_anchor_b: frame2.transform_point(point.local_p2),
+            separation: point.dist,
+            feature_id: pack_feature_id(point),
+            ..ManifoldPoint::default()
+        });
+    }
+    Some(manifold)
+}
+
+/// Whether parry's point is usable (finite; defensive, parry's points always are).
+fn is_usable(point: &TrackedContact<()>) -> bool {
+    point.local_p1.is_finite() && point.local_p2.is_finite() && point.dist.is_finite()
+}
+
+/// Indices (and their count) of at most [`MAX_MANIFOLD_POINTS`] usable points that keep the contact patch:
+/// all of them if they fit; otherwise the deepest point, the point farthest from it, the point farthest from
+/// their line, then the point adding the most area to that triangle (Box2D's and Jolt's manifold reduction).
+/// Ties go to the lower index, so the choice is deterministic. Points are compared in shape 1's frame. No
+/// allocation.
+fn reduce_points(points: &[TrackedContact<()>]) -> ([usize; MAX_MANIFOLD_POINTS], usize) {
+    let mut chosen = [0; MAX_MANIFOLD_POINTS];
+    let mut count = 0;
+    let usable_count = points.iter().filter(|p| is_usable(p)).count();
+    if usable_count <= MAX_MANIFOLD_POINTS {
+        for (i, _) in points.iter().enumerate().filter(|(_, p)| is_usable(p)) {
+            chosen[count] = i;
+            count += 1;
+        }
+        return (chosen, count);
+    }
+    let p = |i: usize| points[i].local_p1;
+    // The usable, not yet chosen point with the highest score (the first one on ties).
+    let argmax = |score: &dyn Fn(usize) -> f32, taken: &[usize]| {
+        (0..points.len())
+            .filter(|&i| is_usable(&points[i]) && !taken.contains(&i))
+            .fold(None, |best: Option<(usize, f32)>, i| {
+                let s = score(i);
+                match best {
+                    Some((_, b)) if s <= b => best,
+                    _ => Some((i, s)),
+                }
+            })
+            .map(|(i, _)| i)
+    };
+    let Some(deepest) = argmax(&|i| -points[i].dist, &[]) else {
+        return (chosen, 0);
+    };
+    chosen[0] = deepest;
+    count = 1;
+    let a = p(deepest);
+    let Some(second) = argmax(&|i| p(i).distance_squared(a), &chosen[..count]) else {
+        return (chosen, count);
+    };
+    chosen[1] = second;
+    count = 2;
+    let b = p(second);
+    let Some(third) = argmax(
+        &|i| (b - a).cross(p(i) - a).length_squared(),
+        &chosen[..count],
+    ) else {
+        return (chosen, count);
+    };
+    chosen[2] = third;
+    count = 3;
+    let c = p(third);
+    // Area a point adds outside the triangle: the sum of the three sub-triangle areas minus the triangle's
+    // own (0 inside).
+    let triangle = (b - a).cross(c - a).length();
+    let added = |i: usize| {
+        let q = p(i);
+        (a - q).cross(b - q).length()
+            + (b - q).cross(c - q).length()
+            + (c - q).cross(a - q).length()
+            - triangle
+    };
+    if let Some(fourth) = argmax(&added, &chosen[..count]) {
+        chosen[3] = fourth;
+        count = 4;
+    }
+    (chosen, count)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use parry3d::shape::PackedFeatureId;
+
+    fn contact(x: f32, z: f32, dist: f32) -> TrackedContact<()> {
+        TrackedContact::new(
+            Vec3::new(x, 0.0, z),
+            Vec3::new(x, 0.0, z),
+            PackedFeatureId::UNKNOWN,
+            PackedFeatureId::UNKNOWN,
+            dist,
+        )
+    }
+
+    #[test]
+    fn reduction_keeps_the_deepest_point_and_the_corners() {
+        // A square's corners, its centre (deepest) and edge midpoints.
+        let points = [
+            contact(0.0, 0.0, -0.02),
+            contact(-1.0, -1.0, -0.01),
+            contact(1.0, -1.0, -0.01),
+            contact(1.0, 1.0, -0.01),
+            contact(-1.0, 1.0, -0.01),
+            contact(0.0, 1.0, -0.01),
+        ];
+        let (chosen, count) = reduce_points(&points);
+        assert_eq!(count, 4);
+        assert_eq!(chosen[0], 0, "the deepest point comes first");
+        // Then a corner, the opposite corner, and one of the remaining corners.
+        assert!(
+            chosen[1..].iter().all(|&i| (1..=4).contains(&i)),
+            "{chosen:?}"
+        );
+    }
+
+    #[test]
+    fn feature_ids_pack_without_collisions_for_small_indices() {
+        let mut seen = std::collections::BTreeSet::new();
+        for f1 in [
+            PackedFeatureId::vertex(3),
+            PackedFeatureId::edge(3),
+            PackedFeatureId::face(3),
+            PackedFeatureId::face(16383),
+        ] {
+            for f2 in [
+                PackedFeatureId::vertex(3),
+                PackedFeatureId::edge(5),
+                PackedFeatureId::face(3),
+                PackedFeatureId::vertex(16383),
+            ] {
+                let point = TrackedContact::<()>::new(Vec3::ZERO, Vec3::ZERO, f1, f2, 0.0);
+                assert!(seen.insert(pack_feature_id(&point)));
+            }
+        }
+    }
+}

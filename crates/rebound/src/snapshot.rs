@@ -1,0 +1,116 @@
+//! `PhysicsSnapshot`: a [`crate::PhysicsWorld`]'s full state, serialisable with serde. Not a step stage.
+//!
+//! It holds the world's own [`WorldSnapshot`] and, for the colliders, their descriptions
+//! ([`ColliderDesc`], this crate's serialisable shape enum) with their bodies in the same handle slots,
+//! generations and free list; parry shapes are rebuilt from the descriptions on restore. The narrow phase's
+//! pair cache and the BVH are rebuilt too: neither influences the results (see the crate docs,
+//! "Determinism").
+
+use crate::arena::Arena;
+use crate::{Collider, ColliderDesc, ColliderHandle, ColliderSet, Error, PhysicsWorld};
+use rebound_dynamics::MassProperties;
+use rebound_world::{BodyHandle, JointHandle, WorldSnapshot};
+use serde::{Deserialize, Serialize};
+
+const SNAPSHOT_VERSION: u32 = 1;
+
+/// A collider as a snapshot stores it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct ColliderRecord {
+    desc: ColliderDesc,
+    body: BodyHandle,
+}
+
+/// A saved [`crate::PhysicsWorld`]: restore it into the same world (rollback) or a fresh one (load), then
+/// step on; the result is bit-identical to never having stopped.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PhysicsSnapshot {
+    /// Format version, checked on restore.
+    version: u32,
+    world: WorldSnapshot,
+    colliders: Arena<ColliderRecord>,
+    /// Each body's own mass properties, in handle order.
+    own_mass: Vec<(BodyHandle, MassProperties)>,
+    joints_without_contacts: Vec<JointHandle>,
+    sensor_overlaps: Vec<(ColliderHandle, ColliderHandle)>,
+    accumulator: f32,
+}
+
+impl PhysicsSnapshot {
+    pub(crate) fn capture(world: &PhysicsWorld) -> Self {
+        let colliders = world
+            .world
+            .backend()
+            .colliders
+            .arena
+            .map(|c| ColliderRecord {
+                desc: c.desc.clone(),
+                body: c.body,
+            });
+        Self {
+            version: SNAPSHOT_VERSION,
+            world: world.world.snapshot(),
+            colliders,
+            own_mass: world.own_mass.iter().map(|(h, m)| (*h, *m)).collect(),
+            joints_without_contacts: world.joints_without_contacts.iter().copied().collect(),
+            sensor_overlaps: world.sensor_overlaps.clone(),
+            accumulator: world.accumulator,
+        }
+    }
+
+    /// The world's part of the snapshot.
+    #[must_use]
+    pub fn world_snapshot(&self) -> &WorldSnapshot {
+        &self.world
+    }
+
+    /// The number of colliders saved.
+    #[must_use]
+    pub fn collider_count(&self) -> usize {
+        self.colliders.len()
+    }
+
+    pub(crate) fn restore_into(&self, target: &mut PhysicsWorld) -> Result<(), Error> {
+        if self.version != SNAPSHOT_VERSION {
+            return Err(Error::BadSnapshot(format!(
+                "format version {} differs from {SNAPSHOT_VERSION}",
+                self.version
+            )));
+        }
+        if !self.colliders.is_consistent() {
+            return Err(Error::BadSnapshot(
+                "the collider table is inconsistent".into(),
+            ));
+        }
+        if !(self.accumulator.is_finite() && self.accumulator >= 0.0) {
+            return Err(Error::BadSnapshot(format!(
+                "the advance accumulator is {}",
+                self.accumulator
+            )));
+        }
+        // Build every parry shape first: nothing changes unless all of them are valid.
+        let arena: Arena<Collider> = self
+            .colliders
+            .try_map(|record| Collider::new(record.desc.clone(), record.body))
+            .map_err(|e| Error::BadSnapshot(format!("a collider is invalid: {e}")))?;
+        target
+            .world
+            .restore(&self.world)
+            .map_err(|e| Error::BadSnapshot(e.to_string()))?;
+
+        let backend = target.world.backend_mut();
+        backend.colliders = ColliderSet::from_arena(arena);
+        backend.narrow_phase.clear();
+        target.own_mass = self.own_mass.iter().copied().collect();
+        target.joints_without_contacts = self.joints_without_contacts.iter().copied().collect();
+        let mut overlaps = self.sensor_overlaps.clone();
+        overlaps.sort_unstable();
+        overlaps.dedup();
+        target.sensor_overlaps = overlaps;
+        target.accumulator = self.accumulator;
+        target.update_disabled_pairs();
+        target.rebuild_broad_phase();
+        target.clear_events();
+        Ok(())
+    }
+}
