@@ -114,7 +114,9 @@ pub struct Joint {
     local_anchor_b: Vec3,
     local_basis_a: Quat,
     local_basis_b: Quat,
+    #[cfg_attr(feature = "serde", serde(with = "unbounded"))]
     break_force: f32,
+    #[cfg_attr(feature = "serde", serde(with = "unbounded"))]
     break_torque: f32,
 }
 
@@ -580,5 +582,21 @@ mod tests {
         );
         assert!((pose_a.rotation * j.local_basis_a()).abs_diff_eq(basis, 1e-5));
         assert!((pose_b.rotation * j.local_basis_b()).abs_diff_eq(basis, 1e-5));
+    }
+}
+
+/// Serialises a limit that may be +∞ (unbreakable) as `null`, which JSON can carry (it has no infinity), and
+/// reads `null` back as +∞.
+#[cfg(feature = "serde")]
+mod unbounded {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub(super) fn serialize<S: Serializer>(value: &f32, serializer: S) -> Result<S::Ok, S::Error> {
+        let finite = value.is_finite().then_some(*value);
+        finite.serialize(serializer)
+    }
+
+    pub(super) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f32, D::Error> {
+        Ok(Option::<f32>::deserialize(deserializer)?.unwrap_or(f32::INFINITY))
     }
 }

@@ -21,6 +21,16 @@ pub enum DynamicsError {
         /// The value that was given.
         value: Mat3,
     },
+    /// A mass so small that its inverse overflows (below about 3e-39 kg): the solver would divide by it.
+    #[error("`{field}` must be at least {min:e} kg so that its inverse is finite, got {value:e}")]
+    MassTooSmall {
+        /// The name of the offending field.
+        field: &'static str,
+        /// The value given (kg).
+        value: f32,
+        /// The smallest accepted mass (kg).
+        min: f32,
+    },
     /// [`crate::MassProperties::combine`] was given no parts, or parts whose masses sum to zero.
     #[error("mass parts must have a positive total mass, got {total_mass} kg from {count} parts")]
     NoMass {

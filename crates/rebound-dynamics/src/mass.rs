@@ -10,6 +10,21 @@ use crate::DynamicsError;
 use rebound_math::validity::{check_finite_vec3, check_positive};
 use rebound_math::{Mat3, Pose, Vec3, inertia};
 
+/// Checks a mass: finite, > 0, and large enough that its inverse is finite (below about 3e-39 kg the inverse
+/// overflows to ∞, which the solver would turn into NaN).
+fn check_mass(mass: f32) -> Result<f32, DynamicsError> {
+    check_positive("mass", mass)?;
+    if mass.recip().is_finite() {
+        Ok(mass)
+    } else {
+        Err(DynamicsError::MassTooSmall {
+            field: "mass",
+            value: mass,
+            min: f32::MAX.recip(),
+        })
+    }
+}
+
 /// Mass, centre of mass and inertia of a body. Always valid: built only through checked constructors.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -39,10 +54,13 @@ impl MassProperties {
         local_center_of_mass: Vec3,
         principal_inertia: Vec3,
     ) -> Result<Self, DynamicsError> {
-        check_positive("mass", mass)?;
+        check_mass(mass)?;
         check_finite_vec3("local_center_of_mass", local_center_of_mass)?;
         check_finite_vec3("principal_inertia", principal_inertia)?;
-        if principal_inertia.min_element() < 0.0 {
+        let overflows = |v: f32| v > 0.0 && !v.recip().is_finite();
+        if principal_inertia.min_element() < 0.0
+            || principal_inertia.to_array().into_iter().any(overflows)
+        {
             return Err(DynamicsError::InvalidInertia {
                 field: "principal_inertia",
                 value: Mat3::from_diagonal(principal_inertia),
@@ -65,7 +83,7 @@ impl MassProperties {
         local_center_of_mass: Vec3,
         inertia: Mat3,
     ) -> Result<Self, DynamicsError> {
-        check_positive("mass", mass)?;
+        check_mass(mass)?;
         check_finite_vec3("local_center_of_mass", local_center_of_mass)?;
         let invalid = DynamicsError::InvalidInertia {
             field: "inertia",
@@ -294,6 +312,10 @@ mod tests {
         assert!(err.to_string().contains("`density`"), "{err}");
         assert!(MassProperties::cuboid(1.0, Vec3::new(1.0, 0.0, 1.0)).is_err());
         assert!(MassProperties::new(0.0, Vec3::ZERO, Vec3::ONE).is_err());
+        assert!(
+            MassProperties::new(1e-39, Vec3::ZERO, Vec3::ONE).is_err(),
+            "1/m would overflow"
+        );
         assert!(MassProperties::new(1.0, Vec3::ZERO, Vec3::new(1.0, -1.0, 1.0)).is_err());
         assert!(MassProperties::new(1.0, Vec3::splat(f32::NAN), Vec3::ONE).is_err());
         // Not symmetric, not PSD.

@@ -40,6 +40,9 @@ fn scene() -> (World<SimpleBackend>, Vec<BodyHandle>) {
         world.backend_mut().add_sphere(ball, 0.25, 0.5, 0.2);
         balls.push(ball);
     }
+    // An unbreakable rope between two balls: its +∞ break limits must survive JSON.
+    let rope = rebound_constraints::Joint::new(rebound_constraints::Rope::new(1.0).unwrap());
+    world.insert_joint(rope, balls[0], balls[1]).unwrap();
     (world, balls)
 }
 
