@@ -1,7 +1,11 @@
 //! Support code shared by the workspace-level scenario tests (`tests/`) and whole-scene benches (`benches/`).
 //!
 //! Not part of the engine: nothing here is published. It holds what SCENES.md defines once for every scene —
-//! the random generator — and the analytic predictors the tests compare against.
+//! the random generator — and the analytic predictors the tests compare against — and the peer scenes
+//! themselves ([`scenes`]), which the scene tests, the criterion benches (`benches/scenes.rs`) and the
+//! `compare` binary (`benches/compare/`) share.
+
+pub mod scenes;
 
 /// The scene generator of SCENES.md: xorshift64*.
 ///
