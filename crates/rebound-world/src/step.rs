@@ -56,6 +56,10 @@ pub(crate) struct Scratch {
     touching: Vec<(BodyHandle, BodyHandle)>,
     /// For each manifold of this step, the approach speed before the step (m/s), for contact events.
     approach_speeds: Vec<f32>,
+    /// Touching body pairs of this step with their approach speeds (events stage).
+    touching_speeds: Vec<((BodyHandle, BodyHandle), f32)>,
+    /// Buffer for the contact events of a step.
+    contact_events: Vec<Event>,
     /// For each manifold of this step, whether the solver pushed with it (a contact that touched during the
     /// step, even one that bounced off and ended with no accumulated impulse).
     pushed: Vec<bool>,
@@ -573,8 +577,15 @@ impl<B: CollisionBackend> World<B> {
     /// Stage *events*: contact begin/end from the touching pairs, woken bodies; sorted.
     fn emit_events(&mut self) {
         let s = &mut self.scratch;
-        s.touching.clear();
-        for (m, &pushed) in self.state.manifolds.iter().zip(&s.pushed) {
+        // Touching pairs with their approach speeds, sorted by pair: O(m log m) for m manifolds.
+        s.touching_speeds.clear();
+        for ((m, &pushed), &speed) in self
+            .state
+            .manifolds
+            .iter()
+            .zip(&s.pushed)
+            .zip(&s.approach_speeds)
+        {
             // Touching: overlapping, or pushed this step (a speculative contact that closed its gap, a bounce).
             if m.is_touching() || pushed {
                 let pair = if m.body_a <= m.body_b {
@@ -582,22 +593,23 @@ impl<B: CollisionBackend> World<B> {
                 } else {
                     (m.body_b, m.body_a)
                 };
-                s.touching.push(pair);
+                s.touching_speeds.push((pair, speed));
             }
         }
-        s.touching.sort_unstable();
-        s.touching.dedup();
-        let mut contact_events = Vec::new();
-        for pair in &s.touching {
-            if self.state.touching.binary_search(pair).is_err() {
-                // The step's manifolds (now in `state.manifolds`) and their approach speeds share indices.
-                let approach_speed = self
-                    .state
-                    .manifolds
-                    .iter()
-                    .zip(&s.approach_speeds)
-                    .filter(|(m, _)| (m.body_a, m.body_b) == *pair || (m.body_b, m.body_a) == *pair)
-                    .fold(0.0f32, |acc, (_, speed)| acc.max(*speed));
+        s.touching_speeds.sort_unstable_by_key(|x| x.0);
+        s.touching.clear();
+        let mut contact_events = core::mem::take(&mut s.contact_events);
+        contact_events.clear();
+        let mut i = 0;
+        while i < s.touching_speeds.len() {
+            let pair = s.touching_speeds[i].0;
+            let mut approach_speed = 0.0f32;
+            while i < s.touching_speeds.len() && s.touching_speeds[i].0 == pair {
+                approach_speed = approach_speed.max(s.touching_speeds[i].1);
+                i += 1;
+            }
+            s.touching.push(pair);
+            if self.state.touching.binary_search(&pair).is_err() {
                 contact_events.push(Event::ContactBegan {
                     body_a: pair.0,
                     body_b: pair.1,
@@ -616,9 +628,10 @@ impl<B: CollisionBackend> World<B> {
         core::mem::swap(&mut self.state.touching, &mut s.touching);
         // Contact events first (pair order), then what the step already pushed (broken joints, sleep), then
         // wakes.
-        let rest = core::mem::take(&mut self.events);
-        self.events = contact_events;
-        self.events.extend(rest);
+        // `events` holds what the step already pushed; put the contact events in front of it.
+        contact_events.append(&mut self.events);
+        core::mem::swap(&mut self.events, &mut contact_events);
+        self.scratch.contact_events = contact_events;
         self.woken.sort_unstable();
         self.woken.dedup();
         self.events
