@@ -88,9 +88,17 @@ fn head_on_elastic_collision() {
     // m1 = 1 kg at 4 m/s, m2 = 3 kg at −1 m/s. Colliders of density 0 add no mass, so the masses set on the
     // bodies stand.
     let ball = |w: &mut PhysicsWorld, x: f32, v: f32, mass: f32| {
-        let desc = BodyDesc::dynamic().with_position(Vec3::new(x, 0.0, 0.0)).with_linear_velocity(Vec3::X * v);
+        let desc = BodyDesc::dynamic()
+            .with_position(Vec3::new(x, 0.0, 0.0))
+            .with_linear_velocity(Vec3::X * v);
         let b = w.insert_body(desc).unwrap();
-        w.insert_collider(ColliderDesc::ball(0.25).with_density(0.0).with_restitution(1.0), b).unwrap();
+        w.insert_collider(
+            ColliderDesc::ball(0.25)
+                .with_density(0.0)
+                .with_restitution(1.0),
+            b,
+        )
+        .unwrap();
         let mass = MassProperties::new(mass, Vec3::ZERO, Vec3::splat(0.025 * mass)).unwrap();
         w.set_body_mass_properties(b, mass).unwrap();
         b
@@ -594,8 +602,15 @@ fn newtons_cradle_hands_the_momentum_to_the_last_ball() {
         let anchor = Vec3::new(i as f32 * (2.0 * radius + gap), 0.0, 0.0);
         let angle = if i == 0 { 30f32.to_radians() } else { 0.0 };
         let start = anchor + Vec3::new(-length * angle.sin(), -length * angle.cos(), 0.0);
-        let b = add_ball(&mut w, BodyDesc::dynamic().with_position(start), radius, 1.0);
-        let rope = Joint::new(Rope::new(length).unwrap()).with_local_anchors(anchor, Vec3::ZERO).unwrap();
+        let b = add_ball(
+            &mut w,
+            BodyDesc::dynamic().with_position(start),
+            radius,
+            1.0,
+        );
+        let rope = Joint::new(Rope::new(length).unwrap())
+            .with_local_anchors(anchor, Vec3::ZERO)
+            .unwrap();
         w.insert_world_joint(rope, b).unwrap();
         balls.push(b);
     }
@@ -612,6 +627,14 @@ fn newtons_cradle_hands_the_momentum_to_the_last_ball() {
     }
     assert!(struck, "the first ball never struck the row");
     let total: f32 = (0..5).map(|i| v(&w, i)).sum();
-    assert!(v(&w, 4) / total >= 0.9, "the last ball carries {:.1} %", 100.0 * v(&w, 4) / total);
-    assert!((v(&w, 0) / total).abs() <= 0.1, "the first ball keeps {:.1} %", 100.0 * v(&w, 0) / total);
+    assert!(
+        v(&w, 4) / total >= 0.9,
+        "the last ball carries {:.1} %",
+        100.0 * v(&w, 4) / total
+    );
+    assert!(
+        (v(&w, 0) / total).abs() <= 0.1,
+        "the first ball keeps {:.1} %",
+        100.0 * v(&w, 0) / total
+    );
 }
