@@ -1,5 +1,5 @@
-//! A generational arena: the storage behind [`crate::BodyHandle`] and [`crate::JointHandle`] (rapier's
-//! `Arena`, Box2D's id pool). Not a step stage.
+//! A generational arena: the storage behind [`crate::BodyHandle`] and [`crate::JointHandle`] — and the
+//! facade's collider handles (rapier's `Arena`, Box2D's id pool). Not a step stage.
 //!
 //! A slot is reused after removal with a higher generation, so a handle to the removed value can never reach
 //! the new one: a stale handle finds nothing. Free slots are kept in a LIFO list, part of the snapshot, so
@@ -159,6 +159,77 @@ impl<T> Arena<T> {
                     value,
                 )),
                 Slot::Free { .. } => None,
+            })
+    }
+
+    /// The index and value stored in slot `slot`, if it is occupied.
+    #[must_use]
+    pub fn get_slot(&self, slot: u32) -> Option<(Index, &T)> {
+        match self.slots.get(slot as usize)? {
+            Slot::Occupied { generation, value } => Some((
+                Index {
+                    index: slot,
+                    generation: *generation,
+                },
+                value,
+            )),
+            Slot::Free { .. } => None,
+        }
+    }
+
+    /// The same arena (slots, generations, free list) with every value mapped — how a snapshot turns stored
+    /// values into serialisable records and back.
+    ///
+    /// # Errors
+    /// The first error `f` returns.
+    pub fn try_map<U, E>(&self, mut f: impl FnMut(&T) -> Result<U, E>) -> Result<Arena<U>, E> {
+        let slots = self
+            .slots
+            .iter()
+            .map(|slot| match slot {
+                Slot::Occupied { generation, value } => Ok(Slot::Occupied {
+                    generation: *generation,
+                    value: f(value)?,
+                }),
+                Slot::Free { generation } => Ok(Slot::Free {
+                    generation: *generation,
+                }),
+            })
+            .collect::<Result<Vec<_>, E>>()?;
+        Ok(Arena {
+            slots,
+            free: self.free.clone(),
+            len: self.len,
+            generation_base: self.generation_base,
+        })
+    }
+
+    /// The same arena with every value mapped.
+    #[must_use]
+    pub fn map<U>(&self, mut f: impl FnMut(&T) -> U) -> Arena<U> {
+        match self.try_map(|value| Ok::<U, core::convert::Infallible>(f(value))) {
+            Ok(arena) => arena,
+            Err(never) => match never {},
+        }
+    }
+
+    /// Whether the free list and the count agree with the slots. A deserialised arena is user data: check it
+    /// before trusting it (an inconsistent free list would hand out an occupied slot).
+    #[must_use]
+    pub fn is_consistent(&self) -> bool {
+        let occupied = self
+            .slots
+            .iter()
+            .filter(|s| matches!(s, Slot::Occupied { .. }))
+            .count();
+        let mut seen = vec![false; self.slots.len()];
+        occupied == self.len
+            && self.slots.len() - occupied == self.free.len()
+            && self.free.iter().all(|&slot| {
+                let fresh = seen
+                    .get_mut(slot as usize)
+                    .is_some_and(|s| !core::mem::replace(s, true));
+                fresh && matches!(self.slots.get(slot as usize), Some(Slot::Free { .. }))
             })
     }
 

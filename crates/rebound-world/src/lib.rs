@@ -1,6 +1,6 @@
 #![doc = include_str!("../README.md")]
 
-mod arena;
+pub mod arena;
 mod body_set;
 mod error;
 mod events;

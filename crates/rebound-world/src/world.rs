@@ -530,6 +530,9 @@ impl<B: CollisionBackend> World<B> {
             return Err(WorldError::BadSnapshot("invalid settings"));
         }
         // A deserialised snapshot bypassed every constructor: check what the step will trust.
+        if !snapshot.state.bodies.arena.is_consistent() || !snapshot.state.joints.is_consistent() {
+            return Err(WorldError::BadSnapshot("inconsistent handle tables"));
+        }
         if snapshot
             .state
             .joints

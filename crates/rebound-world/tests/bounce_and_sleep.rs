@@ -327,11 +327,16 @@ fn contact_events_report_begin_with_approach_speed_and_end() {
 fn a_joint_to_an_awake_body_wakes_a_sleeping_island() {
     let (mut world, _, ball) = sleeping_ball();
     // A new body swinging on a rope attached to the sleeping ball: the joint wakes it when inserted...
-    let swinger = world.insert_body(&BodyDesc::dynamic().with_position(Vec3::new(1.0, 2.0, 0.0))).unwrap();
+    let swinger = world
+        .insert_body(&BodyDesc::dynamic().with_position(Vec3::new(1.0, 2.0, 0.0)))
+        .unwrap();
     let rope = rebound_constraints::Joint::new(rebound_constraints::Rope::new(2.0).unwrap());
     world.insert_joint(rope, ball, swinger).unwrap();
     world.step(DT);
-    assert!(woke(&world, ball), "inserting a joint to an awake body wakes the sleeper");
+    assert!(
+        woke(&world, ball),
+        "inserting a joint to an awake body wakes the sleeper"
+    );
     // ...and while the swinger moves, the pair stays awake: they share an island through the joint.
     for _ in 0..60 {
         world.step(DT);

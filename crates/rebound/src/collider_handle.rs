@@ -2,7 +2,7 @@
 //! `ColliderHandle`, Box2D's shape id). A handle to a removed collider never reaches a later one: lookups
 //! return `None`, setters return [`crate::Error::StaleCollider`].
 
-use crate::arena::Index;
+use rebound_world::arena::Index;
 use serde::{Deserialize, Serialize};
 
 /// Refers to a collider in a [`crate::PhysicsWorld`]. Ordered by slot, then generation: the order the

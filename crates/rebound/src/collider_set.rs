@@ -1,9 +1,9 @@
 //! `ColliderSet`: the colliders of a world behind [`ColliderHandle`]s, with the list of colliders of each
 //! body. Read by the collide stage, sensors and queries; written only by the [`crate::PhysicsWorld`] API.
 
-use crate::arena::Arena;
 use crate::{Collider, ColliderHandle};
 use rebound_world::BodyHandle;
+use rebound_world::arena::Arena;
 use std::collections::BTreeMap;
 
 /// The colliders of a world. Iteration is in handle-slot order (deterministic).

@@ -1,6 +1,5 @@
 #![doc = include_str!("../README.md")]
 
-mod arena;
 mod backend;
 mod broad_phase;
 mod collider;

@@ -6,9 +6,9 @@
 //! pair cache and the BVH are rebuilt too: neither influences the results (see the crate docs,
 //! "Determinism").
 
-use crate::arena::Arena;
 use crate::{Collider, ColliderDesc, ColliderHandle, ColliderSet, Error, PhysicsWorld};
 use rebound_dynamics::MassProperties;
+use rebound_world::arena::Arena;
 use rebound_world::{BodyHandle, JointHandle, WorldSnapshot};
 use serde::{Deserialize, Serialize};
 
