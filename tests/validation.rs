@@ -199,24 +199,34 @@ fn a_ball_bounces_off_an_immovable_body_at_its_own_speed() {
     assert_eq!(body(&w, wall).linear_velocity(), Vec3::ZERO);
 }
 
-#[test]
-fn spring_oscillator_period() {
+/// A world without gravity holding one 1 kg body at `position` (inertia 0.01 kg·m² on every axis).
+fn one_kg_without_gravity(position: Vec3) -> (PhysicsWorld, BodyHandle) {
     let mut w = world_with(WorldSettings {
         gravity: Vec3::ZERO,
         ..WorldSettings::default()
     });
     let mass = w
-        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(1.2, 0.0, 0.0)))
+        .insert_body(BodyDesc::dynamic().with_position(position))
         .unwrap();
-    w.set_body_mass_properties(
+    let properties = MassProperties::new(1.0, Vec3::ZERO, Vec3::splat(0.01)).unwrap();
+    w.set_body_mass_properties(mass, properties).unwrap();
+    (w, mass)
+}
+
+/// A spring of rest length 1 m from the world origin (its anchor A) to a body's centre.
+fn spring(model: SpringModel) -> Joint {
+    Joint::new(Spring::new(1.0, model).unwrap())
+}
+
+#[test]
+fn spring_oscillator_period() {
+    let (mut w, mass) = one_kg_without_gravity(Vec3::new(1.2, 0.0, 0.0));
+    // k = 100 N/m, no damping.
+    w.insert_world_joint(
+        spring(SpringModel::soft_stiffness(100.0, 0.0).unwrap()),
         mass,
-        MassProperties::new(1.0, Vec3::ZERO, Vec3::splat(0.01)).unwrap(),
     )
     .unwrap();
-    // k = 100 N/m, no damping, rest length 1 m from a world anchor at the origin.
-    let spring =
-        Joint::new(Spring::new(1.0, SpringModel::soft_stiffness(100.0, 0.0).unwrap()).unwrap());
-    w.insert_world_joint(spring, mass).unwrap();
     let mut crossings = Vec::new();
     let mut previous = 0.2f32;
     for step in 0..600 {
@@ -237,22 +247,9 @@ fn spring_oscillator_period() {
 
 /// Runs a 1 kg body on an undamped spring of stiffness k from a 0.1 m stretch and returns the largest
 /// stretch seen in `steps` steps.
-fn force_spring_peak(stiffness: f32, dt: f32, steps: usize, model: SpringModel) -> f32 {
-    let mut w = world_with(WorldSettings {
-        gravity: Vec3::ZERO,
-        ..WorldSettings::default()
-    });
-    let mass = w
-        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(1.1, 0.0, 0.0)))
-        .unwrap();
-    w.set_body_mass_properties(
-        mass,
-        MassProperties::new(1.0, Vec3::ZERO, Vec3::splat(0.01)).unwrap(),
-    )
-    .unwrap();
-    w.insert_world_joint(Joint::new(Spring::new(1.0, model).unwrap()), mass)
-        .unwrap();
-    let _ = stiffness;
+fn force_spring_peak(dt: f32, steps: usize, model: SpringModel) -> f32 {
+    let (mut w, mass) = one_kg_without_gravity(Vec3::new(1.1, 0.0, 0.0));
+    w.insert_world_joint(spring(model), mass).unwrap();
     let mut peak = 0.0f32;
     for _ in 0..steps {
         w.step(dt);
@@ -272,22 +269,12 @@ fn the_explicit_spring_is_bounded_below_h_omega_2_and_diverges_above() {
     let substeps = WorldSettings::default().substep_count as f32;
     let h = DT / substeps;
     let k_for = |h_omega: f32| (h_omega / h).powi(2);
-    let bounded = force_spring_peak(
-        k_for(1.9),
-        DT,
-        300,
-        SpringModel::force(k_for(1.9), 0.0).unwrap(),
-    );
+    let bounded = force_spring_peak(DT, 300, SpringModel::force(k_for(1.9), 0.0).unwrap());
     assert!(
         bounded < 1.0,
         "h·ω = 1.9 stays bounded, peak stretch {bounded} m from 0.1 m"
     );
-    let diverged = force_spring_peak(
-        k_for(2.1),
-        DT,
-        300,
-        SpringModel::force(k_for(2.1), 0.0).unwrap(),
-    );
+    let diverged = force_spring_peak(DT, 300, SpringModel::force(k_for(2.1), 0.0).unwrap());
     assert!(
         diverged > 1e3,
         "h·ω = 2.1 grows without bound, peak stretch {diverged} m"
@@ -296,21 +283,12 @@ fn the_explicit_spring_is_bounded_below_h_omega_2_and_diverges_above() {
 
 #[test]
 fn a_stiff_soft_spring_never_diverges_and_converges() {
-    let mut w = world_with(WorldSettings {
-        gravity: Vec3::ZERO,
-        ..WorldSettings::default()
-    });
-    let mass = w
-        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(1.1, 0.0, 0.0)))
-        .unwrap();
-    w.set_body_mass_properties(
+    let (mut w, mass) = one_kg_without_gravity(Vec3::new(1.1, 0.0, 0.0));
+    w.insert_world_joint(
+        spring(SpringModel::soft_stiffness(1.0e7, 0.0).unwrap()),
         mass,
-        MassProperties::new(1.0, Vec3::ZERO, Vec3::splat(0.01)).unwrap(),
     )
     .unwrap();
-    let spring =
-        Joint::new(Spring::new(1.0, SpringModel::soft_stiffness(1.0e7, 0.0).unwrap()).unwrap());
-    w.insert_world_joint(spring, mass).unwrap();
     let mut error = f32::INFINITY;
     for _ in 0..120 {
         w.step(1.0 / 30.0);
