@@ -166,17 +166,21 @@ impl<B: CollisionBackend> World<B> {
     /// Bodies in a sleeping island whose own flag was cleared (by a setter, a force, an impulse) wake their
     /// whole island.
     fn wake_changed_bodies(&mut self) {
-        let changed: Vec<BodyHandle> = self
-            .state
-            .bodies
-            .arena
-            .iter()
-            .filter(|(_, e)| e.island != NO_ISLAND && !e.body.is_sleeping())
-            .map(|(i, _)| BodyHandle(i))
-            .collect();
-        for handle in changed {
+        // Reuses the wake buffer of the collide stage: no allocation per step.
+        let mut changed = core::mem::take(&mut self.scratch.to_wake);
+        changed.clear();
+        changed.extend(
+            self.state
+                .bodies
+                .arena
+                .iter()
+                .filter(|(_, e)| e.island != NO_ISLAND && !e.body.is_sleeping())
+                .map(|(i, _)| BodyHandle(i)),
+        );
+        for &handle in &changed {
             self.wake_island_of(handle);
         }
+        self.scratch.to_wake = changed;
     }
 
     /// Stage *collide*: the backend's manifolds for the current poses, sorted, validated and matched with last
