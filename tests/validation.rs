@@ -400,6 +400,56 @@ fn a_stack_of_ten_boxes_stands() {
     assert!((top.y - 9.5).abs() < 0.05, "top box at height {}", top.y);
 }
 
+/// A column of 20 unit boxes (1 kg each) on the ground, sleep off, 10 s. With soft contacts each interface is a
+/// spring of stiffness `m_eff·ω²` (`m_eff` = 0.5 kg between two boxes at 30 Hz, 1 kg against the fixed ground at
+/// the static 60 Hz), so the top box sinks by `Σₖ Wₖ / (m_eff·ω²)` where `Wₖ` is the weight above interface
+/// `k`. The column must also stay upright: before contacts kept their lever arms (`LEVER_ARM_TOLERANCE`), a
+/// tilt fed back through the re-derived Jacobians and this column fell over within 10 s.
+#[test]
+fn a_column_of_20_boxes_stands_and_sinks_as_the_soft_contacts_predict() {
+    const COUNT: usize = 20;
+    let settings = WorldSettings {
+        sleep_enabled: false,
+        ..WorldSettings::default()
+    };
+    let (hz, m) = (settings.contact_frequency_hz, 1.0_f32);
+    let mut w = world_with(settings);
+    add_ground(&mut w, 0.6, 0.0);
+    let boxes: Vec<_> = (0..COUNT)
+        .map(|i| {
+            let b = w
+                .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 0.5 + i as f32, 0.0)))
+                .unwrap();
+            w.insert_collider(ColliderDesc::cuboid(Vec3::splat(0.5)).with_density(m), b)
+                .unwrap();
+            b
+        })
+        .collect();
+    let mut worst_sideways = 0.0_f32;
+    for _ in 0..600 {
+        w.step(DT);
+        for &b in &boxes {
+            let p = body(&w, b).position();
+            worst_sideways = worst_sideways.max(Vec3::new(p.x, 0.0, p.z).length());
+        }
+    }
+    assert!(
+        worst_sideways < 0.03,
+        "a box moved {worst_sideways} m sideways"
+    );
+    let omega = core::f32::consts::TAU * hz;
+    let between_boxes: f32 = (1..COUNT)
+        .map(|k| (COUNT - k) as f32 * m * G / (0.5 * m * omega * omega))
+        .sum();
+    let on_ground = COUNT as f32 * m * G / (m * (2.0 * omega) * (2.0 * omega));
+    let expected_drop = between_boxes + on_ground;
+    let drop = 0.5 + (COUNT - 1) as f32 - body(&w, boxes[COUNT - 1]).position().y;
+    assert!(
+        (drop - expected_drop).abs() < 2e-3,
+        "top box sank {drop} m, soft contacts predict {expected_drop} m"
+    );
+}
+
 #[test]
 fn a_box_sliding_at_5_m_s_stops_after_v_squared_over_2_mu_g() {
     let mut w = world();

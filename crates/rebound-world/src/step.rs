@@ -196,24 +196,34 @@ impl<B: CollisionBackend> World<B> {
         report.rejected_contact_count = before - manifolds.len();
         manifolds.sort_by_key(ContactManifold::order_key);
 
-        // Warm start: copy impulses from last step's manifold with the same key, point by point by feature id.
+        // Warm start: copy impulses from last step's manifold with the same key, point by point by feature id;
+        // a persisting point also keeps its lever arms (see `LEVER_ARM_TOLERANCE`).
         for manifold in &mut manifolds {
-            let key = manifold.order_key();
-            let Ok(found) = self
-                .state
-                .manifolds
-                .binary_search_by_key(&key, ContactManifold::order_key)
+            let (Some(body_a), Some(body_b)) =
+                (bodies.get(manifold.body_a), bodies.get(manifold.body_b))
             else {
                 continue;
             };
-            let old = &self.state.manifolds[found];
+            let key = manifold.order_key();
+            let old = self
+                .state
+                .manifolds
+                .binary_search_by_key(&key, ContactManifold::order_key)
+                .ok()
+                .map(|found| &self.state.manifolds[found]);
             let count = manifold.point_count;
             for point in &mut manifold.points[..count] {
-                if let Some(previous) = old
-                    .points()
+                let fresh = [
+                    body_a.pose().transform_point(point.local_anchor_a) - body_a.center_of_mass(),
+                    body_b.pose().transform_point(point.local_anchor_b) - body_b.center_of_mass(),
+                ];
+                let old_points = old.map_or(&[][..], ContactManifold::points);
+                let near = point.refresh_lever_arms(fresh, old_points);
+                let previous = old_points
                     .iter()
                     .find(|p| p.feature_id == point.feature_id)
-                {
+                    .or(near);
+                if let Some(previous) = previous {
                     point.normal_impulse = previous.normal_impulse;
                     point.tangent_impulse = previous.tangent_impulse;
                 }
@@ -334,9 +344,13 @@ impl<B: CollisionBackend> World<B> {
             let mut contact = Contact::new(ia, ib, m.normal, m.friction, m.restitution)
                 .with_rolling_friction(m.rolling_friction);
             for p in m.points() {
+                let [anchor_a, anchor_b] = p.solver_lever_arms.unwrap_or([
+                    body_a.pose().transform_point(p.local_anchor_a) - com_a,
+                    body_b.pose().transform_point(p.local_anchor_b) - com_b,
+                ]);
                 contact.push_point(ContactPoint {
-                    anchor_a: body_a.pose().transform_point(p.local_anchor_a) - com_a,
-                    anchor_b: body_b.pose().transform_point(p.local_anchor_b) - com_b,
+                    anchor_a,
+                    anchor_b,
                     separation: p.separation,
                     normal_impulse: p.normal_impulse,
                     tangent_impulse: p.tangent_impulse,
