@@ -404,6 +404,11 @@ impl<B: CollisionBackend> World<B> {
             s.joint_handles.push(JointHandle(index));
         }
         report.joint_count = s.joints.len();
+        if s.joint_solver.settings() != &self.state.settings.joints {
+            // `WorldSettings` are validated whenever they are set, so this cannot fail.
+            let applied = s.joint_solver.set_settings(self.state.settings.joints);
+            debug_assert!(applied.is_ok(), "world settings are validated on entry");
+        }
         let skipped = s.joint_solver.prepare(
             &s.joints,
             &s.joint_states,

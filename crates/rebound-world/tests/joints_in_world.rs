@@ -166,3 +166,31 @@ fn a_joint_that_exceeds_its_break_force_breaks_and_is_reported() {
         "after breaking the weight falls freely, fell {fall} m in 0.5 s"
     );
 }
+
+/// A ball hanging at rest on a taut rope from the world origin: the soft joint is a spring of stiffness
+/// `m·ω²` (the anchor is immovable, so the effective mass is the ball's), so it settles stretched by
+/// `g/ω²`, where `ω = 2π·f` and `f` is `WorldSettings::joints.frequency_hz` (capped at a quarter of the
+/// substep rate). Checks that the world hands its joint settings to the solver: 10 Hz stretches 36× more
+/// than the default 60 Hz.
+#[test]
+fn a_hanging_rope_stretches_by_g_over_omega_squared_at_the_configured_joint_frequency() {
+    for hz in [10.0_f32, 60.0] {
+        let mut settings = WorldSettings::default();
+        settings.joints.frequency_hz = hz;
+        let mut world = World::new(settings).unwrap();
+        let ball_handle = world
+            .insert_body(&ball().with_position(Vec3::new(0.0, -LENGTH, 0.0)))
+            .unwrap();
+        world.insert_world_joint(rope(), ball_handle).unwrap();
+        for _ in 0..180 {
+            world.step(DT);
+        }
+        let stretch = world.body(ball_handle).unwrap().position().length() - LENGTH;
+        let omega = core::f32::consts::TAU * hz;
+        let expected = settings.gravity.length() / (omega * omega);
+        assert!(
+            (stretch - expected).abs() < 0.02 * expected,
+            "{hz} Hz: stretched {stretch} m, expected g/ω² = {expected} m"
+        );
+    }
+}
