@@ -1,10 +1,12 @@
 //! The ball (spherical) joint: two anchor points held together, rotation free. Stages: *prepare*, *warm
 //! start*, *solve* and *relax*.
 
-use crate::part::{PointPart, block_target};
+use crate::direct::{JointRows, Row};
+use crate::part::{PointPart, RowTarget, block_target};
 use crate::solver::Stage;
 use crate::{BodyPair, JointState};
 use rebound_dynamics::SolverBody;
+use rebound_math::Vec3;
 
 /// A ball joint. It has no parameters: the anchors of the [`crate::Joint`] are the
 /// pivot.
@@ -49,4 +51,25 @@ pub(crate) fn solve(
     let part = PointPart::new(pair, anchors.r_a, anchors.r_b);
     let target = block_target(anchors.d, stage.bias, stage.joint_softness);
     part.solve(pair, a, b, target, &mut state.linear_impulse);
+}
+
+/// The three point rows (world axes) for the direct solve of a chain ([`crate::direct`]) at the current pose:
+/// as [`solve`] builds its block.
+pub(crate) fn direct_rows(
+    pair: &BodyPair,
+    a: &SolverBody,
+    b: &SolverBody,
+    stage: &Stage,
+    out: &mut JointRows,
+) {
+    let anchors = pair.anchors(a, b);
+    let (bias, softness) = block_target(anchors.d, stage.bias, stage.joint_softness);
+    for (axis, bias) in [(Vec3::X, bias.x), (Vec3::Y, bias.y), (Vec3::Z, bias.z)] {
+        out.push(Row::linear(
+            axis,
+            anchors.r_a,
+            anchors.r_b,
+            RowTarget { bias, softness },
+        ));
+    }
 }

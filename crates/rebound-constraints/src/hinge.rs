@@ -3,15 +3,16 @@
 //! Stages: *prepare*, *warm start*, *solve* and *relax*.
 
 use crate::coordinate::CoordinateRows;
+use crate::direct::{JointRows, Row};
 use crate::error::check_in_range;
 use crate::limits::Limits;
 use crate::motor::Motor;
-use crate::part::{AlignPart, AnglePart};
+use crate::part::{AlignPart, AnglePart, RowTarget};
 use crate::soft_spring::JointSpring;
 use crate::solver::Stage;
 use crate::{BodyPair, ConstraintError, JointState, ball};
 use core::f32::consts::{PI, TAU};
-use rebound_dynamics::{Softness, SolverBody, StepContext};
+use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
 use rebound_math::{Quat, Vec3};
 
 /// A hinge joint. Free by default: no limits, no motor, no spring.
@@ -188,6 +189,43 @@ impl PreparedHinge {
             state.angular_impulse.truncate(),
         );
         ball::warm_start(pair, state, a, b);
+    }
+
+    /// The point rows and the two alignment rows for the direct solve of a chain ([`crate::direct`]) at the
+    /// current pose; the limit, motor and spring rows stay with [`PreparedHinge::solve_coordinate`].
+    pub(crate) fn direct_rows(
+        pair: &BodyPair,
+        a: &SolverBody,
+        b: &SolverBody,
+        stage: &Stage,
+        out: &mut JointRows,
+    ) {
+        ball::direct_rows(pair, a, b, stage, out);
+        let (fa, fb) = pair.frames(a, b);
+        let axis = fa * Vec3::X;
+        for perpendicular in [fb * Vec3::Y, fb * Vec3::Z] {
+            let error = axis.dot(perpendicular);
+            let target = match stage.bias {
+                Bias::On => RowTarget::spring(error, stage.joint_softness),
+                Bias::Off => RowTarget::speed(0.0),
+            };
+            out.push(Row::angular(perpendicular.cross(axis), target));
+        }
+    }
+
+    /// The limit, motor and spring rows alone (when the rest is solved directly).
+    pub(crate) fn solve_coordinate(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        stage: &Stage,
+    ) {
+        let (fa, fb) = pair.frames(a, b);
+        let part = AnglePart::new(pair, fa * Vec3::X);
+        self.rows
+            .solve(&part, pair, twist_angle(fa, fb), state, a, b, stage);
     }
 
     pub(crate) fn solve(

@@ -4,6 +4,7 @@ pub mod part;
 
 mod ball;
 mod coordinate;
+pub mod direct;
 mod error;
 mod fixed;
 mod hinge;

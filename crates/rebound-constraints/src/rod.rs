@@ -1,6 +1,7 @@
 //! The rod: a fixed distance between two anchors (a massless rigid rod with ball ends; Box2D's rigid distance
 //! joint). Stages: *prepare*, *warm start*, *solve* and *relax*.
 
+use crate::direct::Row;
 use crate::part::{AxisPart, RowTarget};
 use crate::solver::Stage;
 use crate::spring::initial_axis;
@@ -85,6 +86,21 @@ impl PreparedRod {
             b,
             state.axial_impulse,
         );
+    }
+
+    /// The rod's row for the direct solve of a chain ([`crate::direct`]) at the current pose.
+    pub(crate) fn direct_row(
+        &mut self,
+        pair: &BodyPair,
+        a: &SolverBody,
+        b: &SolverBody,
+        stage: &Stage,
+    ) -> Row {
+        let dist = pair.distance(a, b, self.fallback_axis);
+        self.fallback_axis = dist.axis;
+        let target =
+            RowTarget::equality(dist.length - self.length, stage.bias, stage.joint_softness);
+        Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
     }
 
     pub(crate) fn solve(

@@ -36,6 +36,17 @@ pub struct JointSettings {
     /// Whether bodies hanging from fixed bodies through chains of ropes, rods, ball, hinge or fixed joints get
     /// long-range tethers ([`crate::tether`]). Default: true.
     pub tethers: bool,
+    /// Whether paths of rope, rod, ball and hinge joints (chains, ropes of links, bridges) are solved as one
+    /// system each pass instead of joint by joint ([`crate::direct`] explains why: stretch that does not
+    /// grow with the load). Default: true.
+    #[cfg_attr(feature = "serde", serde(default = "default_true"))]
+    pub direct_chains: bool,
+}
+
+/// Serde's default for settings added after the first snapshot format.
+#[cfg(feature = "serde")]
+fn default_true() -> bool {
+    true
 }
 
 impl Default for JointSettings {
@@ -47,6 +58,7 @@ impl Default for JointSettings {
             solve_iterations: 1,
             relax_iterations: 1,
             tethers: true,
+            direct_chains: true,
         }
     }
 }

@@ -18,6 +18,7 @@
 //! count, a step allocates nothing.
 
 use crate::coordinate::CoordinateRows;
+use crate::direct::{InvMass, JointRows, Link, MAX_ROWS, solve_path};
 use crate::fixed::PreparedFixed;
 use crate::hinge::PreparedHinge;
 use crate::prismatic::PreparedPrismatic;
@@ -46,6 +47,15 @@ pub(crate) struct Stage {
     pub joint_softness: Softness,
 }
 
+/// Newton iterations of the position projection (the rows are re-linearised at the moved poses).
+const PROJECTION_ITERATIONS: usize = 2;
+
+/// Nonlinear Gauss–Seidel sweeps (alternating direction) after the direct projection.
+const PROJECTION_SWEEPS: usize = 4;
+
+/// How many times a direct path solve may drop rows that would push and solve again.
+const ACTIVE_SET_ROUNDS: usize = 4;
+
 /// A joint kind prepared for the substeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Prepared {
@@ -60,6 +70,14 @@ enum Prepared {
 }
 
 impl Prepared {
+    /// Whether the joint's equality rows can join a directly solved path ([`crate::direct`]).
+    fn is_direct_capable(&self) -> bool {
+        matches!(
+            self,
+            Self::Rope(_) | Self::Rod(_) | Self::Ball | Self::Hinge(_)
+        )
+    }
+
     /// The distance a joint allows between its anchors (m), for tethers: a rope's or rod's length, 0 for the
     /// point joints; `None` for joints that do not bound it.
     fn bounded_length(&self) -> Option<f32> {
@@ -81,6 +99,8 @@ struct PreparedJoint {
     break_force: f32,
     break_torque: f32,
     kind: Prepared,
+    /// Whether the joint's equality rows belong to a path solved directly ([`crate::direct`]).
+    direct: bool,
 }
 
 /// The joint solver. Holds the prepared joints between stages and reuses its buffer from step to step.
@@ -95,6 +115,20 @@ pub struct JointSolver {
     /// Scratch: the joints as graph edges, and the graph search's buffers.
     edges: Vec<Edge>,
     graph: JointGraph,
+    /// Paths of joints solved directly ([`crate::direct`]), as ranges into `path_joints` (joint indices in
+    /// path order).
+    paths: Vec<core::ops::Range<usize>>,
+    path_joints: Vec<usize>,
+    /// Scratch of the path search: per body, its number of direct-capable joints and the first two of them;
+    /// per joint, whether a path has taken it.
+    degree: Vec<u32>,
+    incident: Vec<[usize; 2]>,
+    visited: Vec<bool>,
+    /// Scratch of the direct solve.
+    links: Vec<Link>,
+    solution: Vec<[crate::direct::Real; MAX_ROWS]>,
+    /// Scratch of the position projection: the path's bodies before a Newton step.
+    saved: Vec<(usize, SolverBody)>,
     /// The joint softness of the prepared step.
     joint_softness: Softness,
     /// The substep length of the prepared step (s).
@@ -109,6 +143,14 @@ impl Default for JointSolver {
             tethers: Vec::new(),
             edges: Vec::new(),
             graph: JointGraph::default(),
+            paths: Vec::new(),
+            path_joints: Vec::new(),
+            degree: Vec::new(),
+            incident: Vec::new(),
+            visited: Vec::new(),
+            links: Vec::new(),
+            solution: Vec::new(),
+            saved: Vec::new(),
             joint_softness: Softness::RIGID,
             h: 0.0,
         }
@@ -239,10 +281,96 @@ impl JointSolver {
                 break_force: joint.break_force(),
                 break_torque: joint.break_torque(),
                 kind,
+                direct: false,
             });
         }
         self.analyse_graph(params);
+        self.find_paths(body_count);
         skipped
+    }
+
+    /// The paths solved directly: maximal sequences of direct-capable joints (rope, rod, ball, hinge) through
+    /// dynamic bodies that belong to exactly two such joints. A path ends at a fixed body, a free end or a
+    /// branching body; joints on a closed loop stay with Gauss–Seidel.
+    fn find_paths(&mut self, body_count: usize) {
+        self.paths.clear();
+        self.path_joints.clear();
+        if !self.settings.direct_chains {
+            return;
+        }
+        self.degree.clear();
+        self.degree.resize(body_count, 0);
+        self.incident.clear();
+        self.incident.resize(body_count, [usize::MAX; 2]);
+        for (index, joint) in self.joints.iter().enumerate() {
+            if !joint.kind.is_direct_capable() {
+                continue;
+            }
+            for body in dynamic_bodies(&joint.pair).into_iter().flatten() {
+                let (Some(degree), Some(incident)) =
+                    (self.degree.get_mut(body), self.incident.get_mut(body))
+                else {
+                    continue;
+                };
+                if let Some(slot) = incident.get_mut(*degree as usize) {
+                    *slot = index;
+                }
+                *degree += 1;
+            }
+        }
+        let inner = |degree: &[u32], body: Option<usize>| {
+            body.is_some_and(|b| degree.get(b).copied() == Some(2))
+        };
+        self.visited.clear();
+        self.visited.resize(self.joints.len(), false);
+        for start in 0..self.joints.len() {
+            if self.visited[start] || !self.joints[start].kind.is_direct_capable() {
+                continue;
+            }
+            let [body_a, body_b] = dynamic_bodies(&self.joints[start].pair);
+            // Walk away from an end of the path; a joint with inner bodies on both sides is not an end.
+            let mut toward = if !inner(&self.degree, body_a) {
+                body_b
+            } else if !inner(&self.degree, body_b) {
+                body_a
+            } else {
+                continue;
+            };
+            let first = self.path_joints.len();
+            let mut current = start;
+            loop {
+                self.visited[current] = true;
+                self.path_joints.push(current);
+                let Some(body) = toward.filter(|&b| inner(&self.degree, Some(b))) else {
+                    break;
+                };
+                let [j0, j1] = self.incident[body];
+                let next = if j0 == current { j1 } else { j0 };
+                let Some(next_joint) = self.joints.get(next) else {
+                    break;
+                };
+                let pair = next_joint.pair;
+                let other = if pair.index_a == body {
+                    pair.index_b
+                } else {
+                    pair.index_a
+                };
+                // Two joints between the same two bodies share both: not a path link.
+                let here = self.joints[current].pair;
+                if self.visited[next] || other == here.index_a || other == here.index_b {
+                    break;
+                }
+                toward = dynamic_bodies(&pair)
+                    .into_iter()
+                    .flatten()
+                    .find(|&b| b == other);
+                current = next;
+            }
+            self.paths.push(first..self.path_joints.len());
+        }
+        for &index in &self.path_joints {
+            self.joints[index].direct = true;
+        }
     }
 
     /// The joint graph and its tethers (see [`crate::tether`]).
@@ -338,7 +466,10 @@ impl JointSolver {
         for _ in 0..iterations {
             for j in &mut self.joints {
                 // Springs act in the bias pass only: skip them in the relax pass without touching the bodies.
-                if bias == Bias::Off && matches!(j.kind, Prepared::Spring(_)) {
+                // Joints on a direct path are solved below, all but a hinge's limit, motor and spring rows.
+                if (bias == Bias::Off && matches!(j.kind, Prepared::Spring(_)))
+                    || (j.direct && !matches!(j.kind, Prepared::Hinge(_)))
+                {
                     continue;
                 }
                 let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
@@ -350,6 +481,9 @@ impl JointSolver {
                     Prepared::Rope(p) => p.solve(pair, state, &mut a, &mut b, &stage),
                     Prepared::Rod(p) => p.solve(pair, state, &mut a, &mut b, &stage),
                     Prepared::Ball => ball::solve(pair, state, &mut a, &mut b, &stage),
+                    Prepared::Hinge(p) if j.direct => {
+                        p.solve_coordinate(pair, state, &mut a, &mut b, &stage);
+                    }
                     Prepared::Hinge(p) => p.solve(pair, state, &mut a, &mut b, &stage),
                     Prepared::Fixed(p) => p.solve(pair, state, &mut a, &mut b, &stage),
                     Prepared::Prismatic(p) => p.solve(pair, state, &mut a, &mut b, &stage),
@@ -357,12 +491,211 @@ impl JointSolver {
                 }
                 j.pair.store(solver_bodies, a, b);
             }
+            for path in 0..self.paths.len() {
+                self.solve_path(path, solver_bodies, &stage);
+            }
             for t in &mut self.tethers {
                 let Some((mut a, mut b)) = t.pair.load(solver_bodies) else {
                     continue;
                 };
                 t.solve(&mut a, &mut b, &stage);
                 t.pair.store(solver_bodies, a, b);
+            }
+        }
+    }
+
+    /// Stage *project positions* (once, after the substeps): moves the bodies of every directly solved path
+    /// so that its joints hold exactly — stretched ropes back to their length, hinge and ball anchors together
+    /// — by solving `K·x = C` for the position errors `C` of all the path's rows at once and displacing the
+    /// bodies by `−M⁻¹·Jᵀ·x` (Box2D v2's position pass, solved exactly for the path). Velocities are left
+    /// alone, so this adds no energy. Why it is needed: the velocity passes keep `Ċ = 0` only to first order;
+    /// a link that turns fast (the whip of a falling chain turns links by 90° within a step) drifts by
+    /// `(v·h)²/(2L)` in each substep, far more than the soft correction takes back.
+    pub fn project_positions(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
+        // A bias rate of 1 and `inv_h` = 1 make every row's bias its position error `C` (m or rad), slack
+        // ropes included (their speculative bias is `C·inv_h`).
+        let stage = Stage {
+            bias: Bias::On,
+            h: ctx.h,
+            inv_h: 1.0,
+            joint_softness: Softness {
+                bias_rate: 1.0,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+            },
+        };
+        for _ in 0..PROJECTION_ITERATIONS {
+            for path in 0..self.paths.len() {
+                let Some(range) = self.paths.get(path).cloned() else {
+                    continue;
+                };
+                let Self {
+                    joints,
+                    path_joints,
+                    links,
+                    solution,
+                    saved,
+                    ..
+                } = self;
+                let members = &path_joints[range];
+                links.clear();
+                let mut before = 0.0f32;
+                for &index in members {
+                    let (rows, _) = direct_rows(&mut joints[index], solver_bodies, &stage);
+                    before = before.max(rows.violation());
+                    links.push(Link::for_positions(rows));
+                }
+                if before == 0.0 {
+                    continue;
+                }
+                solve_links(joints, members, links, solution, solver_bodies);
+                // A Newton step can overshoot where the linearisation is poor (a light body between two
+                // nearly aligned links is moved far sideways): if the step makes the worst error larger,
+                // undo it and take half of it instead (then a quarter).
+                saved.clear();
+                for &index in members {
+                    let pair = &joints[index].pair;
+                    if let Some((a, b)) = pair.load(solver_bodies) {
+                        saved.push((pair.index_a, a));
+                        saved.push((pair.index_b, b));
+                    }
+                }
+                let mut scale = 1.0;
+                for _ in 0..3 {
+                    for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
+                        let pair = &joints[index].pair;
+                        if let Some((mut a, mut b)) = pair.load(solver_bodies) {
+                            link.apply_solution(&x.map(|v| v * scale), &mut a, &mut b);
+                            pair.store(solver_bodies, a, b);
+                        }
+                    }
+                    let after = members
+                        .iter()
+                        .map(|&index| {
+                            direct_rows(&mut joints[index], solver_bodies, &stage)
+                                .0
+                                .violation()
+                        })
+                        .fold(0.0f32, f32::max);
+                    if after <= before {
+                        break;
+                    }
+                    for &(index, body) in saved.iter().rev() {
+                        if let Some(slot) = solver_bodies.get_mut(index) {
+                            *slot = body;
+                        }
+                    }
+                    scale *= 0.5;
+                }
+            }
+        }
+        // Nonlinear Gauss–Seidel sweeps, alternating direction, take back what the linearisation missed —
+        // kept only where they do not make the path's worst error larger.
+        for path in 0..self.paths.len() {
+            let Some(range) = self.paths.get(path).cloned() else {
+                continue;
+            };
+            let Self {
+                joints,
+                path_joints,
+                saved,
+                ..
+            } = self;
+            let members = &path_joints[range];
+            let violation = |joints: &mut [PreparedJoint], solver_bodies: &[SolverBody]| {
+                members
+                    .iter()
+                    .map(|&index| {
+                        direct_rows(&mut joints[index], solver_bodies, &stage)
+                            .0
+                            .violation()
+                    })
+                    .fold(0.0f32, f32::max)
+            };
+            let before = violation(joints, solver_bodies);
+            if before == 0.0 {
+                continue;
+            }
+            saved.clear();
+            for &index in members {
+                let pair = &joints[index].pair;
+                if let Some((a, b)) = pair.load(solver_bodies) {
+                    saved.push((pair.index_a, a));
+                    saved.push((pair.index_b, b));
+                }
+            }
+            for sweep in 0..PROJECTION_SWEEPS {
+                for k in 0..members.len() {
+                    let index = members[if sweep % 2 == 0 {
+                        k
+                    } else {
+                        members.len() - 1 - k
+                    }];
+                    let j = &mut joints[index];
+                    let (rows, _) = direct_rows(j, solver_bodies, &stage);
+                    if let Some((mut a, mut b)) = j.pair.load(solver_bodies) {
+                        crate::direct::project_rows(&rows, &mut a, &mut b);
+                        j.pair.store(solver_bodies, a, b);
+                    }
+                }
+            }
+            if violation(joints, solver_bodies) > before {
+                for &(index, body) in saved.iter().rev() {
+                    if let Some(slot) = solver_bodies.get_mut(index) {
+                        *slot = body;
+                    }
+                }
+            }
+        }
+    }
+
+    /// One direct pass over path `path` ([`crate::direct`]): the rows of its joints at the current pose, the
+    /// exact solve of their coupled system, the soft update of each row.
+    fn solve_path(&mut self, path: usize, solver_bodies: &mut [SolverBody], stage: &Stage) {
+        let Some(range) = self.paths.get(path).cloned() else {
+            return;
+        };
+        let Self {
+            joints,
+            path_joints,
+            links,
+            solution,
+            ..
+        } = self;
+        let members = &path_joints[range];
+        links.clear();
+        for &index in members {
+            let j = &mut joints[index];
+            let (rows, lambda) = direct_rows(j, solver_bodies, stage);
+            let mut link = Link::new(rows, lambda);
+            if let Some((mut a, mut b)) = j.pair.load(solver_bodies) {
+                link.activate(&mut a, &mut b);
+                j.pair.store(solver_bodies, a, b);
+            }
+            links.push(link);
+        }
+        solve_links(joints, members, links, solution, solver_bodies);
+        for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
+            let j = &mut joints[index];
+            let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
+                continue;
+            };
+            link.apply_solution(x, &mut a, &mut b);
+            j.pair.store(solver_bodies, a, b);
+            let (lambda, s) = (link.lambda, &mut j.state);
+            match &mut j.kind {
+                Prepared::Rope(p) => {
+                    s.upper_impulse = lambda[0];
+                    p.note_impulse(lambda[0]);
+                }
+                Prepared::Rod(_) => s.axial_impulse = lambda[0],
+                Prepared::Ball => s.linear_impulse = Vec3::new(lambda[0], lambda[1], lambda[2]),
+                Prepared::Hinge(_) => {
+                    s.linear_impulse = Vec3::new(lambda[0], lambda[1], lambda[2]);
+                    s.angular_impulse.x = lambda[3];
+                    s.angular_impulse.y = lambda[4];
+                }
+                _ => {}
             }
         }
     }
@@ -466,5 +799,98 @@ fn reaction_impulses(kind: &Prepared, s: &JointState) -> (f32, f32) {
             ),
             hypot3(s.angular_impulse.x, s.angular_impulse.y, s.motor_impulse),
         ),
+    }
+}
+
+/// The joint's bodies that the solver moves (dynamic: a non-zero inverse mass or inertia); `None` for a
+/// fixed or kinematic side, which couples nothing.
+fn dynamic_bodies(pair: &BodyPair) -> [Option<usize>; 2] {
+    let moves = |inv_mass: f32, inv_inertia: &Mat3| inv_mass > 0.0 || *inv_inertia != Mat3::ZERO;
+    [
+        moves(pair.inv_mass_a, &pair.inv_inertia_a).then_some(pair.index_a),
+        moves(pair.inv_mass_b, &pair.inv_inertia_b).then_some(pair.index_b),
+    ]
+}
+
+/// The rows of joint `j` for a direct pass at its bodies' current pose, and its accumulated impulses in row
+/// order (zero rows for a body pair out of range, which the world never hands over).
+fn direct_rows(
+    j: &mut PreparedJoint,
+    solver_bodies: &[SolverBody],
+    stage: &Stage,
+) -> (JointRows, [f32; MAX_ROWS]) {
+    let mass = |inv_mass, inertia| InvMass {
+        mass: inv_mass,
+        inertia,
+    };
+    let mut rows = JointRows::new(
+        mass(j.pair.inv_mass_a, j.pair.inv_inertia_a),
+        mass(j.pair.inv_mass_b, j.pair.inv_inertia_b),
+    );
+    let Some((a, b)) = j.pair.load(solver_bodies) else {
+        return (rows, [0.0; MAX_ROWS]);
+    };
+    let s = &j.state;
+    let (l, w) = (s.linear_impulse, s.angular_impulse);
+    let lambda = match &mut j.kind {
+        Prepared::Rope(p) => {
+            rows.push(p.direct_row(&j.pair, &a, &b, stage));
+            [s.upper_impulse, 0.0, 0.0, 0.0, 0.0]
+        }
+        Prepared::Rod(p) => {
+            rows.push(p.direct_row(&j.pair, &a, &b, stage));
+            [s.axial_impulse, 0.0, 0.0, 0.0, 0.0]
+        }
+        Prepared::Ball => {
+            ball::direct_rows(&j.pair, &a, &b, stage, &mut rows);
+            [l.x, l.y, l.z, 0.0, 0.0]
+        }
+        Prepared::Hinge(_) => {
+            PreparedHinge::direct_rows(&j.pair, &a, &b, stage, &mut rows);
+            [l.x, l.y, l.z, w.x, w.y]
+        }
+        _ => [0.0; MAX_ROWS],
+    };
+    (rows, lambda)
+}
+
+/// Links consecutive members through their shared body, then solves the path (with the active-set rounds
+/// that drop rows which would push) into `solution`.
+fn solve_links(
+    joints: &[PreparedJoint],
+    members: &[usize],
+    links: &mut [Link],
+    solution: &mut Vec<[crate::direct::Real; MAX_ROWS]>,
+    solver_bodies: &mut [SolverBody],
+) {
+    for (slot, pair) in members.windows(2).enumerate() {
+        let (this, next) = (&joints[pair[0]].pair, &joints[pair[1]].pair);
+        let shared = if this.index_a == next.index_a || this.index_a == next.index_b {
+            this.index_a
+        } else {
+            this.index_b
+        };
+        links[slot].shared_with_next = Some((this.index_b == shared, next.index_b == shared));
+    }
+    // Active set: a rope the solution would make push is released and the rest solved again.
+    for _ in 0..ACTIVE_SET_ROUNDS {
+        solve_path(
+            links,
+            |slot| joints[members[slot]].pair.load(solver_bodies),
+            solution,
+        );
+        let mut changed = false;
+        for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
+            let pair = &joints[index].pair;
+            if let Some((mut a, mut b)) = pair.load(solver_bodies)
+                && link.deactivate_violations(x, &mut a, &mut b)
+            {
+                pair.store(solver_bodies, a, b);
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
     }
 }

@@ -283,6 +283,7 @@ fn a_world_anchor_given_as_body_params_world_works_like_a_fixed_body_at_the_orig
             rebound_dynamics::integrate::integrate_positions(&mut solver_bodies, &params, &ctx);
             solver.solve(&mut solver_bodies, &ctx, Bias::Off);
         }
+        solver.project_positions(&mut solver_bodies, &ctx);
         solver.apply_restitution(&mut solver_bodies, &ctx);
         solver.store_impulses(&mut states, &mut broken);
         assert!(params[1].write_back(&solver_bodies[1], &mut body));

@@ -437,6 +437,7 @@ impl<B: CollisionBackend> World<B> {
             s.joint_solver.solve(&mut s.states, ctx, Bias::Off);
             s.contact_solver.solve(&mut s.states, ctx, Bias::Off);
         }
+        s.joint_solver.project_positions(&mut s.states, ctx);
     }
 
     /// Stage *restitution*: ropes that went taut jerk back. (Contacts bounce inside the solve, where impulses

@@ -101,6 +101,7 @@ impl Harness {
             integrate_positions(&mut self.solver_bodies, &self.params, &ctx);
             self.solver.solve(&mut self.solver_bodies, &ctx, Bias::Off);
         }
+        self.solver.project_positions(&mut self.solver_bodies, &ctx);
         self.solver.apply_restitution(&mut self.solver_bodies, &ctx);
         self.solver
             .store_impulses(&mut self.states, &mut self.broken);
