@@ -194,7 +194,10 @@ impl<B: CollisionBackend> World<B> {
         let before = manifolds.len();
         manifolds.retain(|m| is_usable(m, bodies));
         report.rejected_contact_count = before - manifolds.len();
-        manifolds.sort_by_key(ContactManifold::order_key);
+        // Unstable sort: no buffer to allocate, and the result does not depend on the input order because a
+        // backend's keys are unique per body pair (equal keys — a faulty backend — still sort the same way
+        // for the same input: the sort is deterministic).
+        manifolds.sort_unstable_by_key(ContactManifold::order_key);
 
         // Warm start: copy impulses from last step's manifold with the same key, point by point by feature id;
         // a persisting point also keeps its lever arms (see `LEVER_ARM_TOLERANCE`).

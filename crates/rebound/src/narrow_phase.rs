@@ -48,6 +48,9 @@ use rebound_world::{BodySet, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint
 /// The largest prediction distance (m); see the broad phase's margin cap.
 const MAX_PREDICTION: f32 = 1.0e7;
 
+/// Points a cached parry manifold has room for (see `PairCache::forget_history`).
+const POINT_CAPACITY: usize = 8;
+
 /// parry's manifolds and workspace for one collider pair.
 #[derive(Clone, Default)]
 pub(crate) struct PairCache {
@@ -60,6 +63,9 @@ impl PairCache {
     fn forget_history(&mut self) {
         for manifold in &mut self.manifolds {
             manifold.points.clear();
+            // Room for a face-on-face clip (up to 8 points before reduction), reserved once per manifold, so
+            // that a pair whose contact grows from a corner to a face does not reallocate mid-run.
+            manifold.points.reserve(POINT_CAPACITY);
             manifold.local_n1 = Vec3::ZERO;
             manifold.local_n2 = Vec3::ZERO;
         }
@@ -72,6 +78,12 @@ impl PairCache {
 #[derive(Clone, Default)]
 pub(crate) struct NarrowPhase {
     pairs: Vec<((ColliderHandle, ColliderHandle), PairCache)>,
+    /// Last step's pair list while this step's is built (empty between steps, capacity kept), so that the
+    /// step allocates no new list.
+    previous: Vec<((ColliderHandle, ColliderHandle), PairCache)>,
+    /// Caches of pairs that ended, cleared, for pairs that begin: their manifold buffers are reused instead
+    /// of allocated.
+    spare: Vec<PairCache>,
 }
 
 impl core::fmt::Debug for NarrowPhase {
@@ -86,6 +98,8 @@ impl NarrowPhase {
     /// Drops every cached pair (on restore). Contacts do not change: see the module docs.
     pub(crate) fn clear(&mut self) {
         self.pairs.clear();
+        self.previous.clear();
+        self.spare.clear();
     }
 
     /// The number of cached pairs.
@@ -103,12 +117,16 @@ impl NarrowPhase {
         dt: f32,
         out: &mut Vec<ContactManifold>,
     ) {
-        let old = core::mem::take(&mut self.pairs);
+        core::mem::swap(&mut self.pairs, &mut self.previous);
+        self.pairs.clear();
         self.pairs.reserve(broad_phase.pairs.len());
-        let mut old = old.into_iter().peekable();
+        let spare = &mut self.spare;
+        let mut old = self.previous.drain(..).peekable();
         for &(h1, h2) in &broad_phase.pairs {
-            // Both lists are sorted: drop the old pairs before this one, reuse this one's cache if present.
-            while old.next_if(|(key, _)| *key < (h1, h2)).is_some() {}
+            // Both lists are sorted: retire the old pairs before this one, reuse this one's cache if present.
+            while let Some((_, ended)) = old.next_if(|(key, _)| *key < (h1, h2)) {
+                recycle(spare, ended);
+            }
             let cached = old
                 .next_if(|(key, _)| *key == (h1, h2))
                 .map(|(_, cache)| cache);
@@ -118,7 +136,7 @@ impl NarrowPhase {
             let (Some(b1), Some(b2)) = (bodies.get(c1.body), bodies.get(c2.body)) else {
                 continue;
             };
-            let mut cache = cached.unwrap_or_default();
+            let mut cache = cached.or_else(|| spare.pop()).unwrap_or_default();
             cache.forget_history();
             let pose1 = to_parry_pose(c1.world_pose(b1.pose()));
             let pose2 = to_parry_pose(c2.world_pose(b2.pose()));
@@ -148,6 +166,18 @@ impl NarrowPhase {
             );
             self.pairs.push(((h1, h2), cache));
         }
+        for (_, ended) in old {
+            recycle(spare, ended);
+        }
+    }
+}
+
+/// Keeps the cache of a pair that ended for a pair that begins — only a simple pair's (one manifold, no
+/// workspace): a compound pair's workspace maps its sub-shapes and must not be handed to another pair. The
+/// reused cache forgets its history before use, so contacts still depend on the poses alone.
+fn recycle(spare: &mut Vec<PairCache>, ended: PairCache) {
+    if ended.workspace.is_none() && ended.manifolds.len() <= 1 {
+        spare.push(ended);
     }
 }
 
