@@ -459,6 +459,10 @@ pub(crate) fn solve_path(
 ) {
     out.clear();
     out.resize(links.len(), [0.0; MAX_ROWS]);
+    if links.iter().all(|link| link.rows.count <= 1) {
+        solve_scalar_path(links, load, out);
+        return;
+    }
     // Forward sweep. `previous` holds Cᵢ₋₁ and r'ᵢ₋₁; C'ᵢ₋₁ is stored in link i − 1. Loops run over the
     // links' own row counts (1 for a rope, 5 for a hinge).
     let mut previous: Option<(Block, [Real; MAX_ROWS])> = None;
@@ -515,6 +519,53 @@ pub(crate) fn solve_path(
         }
         out[i] = x;
         next = Some((x, n));
+    }
+}
+
+/// [`solve_path`] for a path of one-row joints (a rope chain): the scalar Thomas algorithm, without the
+/// block machinery.
+fn solve_scalar_path(
+    links: &mut [Link],
+    load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
+    out: &mut [[Real; MAX_ROWS]],
+) {
+    // Forward sweep: c'ᵢ = cᵢ/sᵢ, r'ᵢ = (rᵢ − cᵢ₋₁·r'ᵢ₋₁)/sᵢ with sᵢ = bᵢ − cᵢ₋₁·c'ᵢ₋₁.
+    let mut previous: Option<(Real, Real, Real)> = None; // (cᵢ₋₁, c'ᵢ₋₁, r'ᵢ₋₁)
+    for i in 0..links.len() {
+        let link = &links[i];
+        let active = link.rows.count == 1 && link.active[0];
+        let (mut s, mut r) = if active {
+            let row = &link.rows.rows[0];
+            let k = Real::from(row.self_coupling(&link.rows.mass_a, &link.rows.mass_b));
+            let residual = load(i).map_or(0.0, |(a, b)| link.residual(&a, &b)[0]);
+            (k * (1.0 + REGULARIZATION), residual)
+        } else {
+            (1.0, 0.0)
+        };
+        if let Some((c, c_prime, r_prime)) = previous {
+            s -= c * c_prime;
+            r -= c * r_prime;
+        }
+        let c = links
+            .get(i + 1)
+            .map_or(0.0, |next| links[i].coupling(next)[0][0]);
+        let scale = Real::from(links[i].rows.mass_a.mass.max(links[i].rows.mass_b.mass));
+        let (c_prime, r_prime) = if s.abs() <= (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE) {
+            (0.0, 0.0)
+        } else {
+            (c / s, r / s)
+        };
+        let link = &mut links[i];
+        link.c_prime[0][0] = c_prime;
+        link.r_prime[0] = r_prime;
+        previous = Some((c, c_prime, r_prime));
+    }
+    // Back substitution.
+    let mut next = 0.0;
+    for i in (0..links.len()).rev() {
+        let x = links[i].r_prime[0] - links[i].c_prime[0][0] * next;
+        out[i][0] = x;
+        next = x;
     }
 }
 

@@ -10,6 +10,9 @@
 //!     solve(Bias::On)             solve_iterations Gauss–Seidel passes, soft position correction
 //!     integrate positions         (rebound-dynamics)
 //!     solve(Bias::Off)            relax_iterations passes, no position correction (removes the bias velocity)
+//!                                 (joint paths — chains, bridges — are solved as one system in each pass:
+//!                                 crate::direct)
+//! project_positions               once: the positions of each joint path, so that its joints end the step closed
 //! apply_restitution               once: ropes that snapped taut
 //! store_impulses                  impulses back into the JointStates; break check
 //! ```

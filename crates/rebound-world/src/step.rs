@@ -8,6 +8,7 @@
 //!                  anchor); contact and joint constraints
 //! 4. substeps      integrate velocities → spring forces → warm start → solve (bias) → integrate positions →
 //!                  relax (no bias)
+//!    project       the positions of each directly solved joint path (chains, bridges)
 //! 5. restitution   ropes (contacts bounce inside the solve: their target velocity is +C_r·approach)
 //! 6. store         impulses back into manifolds and joint states; broken joints
 //! 7. finalize      write back poses and velocities; islands and sleep; events
