@@ -301,6 +301,13 @@ impl<B: CollisionBackend> World<B> {
         Ok(())
     }
 
+    /// Whether any body is asleep (O(1)): callers that would search for sleeping bodies to wake can skip the
+    /// search when none is.
+    #[must_use]
+    pub fn has_sleeping_bodies(&self) -> bool {
+        !self.state.islands.is_empty()
+    }
+
     /// Whether the body is asleep (`None` for a stale handle).
     #[must_use]
     pub fn is_sleeping(&self, handle: BodyHandle) -> Option<bool> {

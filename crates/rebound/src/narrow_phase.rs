@@ -240,6 +240,10 @@ pub(crate) fn to_world_manifold(
     c2: &Collider,
     m: &ParryManifold<(), ()>,
 ) -> Option<ContactManifold> {
+    // Most candidate pairs of a pile are within the margin but not touching: nothing to convert.
+    if m.points.is_empty() {
+        return None;
+    }
     let frame1 = shape_frame(c1, m.subshape_pos1());
     let frame2 = shape_frame(c2, m.subshape_pos2());
     let normal = (b1.rotation() * (frame1.rotation * m.local_n1)).try_normalize()?;

@@ -410,7 +410,9 @@ impl PhysicsWorld {
     /// moved or changed must notice (a sleeping body is never tested against a fixed one, so nothing else
     /// would wake it).
     fn wake_bodies_touching(&mut self, boxes: &[Aabb]) {
-        if boxes.is_empty() {
+        // Nothing asleep, nothing to wake: building a scene of n bodies before its first step would otherwise
+        // test every collider for every insertion (the query tree is stale until the step), O(n²).
+        if boxes.is_empty() || !self.world.has_sleeping_bodies() {
             return;
         }
         let backend = self.world.backend();
