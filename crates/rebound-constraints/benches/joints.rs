@@ -109,6 +109,16 @@ fn joint_steps(c: &mut Criterion) {
         "chain_1000_ropes_no_tethers",
         &chain(no_tethers),
     );
+    // Joint by joint (Gauss–Seidel only, the solver before the direct solve of paths): what that costs.
+    let joint_by_joint = JointSettings {
+        direct_chains: false,
+        ..JointSettings::default()
+    };
+    bench_step(
+        &mut group,
+        "chain_1000_ropes_joint_by_joint",
+        &chain(joint_by_joint),
+    );
     let soft = SpringModel::soft_stiffness(1.0e4, 10.0).expect("valid");
     bench_step(&mut group, "springs_1000_soft", &springs(soft));
     let force = SpringModel::force(1.0e4, 10.0).expect("valid");

@@ -277,13 +277,31 @@ impl Link {
         }
     }
 
-    /// A link of a position projection for `rows` whose biases are their position errors. Equality rows
-    /// take part; a rope only if it is stretched or within [`TAUT_MARGIN`] of its length — then with target
-    /// "no longer than now", so that it may pull if moving its neighbours would stretch it (the active-set
-    /// rounds drop it if it would have to push).
-    pub fn for_positions(mut rows: JointRows) -> Self {
+    /// Makes this (reused) link empty, for a joint whose bodies have the given inverse masses: no rows, no
+    /// impulses, not linked. Reusing links keeps a pass from copying 700-byte records around.
+    pub fn reset(&mut self, mass_a: InvMass, mass_b: InvMass) {
+        self.rows.count = 0;
+        self.rows.mass_a = mass_a;
+        self.rows.mass_b = mass_b;
+        self.lambda = [0.0; MAX_ROWS];
+        self.active = [false; MAX_ROWS];
+        self.shared_with_next = None;
+        self.positions = false;
+    }
+
+    /// Turns a link whose rows' biases are their position errors into a link of the position projection, in
+    /// place. Equality rows take part; a rope only if it is stretched or within [`TAUT_MARGIN`] of its length —
+    /// then with target "no longer than now", so that it may pull if moving its neighbours would stretch it
+    /// (the active-set rounds drop it if it would have to push).
+    pub fn make_positional(&mut self) {
         let mut active = [false; MAX_ROWS];
-        for (row, active) in rows.rows.iter_mut().zip(&mut active).take(rows.count) {
+        for (row, active) in self
+            .rows
+            .rows
+            .iter_mut()
+            .zip(&mut active)
+            .take(self.rows.count)
+        {
             let c = row.target.bias;
             *active = if row.upper == 0.0 {
                 c > -TAUT_MARGIN
@@ -296,10 +314,9 @@ impl Link {
                 row.target.bias = 0.0;
             }
         }
-        let mut link = Self::new(rows, [0.0; MAX_ROWS]);
-        link.positions = true;
-        link.active = active;
-        link
+        self.lambda = [0.0; MAX_ROWS];
+        self.positions = true;
+        self.active = active;
     }
 
     /// Step 1 of a pass: decides which rows take part and releases the others' impulses. A row bounded at 0
@@ -413,6 +430,24 @@ impl Link {
             }
         }
         any
+    }
+
+    /// [`Link::coupling`] for two one-row links: the single entry, without building a block.
+    fn coupling_scalar(&self, next: &Link) -> Real {
+        let Some((this_b, next_b)) = self.shared_with_next else {
+            return 0.0;
+        };
+        if self.rows.count != 1 || next.rows.count != 1 || !self.active[0] || !next.active[0] {
+            return 0.0;
+        }
+        let (ri, rj) = (&self.rows.rows[0], &next.rows.rows[0]);
+        let (si, mass) = if this_b {
+            (&ri.b, &self.rows.mass_b)
+        } else {
+            (&ri.a, &self.rows.mass_a)
+        };
+        let sj = if next_b { &rj.b } else { &rj.a };
+        Real::from(si.coupling(mass, sj))
     }
 
     /// Step 4: the soft update of each active row from the solution `x`, clamped; applies the increments.
@@ -548,7 +583,13 @@ fn solve_scalar_path(
         let (mut s, mut r) = if active {
             let row = &link.rows.rows[0];
             let k = Real::from(row.self_coupling(&link.rows.mass_a, &link.rows.mass_b));
-            let residual = load(i).map_or(0.0, |(a, b)| link.residual(&a, &b)[0]);
+            let residual = load(i).map_or(0.0, |(a, b)| {
+                if link.positions {
+                    Real::from(row.target.bias)
+                } else {
+                    Real::from(row.velocity(&a, &b) + row.target.bias)
+                }
+            });
             (k * (1.0 + REGULARIZATION), residual)
         } else {
             (1.0, 0.0)
@@ -559,7 +600,7 @@ fn solve_scalar_path(
         }
         let c = links
             .get(i + 1)
-            .map_or(0.0, |next| links[i].coupling(next)[0][0]);
+            .map_or(0.0, |next| links[i].coupling_scalar(next));
         let scale = Real::from(links[i].rows.mass_a.mass.max(links[i].rows.mass_b.mass));
         let (c_prime, r_prime) = if s.abs() <= (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE) {
             (0.0, 0.0)

@@ -134,8 +134,10 @@ pub struct JointSolver {
     /// Scratch of the direct solve.
     links: Vec<Link>,
     solution: Vec<[crate::direct::Real; MAX_ROWS]>,
-    /// Scratch of the position projection: the path's bodies before a Newton step.
+    /// Scratch of the position projection: the path's bodies before a Newton step, and a link to measure
+    /// errors with.
     saved: Vec<(usize, SolverBody)>,
+    probe: Vec<Link>,
     /// The joint softness of the prepared step.
     joint_softness: Softness,
     /// The substep length of the prepared step (s).
@@ -158,6 +160,7 @@ impl Default for JointSolver {
             links: Vec::new(),
             solution: Vec::new(),
             saved: Vec::new(),
+            probe: Vec::new(),
             joint_softness: Softness::RIGID,
             h: 0.0,
         }
@@ -542,16 +545,18 @@ impl JointSolver {
                     links,
                     solution,
                     saved,
+                    probe,
                     ..
                 } = self;
                 let members = &path_joints[range];
-                links.clear();
                 let mut before = 0.0f32;
-                for &index in members {
-                    let (rows, _) = direct_rows(&mut joints[index], solver_bodies, &stage);
-                    before = before.max(rows.violation());
-                    links.push(Link::for_positions(rows));
+                for (k, &index) in members.iter().enumerate() {
+                    let link = link_at(links, k);
+                    let _ = direct_rows(&mut joints[index], solver_bodies, &stage, link);
+                    before = before.max(link.rows.violation());
+                    link.make_positional();
                 }
+                links.truncate(members.len());
                 if before <= PROJECTION_TOLERANCE {
                     continue;
                 }
@@ -576,13 +581,10 @@ impl JointSolver {
                             pair.store(solver_bodies, a, b);
                         }
                     }
+                    let probe = link_at(probe, 0);
                     let after = members
                         .iter()
-                        .map(|&index| {
-                            direct_rows(&mut joints[index], solver_bodies, &stage)
-                                .0
-                                .violation()
-                        })
+                        .map(|&index| violation(&mut joints[index], solver_bodies, &stage, probe))
                         .fold(0.0f32, f32::max);
                     if after <= before {
                         break;
@@ -606,20 +608,19 @@ impl JointSolver {
                 joints,
                 path_joints,
                 saved,
+                probe,
                 ..
             } = self;
             let members = &path_joints[range];
-            let violation = |joints: &mut [PreparedJoint], solver_bodies: &[SolverBody]| {
-                members
-                    .iter()
-                    .map(|&index| {
-                        direct_rows(&mut joints[index], solver_bodies, &stage)
-                            .0
-                            .violation()
-                    })
-                    .fold(0.0f32, f32::max)
-            };
-            let before = violation(joints, solver_bodies);
+            let probe = link_at(probe, 0);
+            let worst =
+                |joints: &mut [PreparedJoint], solver_bodies: &[SolverBody], probe: &mut Link| {
+                    members
+                        .iter()
+                        .map(|&index| violation(&mut joints[index], solver_bodies, &stage, probe))
+                        .fold(0.0f32, f32::max)
+                };
+            let before = worst(joints, solver_bodies, probe);
             if before <= PROJECTION_TOLERANCE {
                 continue;
             }
@@ -639,14 +640,14 @@ impl JointSolver {
                         members.len() - 1 - k
                     }];
                     let j = &mut joints[index];
-                    let (rows, _) = direct_rows(j, solver_bodies, &stage);
+                    let _ = direct_rows(j, solver_bodies, &stage, probe);
                     if let Some((mut a, mut b)) = j.pair.load(solver_bodies) {
-                        crate::direct::project_rows(&rows, &mut a, &mut b);
+                        crate::direct::project_rows(&probe.rows, &mut a, &mut b);
                         j.pair.store(solver_bodies, a, b);
                     }
                 }
             }
-            if violation(joints, solver_bodies) > before {
+            if worst(joints, solver_bodies, probe) > before {
                 for &(index, body) in saved.iter().rev() {
                     if let Some(slot) = solver_bodies.get_mut(index) {
                         *slot = body;
@@ -670,17 +671,16 @@ impl JointSolver {
             ..
         } = self;
         let members = &path_joints[range];
-        links.clear();
-        for &index in members {
+        for (k, &index) in members.iter().enumerate() {
             let j = &mut joints[index];
-            let (rows, lambda) = direct_rows(j, solver_bodies, stage);
-            let mut link = Link::new(rows, lambda);
+            let link = link_at(links, k);
+            link.lambda = direct_rows(j, solver_bodies, stage, link);
             if let Some((mut a, mut b)) = j.pair.load(solver_bodies) {
                 link.activate(&mut a, &mut b);
                 j.pair.store(solver_bodies, a, b);
             }
-            links.push(link);
         }
+        links.truncate(members.len());
         solve_links(joints, members, links, solution, solver_bodies);
         for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
             let j = &mut joints[index];
@@ -819,27 +819,30 @@ fn dynamic_bodies(pair: &BodyPair) -> [Option<usize>; 2] {
     ]
 }
 
-/// The rows of joint `j` for a direct pass at its bodies' current pose, and its accumulated impulses in row
-/// order (zero rows for a body pair out of range, which the world never hands over).
+/// The rows of joint `j` for a direct pass at its bodies' current pose, written into `rows` (after a reset
+/// to the joint's bodies), and its accumulated impulses in row order (no rows for a body pair out of range,
+/// which the world never hands over).
 fn direct_rows(
     j: &mut PreparedJoint,
     solver_bodies: &[SolverBody],
     stage: &Stage,
-) -> (JointRows, [f32; MAX_ROWS]) {
+    link: &mut Link,
+) -> [f32; MAX_ROWS] {
     let mass = |inv_mass, inertia| InvMass {
         mass: inv_mass,
         inertia,
     };
-    let mut rows = JointRows::new(
+    link.reset(
         mass(j.pair.inv_mass_a, j.pair.inv_inertia_a),
         mass(j.pair.inv_mass_b, j.pair.inv_inertia_b),
     );
+    let rows = &mut link.rows;
     let Some((a, b)) = j.pair.load(solver_bodies) else {
-        return (rows, [0.0; MAX_ROWS]);
+        return [0.0; MAX_ROWS];
     };
     let s = &j.state;
     let (l, w) = (s.linear_impulse, s.angular_impulse);
-    let lambda = match &mut j.kind {
+    match &mut j.kind {
         Prepared::Rope(p) => {
             rows.push(p.direct_row(&j.pair, &a, &b, stage));
             [s.upper_impulse, 0.0, 0.0, 0.0, 0.0]
@@ -849,16 +852,42 @@ fn direct_rows(
             [s.axial_impulse, 0.0, 0.0, 0.0, 0.0]
         }
         Prepared::Ball => {
-            ball::direct_rows(&j.pair, &a, &b, stage, &mut rows);
+            ball::direct_rows(&j.pair, &a, &b, stage, rows);
             [l.x, l.y, l.z, 0.0, 0.0]
         }
         Prepared::Hinge(_) => {
-            PreparedHinge::direct_rows(&j.pair, &a, &b, stage, &mut rows);
+            PreparedHinge::direct_rows(&j.pair, &a, &b, stage, rows);
             [l.x, l.y, l.z, w.x, w.y]
         }
         _ => [0.0; MAX_ROWS],
-    };
-    (rows, lambda)
+    }
+}
+
+/// Link `k` of a pass, reused from earlier passes (the buffer grows to the longest path once).
+fn link_at(links: &mut Vec<Link>, k: usize) -> &mut Link {
+    if links.len() <= k {
+        let zero = InvMass {
+            mass: 0.0,
+            inertia: Mat3::ZERO,
+        };
+        links.resize(
+            k + 1,
+            Link::new(JointRows::new(zero, zero), [0.0; MAX_ROWS]),
+        );
+    }
+    &mut links[k]
+}
+
+/// The worst position error of joint `j`'s rows at the bodies' current pose (see `JointRows::violation`),
+/// built in `scratch`.
+fn violation(
+    j: &mut PreparedJoint,
+    solver_bodies: &[SolverBody],
+    stage: &Stage,
+    scratch: &mut Link,
+) -> f32 {
+    let _ = direct_rows(j, solver_bodies, stage, scratch);
+    scratch.rows.violation()
 }
 
 /// Links consecutive members through their shared body, then solves the path (with the active-set rounds
