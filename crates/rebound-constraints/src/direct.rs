@@ -346,13 +346,20 @@ impl Link {
     fn residual(&self, a: &SolverBody, b: &SolverBody) -> [Real; MAX_ROWS] {
         let mut r = [0.0; MAX_ROWS];
         for (i, row) in self.rows.rows().iter().enumerate() {
-            if self.active[i] && self.positions {
-                r[i] = Real::from(row.target.bias);
-            } else if self.active[i] {
-                r[i] = Real::from(row.velocity(a, b) + row.target.bias);
+            if self.active[i] {
+                r[i] = self.row_residual(row, a, b);
             }
         }
         r
+    }
+
+    /// One row's right-hand side: `Ċ + bias`, or `C` (its bias) in a position projection.
+    fn row_residual(&self, row: &Row, a: &SolverBody, b: &SolverBody) -> Real {
+        if self.positions {
+            Real::from(row.target.bias)
+        } else {
+            Real::from(row.velocity(a, b) + row.target.bias)
+        }
     }
 
     /// The diagonal block `B` (identity for inactive rows, so that they solve to 0).
@@ -419,9 +426,7 @@ impl Link {
             if !self.active[i] {
                 continue;
             }
-            let s: Softness = row.target.softness;
-            let new =
-                self.lambda[i] - s.mass_scale * x[i] as f32 - s.impulse_scale * self.lambda[i];
+            let new = self.lambda[i] + soft_delta(row, x[i], self.lambda[i]);
             if (row.upper == 0.0 && new > 0.0) || (row.lower == 0.0 && new < 0.0) {
                 self.active[i] = false;
                 row.apply(&ma, &mb, a, b, -self.lambda[i]);
@@ -457,8 +462,7 @@ impl Link {
             if !self.active[i] {
                 continue;
             }
-            let s: Softness = row.target.softness;
-            let delta = -s.mass_scale * x[i] as f32 - s.impulse_scale * self.lambda[i];
+            let delta = soft_delta(row, x[i], self.lambda[i]);
             let new = (self.lambda[i] + delta).max(row.lower).min(row.upper);
             if self.positions {
                 row.a.displace(&ma, a, new);
@@ -469,6 +473,13 @@ impl Link {
             self.lambda[i] = new;
         }
     }
+}
+
+/// The soft step of one row from its solution `x`: `Δλ = −mass_scale·x − impulse_scale·λ`.
+#[inline]
+fn soft_delta(row: &Row, x: Real, lambda: f32) -> f32 {
+    let s: Softness = row.target.softness;
+    -s.mass_scale * x as f32 - s.impulse_scale * lambda
 }
 
 /// One nonlinear Gauss–Seidel projection of one joint's rows (Box2D v2's position solver): each row whose
@@ -583,13 +594,7 @@ fn solve_scalar_path(
         let (mut s, mut r) = if active {
             let row = &link.rows.rows[0];
             let k = Real::from(row.self_coupling(&link.rows.mass_a, &link.rows.mass_b));
-            let residual = load(i).map_or(0.0, |(a, b)| {
-                if link.positions {
-                    Real::from(row.target.bias)
-                } else {
-                    Real::from(row.velocity(&a, &b) + row.target.bias)
-                }
-            });
+            let residual = load(i).map_or(0.0, |(a, b)| link.row_residual(row, &a, &b));
             (k * (1.0 + REGULARIZATION), residual)
         } else {
             (1.0, 0.0)

@@ -564,14 +564,7 @@ impl JointSolver {
                 // A Newton step can overshoot where the linearisation is poor (a light body between two
                 // nearly aligned links is moved far sideways): if the step makes the worst error larger,
                 // undo it and take half of it instead (then a quarter).
-                saved.clear();
-                for &index in members {
-                    let pair = &joints[index].pair;
-                    if let Some((a, b)) = pair.load(solver_bodies) {
-                        saved.push((pair.index_a, a));
-                        saved.push((pair.index_b, b));
-                    }
-                }
+                save_bodies(joints, members, solver_bodies, saved);
                 let mut scale = 1.0;
                 for _ in 0..3 {
                     for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
@@ -589,11 +582,7 @@ impl JointSolver {
                     if after <= before {
                         break;
                     }
-                    for &(index, body) in saved.iter().rev() {
-                        if let Some(slot) = solver_bodies.get_mut(index) {
-                            *slot = body;
-                        }
-                    }
+                    restore_bodies(saved, solver_bodies);
                     scale *= 0.5;
                 }
             }
@@ -624,14 +613,7 @@ impl JointSolver {
             if before <= PROJECTION_TOLERANCE {
                 continue;
             }
-            saved.clear();
-            for &index in members {
-                let pair = &joints[index].pair;
-                if let Some((a, b)) = pair.load(solver_bodies) {
-                    saved.push((pair.index_a, a));
-                    saved.push((pair.index_b, b));
-                }
-            }
+            save_bodies(joints, members, solver_bodies, saved);
             for sweep in 0..PROJECTION_SWEEPS {
                 for k in 0..members.len() {
                     let index = members[if sweep % 2 == 0 {
@@ -648,11 +630,7 @@ impl JointSolver {
                 }
             }
             if worst(joints, solver_bodies, probe) > before {
-                for &(index, body) in saved.iter().rev() {
-                    if let Some(slot) = solver_bodies.get_mut(index) {
-                        *slot = body;
-                    }
-                }
+                restore_bodies(saved, solver_bodies);
             }
         }
     }
@@ -888,6 +866,33 @@ fn violation(
 ) -> f32 {
     let _ = direct_rows(j, solver_bodies, stage, scratch);
     scratch.rows.violation()
+}
+
+/// Saves the bodies of the path's joints, so that a projection step that makes things worse can be undone.
+fn save_bodies(
+    joints: &[PreparedJoint],
+    members: &[usize],
+    solver_bodies: &[SolverBody],
+    saved: &mut Vec<(usize, SolverBody)>,
+) {
+    saved.clear();
+    for &index in members {
+        let pair = &joints[index].pair;
+        if let Some((a, b)) = pair.load(solver_bodies) {
+            saved.push((pair.index_a, a));
+            saved.push((pair.index_b, b));
+        }
+    }
+}
+
+/// Undoes what happened to the bodies since [`save_bodies`] (in reverse, so a body saved twice gets its first
+/// copy, which is the same).
+fn restore_bodies(saved: &[(usize, SolverBody)], solver_bodies: &mut [SolverBody]) {
+    for &(index, body) in saved.iter().rev() {
+        if let Some(slot) = solver_bodies.get_mut(index) {
+            *slot = body;
+        }
+    }
 }
 
 /// Links consecutive members through their shared body, then solves the path (with the active-set rounds
