@@ -216,13 +216,9 @@ impl<B: CollisionBackend> World<B> {
                 .ok()
                 .map(|found| &self.state.manifolds[found]);
             let count = manifold.point_count;
+            let old_points = old.map_or(&[][..], ContactManifold::points);
             for point in &mut manifold.points[..count] {
-                let fresh = [
-                    body_a.pose().transform_point(point.local_anchor_a) - body_a.center_of_mass(),
-                    body_b.pose().transform_point(point.local_anchor_b) - body_b.center_of_mass(),
-                ];
-                let old_points = old.map_or(&[][..], ContactManifold::points);
-                let near = point.refresh_lever_arms(fresh, old_points);
+                let near = point.refresh_lever_arms(lever_arms(body_a, body_b, point), old_points);
                 let previous = old_points
                     .iter()
                     .find(|p| p.feature_id == point.feature_id)
@@ -344,14 +340,12 @@ impl<B: CollisionBackend> World<B> {
             ) else {
                 continue;
             };
-            let (com_a, com_b) = (body_a.center_of_mass(), body_b.center_of_mass());
             let mut contact = Contact::new(ia, ib, m.normal, m.friction, m.restitution)
                 .with_rolling_friction(m.rolling_friction);
             for p in m.points() {
-                let [anchor_a, anchor_b] = p.solver_lever_arms.unwrap_or([
-                    body_a.pose().transform_point(p.local_anchor_a) - com_a,
-                    body_b.pose().transform_point(p.local_anchor_b) - com_b,
-                ]);
+                let [anchor_a, anchor_b] = p
+                    .solver_lever_arms
+                    .unwrap_or_else(|| lever_arms(body_a, body_b, p));
                 contact.push_point(ContactPoint {
                     anchor_a,
                     anchor_b,
@@ -668,6 +662,19 @@ impl<B: CollisionBackend> World<B> {
 }
 
 /// Whether a backend's manifold can be used: live, distinct bodies, finite unit normal, finite points.
+/// A contact point's lever arms at the bodies' current poses: from A's and from B's centre of mass to the
+/// point, world axes (m).
+fn lever_arms(
+    a: &rebound_dynamics::RigidBody,
+    b: &rebound_dynamics::RigidBody,
+    point: &crate::ManifoldPoint,
+) -> [Vec3; 2] {
+    [
+        a.pose().transform_point(point.local_anchor_a) - a.center_of_mass(),
+        b.pose().transform_point(point.local_anchor_b) - b.center_of_mass(),
+    ]
+}
+
 fn is_usable(m: &ContactManifold, bodies: &BodySet) -> bool {
     m.body_a != m.body_b
         && bodies.contains(m.body_a)
