@@ -168,13 +168,19 @@ struct PreparedPoint {
     wt_b: [Vec3; 2],
 }
 
-/// A prepared contact manifold.
+/// A prepared contact manifold. Its points live in the solver's flat point array (`first_point ..
+/// first_point + point_count`), so a one-point manifold (a ball on the ground) costs one point, not four, and a
+/// pass streams no unused slots.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct PreparedContact {
     /// Index of the source [`Contact`] in the slice given to `prepare`.
     source: usize,
     body_a: usize,
     body_b: usize,
+    first_point: usize,
+    point_count: usize,
+    /// Index of the manifold's rolling-resistance block, or `None` without rolling friction.
+    rolling: Option<usize>,
     normal: Vec3,
     tangents: [Vec3; 2],
     friction: f32,
@@ -184,9 +190,6 @@ struct PreparedContact {
     softness: Softness,
     /// Whether both bodies are moved by the solver (not fixed or kinematic).
     both_dynamic: bool,
-    points: [PreparedPoint; MAX_CONTACT_POINTS],
-    point_count: usize,
-    rolling: Rolling,
 }
 
 /// The rolling-resistance block of a manifold: an angular constraint `ω_b − ω_a = 0` whose accumulated
@@ -205,6 +208,8 @@ struct Rolling {
 #[derive(Debug, Clone, Default)]
 pub struct ContactSolver {
     contacts: Vec<PreparedContact>,
+    points: Vec<PreparedPoint>,
+    rolling: Vec<Rolling>,
 }
 
 impl ContactSolver {
@@ -240,6 +245,8 @@ impl ContactSolver {
         ctx: &StepContext,
     ) -> usize {
         self.contacts.clear();
+        self.points.clear();
+        self.rolling.clear();
         self.contacts.reserve(contacts.len());
         let body_count = bodies.len().min(params.len());
         let mut skipped = 0;
@@ -257,34 +264,19 @@ impl ContactSolver {
             let normal = contact.normal;
             let (t1, t2) = normal.any_orthonormal_pair();
             let tangents = [t1, t2];
-            let softness = if pa.is_dynamic() && pb.is_dynamic() {
-                ctx.contact_softness
-            } else {
-                ctx.static_softness
-            };
-            let mut prepared = PreparedContact {
-                source,
-                body_a: contact.body_a,
-                body_b: contact.body_b,
-                normal,
-                tangents,
-                friction: contact.friction,
-                restitution: contact.restitution,
-                inv_mass_a: pa.inv_mass,
-                inv_mass_b: pb.inv_mass,
-                softness,
-                both_dynamic: pa.is_dynamic() && pb.is_dynamic(),
-                points: [PreparedPoint::default(); MAX_CONTACT_POINTS],
-                point_count: contact.point_count.min(MAX_CONTACT_POINTS),
-                rolling: Rolling {
-                    friction: contact.rolling_friction.max(0.0),
+            let both_dynamic = pa.is_dynamic() && pb.is_dynamic();
+            let rolling = (contact.rolling_friction > 0.0).then(|| {
+                self.rolling.push(Rolling {
+                    friction: contact.rolling_friction,
                     impulse: Vec3::ZERO,
                     mass: angular_mass(pa.inv_inertia_world + pb.inv_inertia_world),
                     inv_inertia_a: pa.inv_inertia_world,
                     inv_inertia_b: pb.inv_inertia_world,
-                },
-            };
-            for (point, out) in contact.points().iter().zip(&mut prepared.points) {
+                });
+                self.rolling.len() - 1
+            });
+            let first_point = self.points.len();
+            for point in contact.points() {
                 let (ra, rb) = (point.anchor_a, point.anchor_b);
                 let rn_a = ra.cross(normal);
                 let rn_b = rb.cross(normal);
@@ -313,7 +305,7 @@ impl ContactSolver {
                 } else {
                     (0.0, Vec2::ZERO)
                 };
-                *out = PreparedPoint {
+                self.points.push(PreparedPoint {
                     anchor_a: ra,
                     anchor_b: rb,
                     separation: point.separation,
@@ -332,9 +324,28 @@ impl ContactSolver {
                     rt_b,
                     wt_a,
                     wt_b,
-                };
+                });
             }
-            self.contacts.push(prepared);
+            self.contacts.push(PreparedContact {
+                source,
+                body_a: contact.body_a,
+                body_b: contact.body_b,
+                first_point,
+                point_count: self.points.len() - first_point,
+                rolling,
+                normal,
+                tangents,
+                friction: contact.friction,
+                restitution: contact.restitution,
+                inv_mass_a: pa.inv_mass,
+                inv_mass_b: pb.inv_mass,
+                softness: if both_dynamic {
+                    ctx.contact_softness
+                } else {
+                    ctx.static_softness
+                },
+                both_dynamic,
+            });
         }
         skipped
     }
@@ -344,7 +355,7 @@ impl ContactSolver {
     pub fn warm_start(&self, bodies: &mut [SolverBody]) {
         for c in &self.contacts {
             let (mut a, mut b) = (bodies[c.body_a], bodies[c.body_b]);
-            for p in &c.points[..c.point_count] {
+            for p in &self.points[c.first_point..c.first_point + c.point_count] {
                 let linear = c.normal * p.normal_impulse
                     + c.tangents[0] * p.tangent_impulse.x
                     + c.tangents[1] * p.tangent_impulse.y;
@@ -357,22 +368,30 @@ impl ContactSolver {
                     + p.wt_b[0] * p.tangent_impulse.x
                     + p.wt_b[1] * p.tangent_impulse.y;
             }
-            a.angular_velocity -= c.rolling.inv_inertia_a * c.rolling.impulse;
-            b.angular_velocity += c.rolling.inv_inertia_b * c.rolling.impulse;
+            if let Some(r) = c.rolling.map(|i| &self.rolling[i]) {
+                a.angular_velocity -= r.inv_inertia_a * r.impulse;
+                b.angular_velocity += r.inv_inertia_b * r.impulse;
+            }
             write_pair(bodies, c.body_a, a, c.body_b, b);
         }
     }
 
     /// Stages *solve* (`Bias::On`) and *relax* (`Bias::Off`): one Gauss–Seidel pass over every contact,
     /// normal impulses first, then friction clamped to the circle of radius μ·λ_n.
+    ///
+    /// The current separation of a point is `s₀ + n·(Δp_b − Δp_a) + (Δq_b⁻¹·n − n)·r_b − (Δq_a⁻¹·n − n)·r_a`:
+    /// `n·(Δq·r − r) = (Δq⁻¹·n − n)·r` for a rotation, so the two rotations are done once per manifold instead of
+    /// once per point and body.
     pub fn solve(&mut self, bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
-        for c in &mut self.contacts {
+        for c in &self.contacts {
             let (mut a, mut b) = (bodies[c.body_a], bodies[c.body_b]);
             let normal = c.normal;
-            for p in &mut c.points[..c.point_count] {
-                let s = p.separation
-                    + normal
-                        .dot(b.anchor_displacement(p.anchor_b) - a.anchor_displacement(p.anchor_a));
+            let points = &mut self.points[c.first_point..c.first_point + c.point_count];
+            let shift = normal.dot(b.delta_position - a.delta_position);
+            let turn_a = a.delta_rotation.conjugate() * normal - normal;
+            let turn_b = b.delta_rotation.conjugate() * normal - normal;
+            for p in points.iter_mut() {
+                let s = p.separation + shift + turn_b.dot(p.anchor_b) - turn_a.dot(p.anchor_a);
                 let vn = normal.dot(b.linear_velocity - a.linear_velocity)
                     + b.angular_velocity.dot(p.rn_b)
                     - a.angular_velocity.dot(p.rn_a);
@@ -439,7 +458,7 @@ impl ContactSolver {
                     applied,
                 );
             }
-            for p in &mut c.points[..c.point_count] {
+            for p in points.iter_mut() {
                 let dv = b.velocity_at(p.anchor_b) - a.velocity_at(p.anchor_a);
                 let vt = Vec2::new(dv.dot(c.tangents[0]), dv.dot(c.tangents[1]));
                 let candidate = p.tangent_impulse
@@ -454,12 +473,8 @@ impl ContactSolver {
                 a.angular_velocity -= p.wt_a[0] * applied.x + p.wt_a[1] * applied.y;
                 b.angular_velocity += p.wt_b[0] * applied.x + p.wt_b[1] * applied.y;
             }
-            if c.rolling.friction > 0.0 {
-                let total_normal: f32 = c.points[..c.point_count]
-                    .iter()
-                    .map(|p| p.normal_impulse)
-                    .sum();
-                let r = &mut c.rolling;
+            if let Some(r) = c.rolling.map(|i| &mut self.rolling[i]) {
+                let total_normal: f32 = points.iter().map(|p| p.normal_impulse).sum();
                 let candidate = r.impulse - r.mass * (b.angular_velocity - a.angular_velocity);
                 let accumulated = candidate.clamp_length_max(r.friction * total_normal);
                 let applied = accumulated - r.impulse;
@@ -478,11 +493,8 @@ impl ContactSolver {
             let Some(contact) = contacts.get_mut(prepared.source) else {
                 continue;
             };
-            let count = prepared.point_count;
-            for (p, out) in prepared.points[..count]
-                .iter()
-                .zip(&mut contact.points[..count])
-            {
+            let solved = &self.points[prepared.first_point..][..prepared.point_count];
+            for (p, out) in solved.iter().zip(&mut contact.points) {
                 out.normal_impulse = p.normal_impulse;
                 out.tangent_impulse = prepared.tangents[0] * p.tangent_impulse.x
                     + prepared.tangents[1] * p.tangent_impulse.y;
@@ -494,7 +506,7 @@ impl ContactSolver {
     /// points applied in one iteration this step (N·s) — what contact events report as the hit strength.
     pub fn max_normal_impulses(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
         self.contacts.iter().map(|c| {
-            let max = c.points[..c.point_count]
+            let max = self.points[c.first_point..][..c.point_count]
                 .iter()
                 .map(|p| p.max_normal_impulse)
                 .fold(0.0, f32::max);
