@@ -201,20 +201,19 @@ impl<B: CollisionBackend> World<B> {
         manifolds.sort_unstable_by_key(ContactManifold::order_key);
 
         // Warm start: copy impulses from last step's manifold with the same key, point by point by feature id;
-        // a persisting point also keeps its lever arms (see `LEVER_ARM_TOLERANCE`).
+        // a persisting point also keeps its lever arms (see `LEVER_ARM_TOLERANCE`). Both lists are sorted by
+        // key, so one forward walk through last step's finds every match (a binary search per manifold missed
+        // the cache at every probe).
+        let mut previous = self.state.manifolds.iter().peekable();
         for manifold in &mut manifolds {
+            let key = manifold.order_key();
+            while previous.next_if(|m| m.order_key() < key).is_some() {}
+            let old = previous.next_if(|m| m.order_key() == key);
             let (Some(body_a), Some(body_b)) =
                 (bodies.get(manifold.body_a), bodies.get(manifold.body_b))
             else {
                 continue;
             };
-            let key = manifold.order_key();
-            let old = self
-                .state
-                .manifolds
-                .binary_search_by_key(&key, ContactManifold::order_key)
-                .ok()
-                .map(|found| &self.state.manifolds[found]);
             let count = manifold.point_count;
             let old_points = old.map_or(&[][..], ContactManifold::points);
             for point in &mut manifold.points[..count] {
@@ -230,11 +229,19 @@ impl<B: CollisionBackend> World<B> {
             }
         }
 
+        // The approach speeds, once: waking a body does not change its velocity.
+        let mut speeds = core::mem::take(&mut self.scratch.approach_speeds);
+        speeds.clear();
+        speeds.extend(
+            manifolds
+                .iter()
+                .map(|m| approach_speed(m, &self.state.bodies)),
+        );
         // Waking: repeat until nothing changes (a woken island may touch another sleeping one).
         let mut to_wake = core::mem::take(&mut self.scratch.to_wake);
         loop {
             to_wake.clear();
-            for m in &manifolds {
+            for (m, &speed) in manifolds.iter().zip(&speeds) {
                 // Touching, or closing the gap within this step: a sleeping body about to be hit must be in
                 // the solver when the hit comes.
                 let gap = m
@@ -242,7 +249,7 @@ impl<B: CollisionBackend> World<B> {
                     .iter()
                     .map(|p| p.separation)
                     .fold(f32::INFINITY, f32::min);
-                if gap <= approach_speed(m, &self.state.bodies) * dt {
+                if gap <= speed * dt {
                     collect_wake(&self.state.bodies, m.body_a, m.body_b, &mut to_wake);
                 }
             }
@@ -262,12 +269,7 @@ impl<B: CollisionBackend> World<B> {
             }
         }
         self.scratch.to_wake = to_wake;
-        self.scratch.approach_speeds.clear();
-        self.scratch.approach_speeds.extend(
-            manifolds
-                .iter()
-                .map(|m| approach_speed(m, &self.state.bodies)),
-        );
+        self.scratch.approach_speeds = speeds;
         self.scratch.manifolds = manifolds;
     }
 
