@@ -34,6 +34,8 @@
 use crate::{BodyParams, Softness, SolverBody, StepContext};
 use rebound_math::{Mat3, Vec2, Vec3};
 
+mod wide;
+
 /// A point closer than this (m) counts as touching for restitution: a speculative contact closes its gap to
 /// rounding error, not always to exactly zero.
 const BOUNCE_SLOP: f32 = 5e-3;
@@ -210,6 +212,13 @@ pub struct ContactSolver {
     contacts: Vec<PreparedContact>,
     points: Vec<PreparedPoint>,
     rolling: Vec<Rolling>,
+    /// The wide-solved manifolds, four at a time, colour after colour (see [`wide`]).
+    batches: Vec<wide::Batch>,
+    /// The batches' point slots.
+    slots: Vec<wide::PointX4>,
+    /// Indices of the manifolds the scalar path solves, after the batches.
+    scalar: Vec<usize>,
+    coloring: wide::Coloring,
 }
 
 impl ContactSolver {
@@ -347,13 +356,24 @@ impl ContactSolver {
                 both_dynamic,
             });
         }
+        self.coloring.build(
+            &self.contacts,
+            &self.points,
+            params,
+            &mut self.batches,
+            &mut self.slots,
+            &mut self.scalar,
+        );
         skipped
     }
 
     /// Stage *warm start*: applies the accumulated impulses of the last substep (or the last step) again, so
     /// the iterations start from the previous answer.
     pub fn warm_start(&self, bodies: &mut [SolverBody]) {
-        for c in &self.contacts {
+        for batch in &self.batches {
+            batch.warm_start(&self.slots, bodies);
+        }
+        for c in self.scalar.iter().map(|&i| &self.contacts[i]) {
             let (mut a, mut b) = (bodies[c.body_a], bodies[c.body_b]);
             for p in &self.points[c.first_point..c.first_point + c.point_count] {
                 let linear = c.normal * p.normal_impulse
@@ -382,8 +402,15 @@ impl ContactSolver {
     /// The current separation of a point is `s₀ + n·(Δp_b − Δp_a) + (Δq_b⁻¹·n − n)·r_b − (Δq_a⁻¹·n − n)·r_a`:
     /// `n·(Δq·r − r) = (Δq⁻¹·n − n)·r` for a rotation, so the two rotations are done once per manifold instead of
     /// once per point and body.
+    ///
+    /// Manifolds without restitution or rolling resistance are solved four at a time by the wide path
+    /// ([`wide`]), the rest one by one here, after them.
     pub fn solve(&mut self, bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
-        for c in &self.contacts {
+        for batch in &self.batches {
+            batch.solve(&mut self.slots, bodies, ctx, bias);
+        }
+        for &index in &self.scalar {
+            let c = &self.contacts[index];
             let (mut a, mut b) = (bodies[c.body_a], bodies[c.body_b]);
             let normal = c.normal;
             let points = &mut self.points[c.first_point..c.first_point + c.point_count];
@@ -489,15 +516,28 @@ impl ContactSolver {
     /// Stage *store impulses*: writes the accumulated impulses back into `contacts` (the slice given to
     /// [`ContactSolver::prepare`]) for warm starting the next step and for reporting.
     pub fn store_impulses(&self, contacts: &mut [Contact]) {
-        for prepared in &self.contacts {
+        let basis = |c: &PreparedContact, [x, y]: [f32; 2]| c.tangents[0] * x + c.tangents[1] * y;
+        for &index in &self.scalar {
+            let prepared = &self.contacts[index];
             let Some(contact) = contacts.get_mut(prepared.source) else {
                 continue;
             };
             let solved = &self.points[prepared.first_point..][..prepared.point_count];
             for (p, out) in solved.iter().zip(&mut contact.points) {
                 out.normal_impulse = p.normal_impulse;
-                out.tangent_impulse = prepared.tangents[0] * p.tangent_impulse.x
-                    + prepared.tangents[1] * p.tangent_impulse.y;
+                out.tangent_impulse = basis(prepared, p.tangent_impulse.to_array());
+            }
+        }
+        for batch in &self.batches {
+            for (index, impulses) in batch.results(&self.slots, &self.contacts) {
+                let prepared = &self.contacts[index];
+                let Some(contact) = contacts.get_mut(prepared.source) else {
+                    continue;
+                };
+                for ((normal, tangent, _), out) in impulses.zip(&mut contact.points) {
+                    out.normal_impulse = normal;
+                    out.tangent_impulse = basis(prepared, tangent);
+                }
             }
         }
     }
@@ -505,13 +545,23 @@ impl ContactSolver {
     /// For each prepared manifold, the index of its source contact and the largest normal impulse any of its
     /// points applied in one iteration this step (N·s) — what contact events report as the hit strength.
     pub fn max_normal_impulses(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
-        self.contacts.iter().map(|c| {
+        let scalar = self.scalar.iter().map(|&index| {
+            let c = &self.contacts[index];
             let max = self.points[c.first_point..][..c.point_count]
                 .iter()
                 .map(|p| p.max_normal_impulse)
                 .fold(0.0, f32::max);
             (c.source, max)
-        })
+        });
+        let wide = self
+            .batches
+            .iter()
+            .flat_map(|batch| batch.results(&self.slots, &self.contacts))
+            .map(|(index, impulses)| {
+                let max = impulses.map(|(_, _, max)| max).fold(0.0, f32::max);
+                (self.contacts[index].source, max)
+            });
+        scalar.chain(wide)
     }
 }
 

@@ -1,0 +1,648 @@
+//! The contact solve four manifolds at a time (Box2D v3's graph-coloured wide solver; Catto, "Solver2D",
+//! 2024).
+//!
+//! One manifold's rows form a chain of dependent arithmetic: each row reads the velocities the row before
+//! it wrote. Solved one manifold after another, a pass waits on that chain; four manifolds that share no
+//! moving body are independent, so they are solved side by side in the four lanes of a `Vec4` — the
+//! equations of the scalar solve ([`super::ContactSolver::solve`]), lane by lane.
+//!
+//! *Colouring*: manifolds are given, in order, the first of [`COLORS`] colours in which neither of their
+//! moving bodies appears yet (fixed and kinematic bodies are never changed by a contact, so any number of
+//! lanes may read them); each colour's manifolds are grouped four by four into batches. Manifolds that fit
+//! no colour, and those the wide path does not handle (restitution, rolling resistance), are solved by the
+//! scalar path after the batches. The grouping is a function of the manifold order alone: deterministic.
+//!
+//! A batch has as many point slots as its largest manifold; the slots a smaller manifold leaves empty, and
+//! the empty lanes of a colour's last batch, carry zero masses and so apply zero impulses.
+
+use super::{PreparedContact, PreparedPoint};
+use crate::{Bias, BodyParams, SolverBody, StepContext};
+use rebound_math::glam::BVec4A;
+use rebound_math::{Mat4, Vec3, Vec4};
+
+/// The number of colours tried before a manifold is left to the scalar path. A body touching more manifolds
+/// than this overflows (Box2D v3 uses 24; a box in a pyramid touches 6).
+pub(super) const COLORS: usize = 12;
+
+/// Lanes per batch.
+const LANES: usize = 4;
+
+/// A 3-vector in each of the four lanes (structure of arrays).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Vec3x4 {
+    x: Vec4,
+    y: Vec4,
+    z: Vec4,
+}
+
+impl Vec3x4 {
+    /// The four lanes' vectors, transposed (one 4×4 transpose instead of twelve lane inserts).
+    #[inline(always)]
+    fn from_lanes(v: [Vec3; LANES]) -> Self {
+        let m = Mat4::from_cols(
+            v[0].extend(0.0),
+            v[1].extend(0.0),
+            v[2].extend(0.0),
+            v[3].extend(0.0),
+        )
+        .transpose();
+        Self {
+            x: m.x_axis,
+            y: m.y_axis,
+            z: m.z_axis,
+        }
+    }
+
+    /// The vector of each lane.
+    #[inline(always)]
+    fn lanes(&self) -> [Vec3; LANES] {
+        let m = Mat4::from_cols(self.x, self.y, self.z, Vec4::ZERO).transpose();
+        [
+            m.x_axis.truncate(),
+            m.y_axis.truncate(),
+            m.z_axis.truncate(),
+            m.w_axis.truncate(),
+        ]
+    }
+
+    /// Sets one lane.
+    fn set_lane(&mut self, lane: usize, v: Vec3) {
+        self.x[lane] = v.x;
+        self.y[lane] = v.y;
+        self.z[lane] = v.z;
+    }
+
+    #[inline(always)]
+    fn dot(&self, o: &Self) -> Vec4 {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    #[inline(always)]
+    fn cross(&self, o: &Self) -> Self {
+        Self {
+            x: self.y * o.z - self.z * o.y,
+            y: self.z * o.x - self.x * o.z,
+            z: self.x * o.y - self.y * o.x,
+        }
+    }
+
+    #[inline(always)]
+    fn add(&self, o: &Self) -> Self {
+        Self {
+            x: self.x + o.x,
+            y: self.y + o.y,
+            z: self.z + o.z,
+        }
+    }
+
+    #[inline(always)]
+    fn sub(&self, o: &Self) -> Self {
+        Self {
+            x: self.x - o.x,
+            y: self.y - o.y,
+            z: self.z - o.z,
+        }
+    }
+
+    #[inline(always)]
+    fn scale(&self, s: Vec4) -> Self {
+        Self {
+            x: self.x * s,
+            y: self.y * s,
+            z: self.z * s,
+        }
+    }
+
+    /// `self += v·s`.
+    #[inline(always)]
+    fn add_scaled(&mut self, v: &Self, s: Vec4) {
+        self.x += v.x * s;
+        self.y += v.y * s;
+        self.z += v.z * s;
+    }
+
+    /// `self −= v·s`.
+    #[inline(always)]
+    fn sub_scaled(&mut self, v: &Self, s: Vec4) {
+        self.x -= v.x * s;
+        self.y -= v.y * s;
+        self.z -= v.z * s;
+    }
+}
+
+/// One point slot of a batch: a [`PreparedPoint`]'s solve data in each lane.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(super) struct PointX4 {
+    anchor_a: Vec3x4,
+    anchor_b: Vec3x4,
+    separation: Vec4,
+    normal_impulse: Vec4,
+    tangent_impulse: [Vec4; 2],
+    max_normal_impulse: Vec4,
+    normal_mass: Vec4,
+    tangent_mass: [Vec4; 2],
+    rn_a: Vec3x4,
+    rn_b: Vec3x4,
+    wn_a: Vec3x4,
+    wn_b: Vec3x4,
+    rt_a: [Vec3x4; 2],
+    rt_b: [Vec3x4; 2],
+    wt_a: [Vec3x4; 2],
+    wt_b: [Vec3x4; 2],
+}
+
+/// Up to four manifolds without a moving body in common, solved side by side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Batch {
+    /// Indices of the manifolds (into the solver's prepared contacts); `lanes` of them are used.
+    contacts: [usize; LANES],
+    lanes: usize,
+    body_a: [usize; LANES],
+    body_b: [usize; LANES],
+    /// The batch's point slots in the solver's slot array: `first_slot .. first_slot + slots`, as many as
+    /// its largest manifold has points.
+    first_slot: usize,
+    slots: usize,
+    normal: Vec3x4,
+    tangents: [Vec3x4; 2],
+    friction: Vec4,
+    inv_mass_a: Vec4,
+    inv_mass_b: Vec4,
+    bias_rate: Vec4,
+    mass_scale: Vec4,
+    impulse_scale: Vec4,
+}
+
+/// Whether the wide path solves this manifold exactly as the scalar path would: no bounce (restitution 0)
+/// and no rolling block.
+pub(super) fn is_wide(c: &PreparedContact) -> bool {
+    c.restitution == 0.0 && c.rolling.is_none() && c.point_count > 0
+}
+
+/// The colouring's scratch: one bit per body per colour.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Coloring {
+    bits: Vec<u64>,
+    words: usize,
+    /// Manifold indices per colour, in manifold order.
+    members: [Vec<usize>; COLORS],
+}
+
+impl Coloring {
+    /// Colours the wide-eligible manifolds of `contacts` and groups them into `batches`; the others (and those
+    /// that fit no colour) go to `scalar`, in manifold order.
+    pub(super) fn build(
+        &mut self,
+        contacts: &[PreparedContact],
+        points: &[PreparedPoint],
+        params: &[BodyParams],
+        batches: &mut Vec<Batch>,
+        slots: &mut Vec<PointX4>,
+        scalar: &mut Vec<usize>,
+    ) {
+        batches.clear();
+        slots.clear();
+        scalar.clear();
+        self.words = params.len().div_ceil(64);
+        self.bits.clear();
+        self.bits.resize(self.words * COLORS, 0);
+        for members in &mut self.members {
+            members.clear();
+        }
+        for (index, c) in contacts.iter().enumerate() {
+            if !is_wide(c) {
+                scalar.push(index);
+                continue;
+            }
+            let moves = |body: usize| params[body].is_dynamic();
+            let (a, b) = (c.body_a, c.body_b);
+            let color = (0..COLORS).find(|&color| {
+                let row = &self.bits[color * self.words..][..self.words];
+                let taken = |body: usize| row[body / 64] & (1 << (body % 64)) != 0;
+                let busy = |body: usize| moves(body) && taken(body);
+                !busy(a) && !busy(b)
+            });
+            let Some(color) = color else {
+                scalar.push(index);
+                continue;
+            };
+            let row = &mut self.bits[color * self.words..][..self.words];
+            for body in [a, b] {
+                if moves(body) {
+                    row[body / 64] |= 1 << (body % 64);
+                }
+            }
+            self.members[color].push(index);
+        }
+        for members in &self.members {
+            for group in members.chunks(LANES) {
+                batches.push(Batch::new(group, contacts, points, slots));
+            }
+        }
+    }
+}
+
+impl Batch {
+    /// The batch of the manifolds `group` (one to four indices into `contacts`).
+    fn new(
+        group: &[usize],
+        contacts: &[PreparedContact],
+        points: &[PreparedPoint],
+        slots: &mut Vec<PointX4>,
+    ) -> Self {
+        let first_slot = slots.len();
+        let slot_count = group
+            .iter()
+            .map(|&i| contacts[i].point_count)
+            .max()
+            .unwrap_or(0);
+        slots.resize(first_slot + slot_count, PointX4::default());
+        let mut batch = Self {
+            contacts: [0; LANES],
+            lanes: group.len(),
+            body_a: [0; LANES],
+            body_b: [0; LANES],
+            first_slot,
+            slots: slot_count,
+            normal: Vec3x4::default(),
+            tangents: [Vec3x4::default(); 2],
+            friction: Vec4::ZERO,
+            inv_mass_a: Vec4::ZERO,
+            inv_mass_b: Vec4::ZERO,
+            bias_rate: Vec4::ZERO,
+            mass_scale: Vec4::ZERO,
+            impulse_scale: Vec4::ZERO,
+        };
+        for (lane, &index) in group.iter().enumerate() {
+            let c = &contacts[index];
+            batch.contacts[lane] = index;
+            batch.body_a[lane] = c.body_a;
+            batch.body_b[lane] = c.body_b;
+            batch.normal.set_lane(lane, c.normal);
+            batch.tangents[0].set_lane(lane, c.tangents[0]);
+            batch.tangents[1].set_lane(lane, c.tangents[1]);
+            batch.friction[lane] = c.friction;
+            batch.inv_mass_a[lane] = c.inv_mass_a;
+            batch.inv_mass_b[lane] = c.inv_mass_b;
+            batch.bias_rate[lane] = c.softness.bias_rate;
+            batch.mass_scale[lane] = c.softness.mass_scale;
+            batch.impulse_scale[lane] = c.softness.impulse_scale;
+            let lane_slots = &mut slots[first_slot..];
+            for (w, p) in lane_slots
+                .iter_mut()
+                .zip(&points[c.first_point..][..c.point_count])
+            {
+                w.anchor_a.set_lane(lane, p.anchor_a);
+                w.anchor_b.set_lane(lane, p.anchor_b);
+                w.separation[lane] = p.separation;
+                w.normal_impulse[lane] = p.normal_impulse;
+                w.tangent_impulse[0][lane] = p.tangent_impulse.x;
+                w.tangent_impulse[1][lane] = p.tangent_impulse.y;
+                w.max_normal_impulse[lane] = p.max_normal_impulse;
+                w.normal_mass[lane] = p.normal_mass;
+                w.tangent_mass[0][lane] = p.tangent_mass[0];
+                w.tangent_mass[1][lane] = p.tangent_mass[1];
+                w.rn_a.set_lane(lane, p.rn_a);
+                w.rn_b.set_lane(lane, p.rn_b);
+                w.wn_a.set_lane(lane, p.wn_a);
+                w.wn_b.set_lane(lane, p.wn_b);
+                for i in 0..2 {
+                    w.rt_a[i].set_lane(lane, p.rt_a[i]);
+                    w.rt_b[i].set_lane(lane, p.rt_b[i]);
+                    w.wt_a[i].set_lane(lane, p.wt_a[i]);
+                    w.wt_b[i].set_lane(lane, p.wt_b[i]);
+                }
+            }
+        }
+        batch
+    }
+
+    /// One pass (solve or relax) over the batch: normal rows of every slot, then friction — the scalar
+    /// solve's equations in four lanes.
+    #[inline(never)]
+    pub(super) fn solve(
+        &self,
+        slots: &mut [PointX4],
+        bodies: &mut [SolverBody],
+        ctx: &StepContext,
+        bias: Bias,
+    ) {
+        let points = &mut slots[self.first_slot..][..self.slots];
+        let lanes = self.lanes;
+        let gather = |index: &[usize; LANES]| {
+            let mut states = [SolverBody::STATIC; LANES];
+            for (state, &i) in states.iter_mut().zip(index).take(lanes) {
+                *state = bodies[i];
+            }
+            states
+        };
+        let (sa, sb) = (gather(&self.body_a), gather(&self.body_b));
+        let mut va = Vec3x4::from_lanes(sa.map(|s| s.linear_velocity));
+        let mut wa = Vec3x4::from_lanes(sa.map(|s| s.angular_velocity));
+        let mut vb = Vec3x4::from_lanes(sb.map(|s| s.linear_velocity));
+        let mut wb = Vec3x4::from_lanes(sb.map(|s| s.angular_velocity));
+        let normal = self.normal;
+        // Separation terms, as in the scalar solve: n·(Δp_b − Δp_a) and Δq⁻¹·n − n per body.
+        let shift = normal.dot(
+            &Vec3x4::from_lanes(sb.map(|s| s.delta_position))
+                .sub(&Vec3x4::from_lanes(sa.map(|s| s.delta_position))),
+        );
+        let turn_a = turn(&sa, &normal);
+        let turn_b = turn(&sb, &normal);
+        let zero = Vec4::ZERO;
+        let one = Vec4::ONE;
+        let inv_h = Vec4::splat(ctx.inv_h);
+        let max_push = Vec4::splat(-ctx.max_push_out_speed);
+        for p in points.iter_mut() {
+            let s = p.separation + shift + turn_b.dot(&p.anchor_b) - turn_a.dot(&p.anchor_a);
+            let vn = normal.dot(&vb.sub(&va)) + wb.dot(&p.rn_b) - wa.dot(&p.rn_a);
+            let speculative: BVec4A = s.cmpgt(zero);
+            let (velocity_bias, mass_scale, impulse_scale) = match bias {
+                Bias::On => (
+                    Vec4::select(speculative, s * inv_h, (self.bias_rate * s).max(max_push)),
+                    Vec4::select(speculative, one, self.mass_scale),
+                    Vec4::select(speculative, zero, self.impulse_scale),
+                ),
+                Bias::Off => (Vec4::select(speculative, s * inv_h, zero), one, zero),
+            };
+            let delta = -p.normal_mass * mass_scale * (vn + velocity_bias)
+                - impulse_scale * p.normal_impulse;
+            let accumulated = (p.normal_impulse + delta).max(zero);
+            let applied = accumulated - p.normal_impulse;
+            p.normal_impulse = accumulated;
+            p.max_normal_impulse = p.max_normal_impulse.max(applied);
+            va.sub_scaled(&normal, applied * self.inv_mass_a);
+            vb.add_scaled(&normal, applied * self.inv_mass_b);
+            wa.sub_scaled(&p.wn_a, applied);
+            wb.add_scaled(&p.wn_b, applied);
+        }
+        let [t0, t1] = self.tangents;
+        for p in points.iter_mut() {
+            let dv = vb.sub(&va);
+            let vt0 = t0.dot(&dv) + wb.dot(&p.rt_b[0]) - wa.dot(&p.rt_a[0]);
+            let vt1 = t1.dot(&dv) + wb.dot(&p.rt_b[1]) - wa.dot(&p.rt_a[1]);
+            let x = p.tangent_impulse[0] - p.tangent_mass[0] * vt0;
+            let y = p.tangent_impulse[1] - p.tangent_mass[1] * vt1;
+            // Clamp to the friction circle (glam's `clamp_length_max`, lane by lane).
+            let limit = self.friction * p.normal_impulse;
+            let length_squared = x * x + y * y;
+            let scale = Vec4::select(
+                length_squared.cmpgt(limit * limit),
+                limit / length_squared.sqrt(),
+                one,
+            );
+            let (x, y) = (x * scale, y * scale);
+            let (ax, ay) = (x - p.tangent_impulse[0], y - p.tangent_impulse[1]);
+            p.tangent_impulse = [x, y];
+            let linear = t0.scale(ax).add(&t1.scale(ay));
+            va.sub_scaled(&linear, self.inv_mass_a);
+            vb.add_scaled(&linear, self.inv_mass_b);
+            wa.sub_scaled(&p.wt_a[0], ax);
+            wa.sub_scaled(&p.wt_a[1], ay);
+            wb.add_scaled(&p.wt_b[0], ax);
+            wb.add_scaled(&p.wt_b[1], ay);
+        }
+        self.scatter(bodies, &va, &wa, &vb, &wb);
+    }
+
+    /// Stage *warm start* for the batch's manifolds: applies their accumulated impulses again.
+    pub(super) fn warm_start(&self, slots: &[PointX4], bodies: &mut [SolverBody]) {
+        let (mut va, mut wa, mut vb, mut wb) = self.gather(bodies);
+        let [t0, t1] = self.tangents;
+        for p in &slots[self.first_slot..][..self.slots] {
+            let [x, y] = p.tangent_impulse;
+            let linear = self
+                .normal
+                .scale(p.normal_impulse)
+                .add(&t0.scale(x))
+                .add(&t1.scale(y));
+            va.sub_scaled(&linear, self.inv_mass_a);
+            vb.add_scaled(&linear, self.inv_mass_b);
+            wa.sub_scaled(&p.wn_a, p.normal_impulse);
+            wa.sub_scaled(&p.wt_a[0], x);
+            wa.sub_scaled(&p.wt_a[1], y);
+            wb.add_scaled(&p.wn_b, p.normal_impulse);
+            wb.add_scaled(&p.wt_b[0], x);
+            wb.add_scaled(&p.wt_b[1], y);
+        }
+        self.scatter(bodies, &va, &wa, &vb, &wb);
+    }
+
+    /// The velocities of the lanes' bodies (`v_a`, `ω_a`, `v_b`, `ω_b`); empty lanes read zero.
+    #[inline(always)]
+    fn gather(&self, bodies: &[SolverBody]) -> (Vec3x4, Vec3x4, Vec3x4, Vec3x4) {
+        let velocity = |index: &[usize; LANES], angular: bool| {
+            let mut v = [Vec3::ZERO; LANES];
+            for (v, &i) in v.iter_mut().zip(index).take(self.lanes) {
+                *v = if angular {
+                    bodies[i].angular_velocity
+                } else {
+                    bodies[i].linear_velocity
+                };
+            }
+            Vec3x4::from_lanes(v)
+        };
+        (
+            velocity(&self.body_a, false),
+            velocity(&self.body_a, true),
+            velocity(&self.body_b, false),
+            velocity(&self.body_b, true),
+        )
+    }
+
+    /// Writes the lanes' velocities back.
+    #[inline(always)]
+    fn scatter(
+        &self,
+        bodies: &mut [SolverBody],
+        va: &Vec3x4,
+        wa: &Vec3x4,
+        vb: &Vec3x4,
+        wb: &Vec3x4,
+    ) {
+        let (va, wa, vb, wb) = (va.lanes(), wa.lanes(), vb.lanes(), wb.lanes());
+        for lane in 0..self.lanes {
+            let a = &mut bodies[self.body_a[lane]];
+            a.linear_velocity = va[lane];
+            a.angular_velocity = wa[lane];
+            let b = &mut bodies[self.body_b[lane]];
+            b.linear_velocity = vb[lane];
+            b.angular_velocity = wb[lane];
+        }
+    }
+
+    /// For each lane: the manifold's index, and per point its accumulated normal impulse, tangent impulse
+    /// (in the manifold's tangent basis) and largest applied normal impulse.
+    pub(super) fn results<'a>(
+        &'a self,
+        slots: &'a [PointX4],
+        contacts: &'a [PreparedContact],
+    ) -> impl Iterator<Item = (usize, impl Iterator<Item = (f32, [f32; 2], f32)> + 'a)> + 'a {
+        let points = &slots[self.first_slot..][..self.slots];
+        self.contacts[..self.lanes]
+            .iter()
+            .enumerate()
+            .map(move |(lane, &index)| {
+                let count = contacts[index].point_count;
+                let impulses = points[..count].iter().map(move |w| {
+                    (
+                        w.normal_impulse[lane],
+                        [w.tangent_impulse[0][lane], w.tangent_impulse[1][lane]],
+                        w.max_normal_impulse[lane],
+                    )
+                });
+                (index, impulses)
+            })
+    }
+}
+
+/// `Δq⁻¹·n − n` in each lane: the rotated normal whose dot with an anchor gives `n·(Δq·r − r)`.
+#[inline(always)]
+fn turn(states: &[SolverBody; LANES], normal: &Vec3x4) -> Vec3x4 {
+    // The conjugate's vector part; v' = v + w·t + u × t with t = 2·(u × v).
+    let u = Vec3x4::from_lanes(states.map(|s| -s.delta_rotation.xyz()));
+    let w = Vec4::from_array(states.map(|s| s.delta_rotation.w));
+    let t = u.cross(normal).scale(Vec4::splat(2.0));
+    t.scale(w).add(&u.cross(&t))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Contact, ContactPoint, ContactSolver};
+    use crate::{Bias, BodyDesc, BodyParams, RigidBody, SolverBody, SolverSettings, StepContext};
+    use rebound_math::{Quat, Vec3};
+
+    /// `n` dynamic bodies in a row over one fixed body (index `n`), each touching the ground with four
+    /// points and its right neighbour with two, moving and spinning differently.
+    fn scene(n: usize) -> (Vec<SolverBody>, Vec<BodyParams>, Vec<Contact>) {
+        let mut bodies = Vec::new();
+        let mut params = Vec::new();
+        for i in 0..n {
+            let f = i as f32;
+            let body = RigidBody::new(
+                &BodyDesc::dynamic()
+                    .with_position(Vec3::new(f, 0.5, 0.0))
+                    .with_rotation(Quat::from_rotation_y(0.1 * f))
+                    .with_linear_velocity(Vec3::new(0.3 * f - 1.0, -2.0 + 0.1 * f, 0.2))
+                    .with_angular_velocity(Vec3::new(0.1, 0.5 - 0.2 * f, 0.05 * f)),
+            )
+            .expect("valid body");
+            let mut state = SolverBody::from_body(&body);
+            // A substep already under way: the bodies have moved and turned since the step began.
+            state.delta_position = Vec3::new(0.001 * f, -0.002, 0.0005);
+            state.delta_rotation = Quat::from_rotation_z(0.01 + 0.002 * f);
+            bodies.push(state);
+            params.push(BodyParams::from_body(&body));
+        }
+        bodies.push(SolverBody::STATIC);
+        params.push(BodyParams::WORLD);
+        let mut contacts = Vec::new();
+        for i in 0..n {
+            let mut ground = Contact::new(n, i, Vec3::Y, 0.6, 0.0);
+            for (k, (x, z)) in [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)]
+                .into_iter()
+                .enumerate()
+            {
+                ground.push_point(ContactPoint {
+                    anchor_a: Vec3::new(i as f32 + x, 0.0, z),
+                    anchor_b: Vec3::new(x, -0.5, z),
+                    separation: -0.01 + 0.004 * k as f32,
+                    normal_impulse: 0.05 * k as f32,
+                    tangent_impulse: Vec3::new(0.01, 0.0, -0.02),
+                    feature_id: k as u32,
+                });
+            }
+            contacts.push(ground);
+            if i + 1 < n {
+                let mut side = Contact::new(i, i + 1, Vec3::X, 0.4, 0.0);
+                for z in [-0.5, 0.5] {
+                    side.push_point(ContactPoint {
+                        anchor_a: Vec3::new(0.5, 0.0, z),
+                        anchor_b: Vec3::new(-0.5, 0.0, z),
+                        separation: 0.002 * z,
+                        ..ContactPoint::default()
+                    });
+                }
+                contacts.push(side);
+            }
+        }
+        (bodies, params, contacts)
+    }
+
+    /// Runs one substep's contact passes, wide or all scalar.
+    fn run(wide: bool, n: usize, only_ground: bool) -> (Vec<SolverBody>, Vec<Contact>) {
+        let (mut bodies, params, mut contacts) = scene(n);
+        if only_ground {
+            contacts.retain(|c| c.body_a == n);
+        }
+        let ctx = StepContext::new(1.0 / 60.0, &SolverSettings::default());
+        let mut solver = ContactSolver::new();
+        solver.prepare(&contacts, &bodies, &params, &ctx);
+        if !wide {
+            solver.batches.clear();
+            solver.slots.clear();
+            solver.scalar = (0..solver.contacts.len()).collect();
+        }
+        solver.warm_start(&mut bodies);
+        solver.solve(&mut bodies, &ctx, Bias::On);
+        solver.solve(&mut bodies, &ctx, Bias::Off);
+        solver.store_impulses(&mut contacts);
+        (bodies, contacts)
+    }
+
+    #[test]
+    fn lanes_solve_the_scalar_equations() {
+        // Manifolds without a moving body in common: the order does not matter, so the wide path must give
+        // the scalar path's velocities and impulses to rounding.
+        let (wide, wide_contacts) = run(true, 6, true);
+        let (scalar, scalar_contacts) = run(false, 6, true);
+        for (w, s) in wide.iter().zip(&scalar) {
+            for (a, b) in [
+                (w.linear_velocity, s.linear_velocity),
+                (w.angular_velocity, s.angular_velocity),
+            ] {
+                assert!((a - b).length() <= 1e-5 * (1.0 + b.length()), "{a} vs {b}");
+            }
+        }
+        for (w, s) in wide_contacts.iter().zip(&scalar_contacts) {
+            for (p, q) in w.points().iter().zip(s.points()) {
+                assert!((p.normal_impulse - q.normal_impulse).abs() <= 1e-5);
+                assert!((p.tangent_impulse - q.tangent_impulse).length() <= 1e-5);
+            }
+        }
+        // And they did push: the bodies fall at 2 m/s into the ground.
+        assert!(
+            wide_contacts
+                .iter()
+                .all(|c| c.points[0].normal_impulse > 0.0)
+        );
+    }
+
+    #[test]
+    fn no_batch_holds_a_moving_body_twice() {
+        let (bodies, params, contacts) = scene(9);
+        let ctx = StepContext::new(1.0 / 60.0, &SolverSettings::default());
+        let mut solver = ContactSolver::new();
+        solver.prepare(&contacts, &bodies, &params, &ctx);
+        let mut solved = vec![0; contacts.len()];
+        for batch in &solver.batches {
+            let lanes = &batch.body_a[..batch.lanes]
+                .iter()
+                .chain(&batch.body_b[..batch.lanes])
+                .filter(|&&b| params[b].is_dynamic())
+                .collect::<Vec<_>>();
+            let mut unique = lanes.clone();
+            unique.sort_unstable();
+            unique.dedup();
+            assert_eq!(unique.len(), lanes.len(), "a body twice in one batch");
+            for &c in &batch.contacts[..batch.lanes] {
+                solved[c] += 1;
+            }
+        }
+        for &c in &solver.scalar {
+            solved[c] += 1;
+        }
+        assert!(solved.iter().all(|&n| n == 1), "every manifold solved once");
+        assert!(!solver.batches.is_empty());
+    }
+}
