@@ -21,8 +21,9 @@ use rebound_math::glam::BVec4A;
 use rebound_math::{Mat4, Vec3, Vec4};
 
 /// The number of colours tried before a manifold is left to the scalar path. A body touching more manifolds
-/// than this overflows (Box2D v3 uses 24; a box in a pyramid touches 6).
-pub(super) const COLORS: usize = 12;
+/// than this overflows (Box2D v3 uses 24; a box in a pyramid touches 6, a ball in a pile about 12). At most
+/// 32 (one bit each in a `u32` per body).
+pub(super) const COLORS: usize = 24;
 
 /// Lanes per batch.
 const LANES: usize = 4;
@@ -179,11 +180,11 @@ pub(super) fn is_wide(c: &PreparedContact) -> bool {
     c.restitution == 0.0 && c.rolling.is_none() && c.point_count > 0
 }
 
-/// The colouring's scratch: one bit per body per colour.
+/// The colouring's scratch.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Coloring {
-    bits: Vec<u64>,
-    words: usize,
+    /// Per body, bit `c` set when a manifold of colour `c` moves it.
+    used: Vec<u32>,
     /// Manifold indices per colour, in manifold order.
     members: [Vec<usize>; COLORS],
 }
@@ -203,9 +204,8 @@ impl Coloring {
         batches.clear();
         slots.clear();
         scalar.clear();
-        self.words = params.len().div_ceil(64);
-        self.bits.clear();
-        self.bits.resize(self.words * COLORS, 0);
+        self.used.clear();
+        self.used.resize(params.len(), 0);
         for members in &mut self.members {
             members.clear();
         }
@@ -214,22 +214,18 @@ impl Coloring {
                 scalar.push(index);
                 continue;
             }
+            // Fixed and kinematic bodies take no colour: any number of lanes may read them.
             let moves = |body: usize| params[body].is_dynamic();
-            let (a, b) = (c.body_a, c.body_b);
-            let color = (0..COLORS).find(|&color| {
-                let row = &self.bits[color * self.words..][..self.words];
-                let taken = |body: usize| row[body / 64] & (1 << (body % 64)) != 0;
-                let busy = |body: usize| moves(body) && taken(body);
-                !busy(a) && !busy(b)
-            });
-            let Some(color) = color else {
+            let used = |body: usize| if moves(body) { self.used[body] } else { 0 };
+            // The first colour neither body is in.
+            let color = (!(used(c.body_a) | used(c.body_b))).trailing_zeros() as usize;
+            if color >= COLORS {
                 scalar.push(index);
                 continue;
-            };
-            let row = &mut self.bits[color * self.words..][..self.words];
-            for body in [a, b] {
+            }
+            for body in [c.body_a, c.body_b] {
                 if moves(body) {
-                    row[body / 64] |= 1 << (body % 64);
+                    self.used[body] |= 1 << color;
                 }
             }
             self.members[color].push(index);
