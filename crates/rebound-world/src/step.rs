@@ -326,28 +326,32 @@ impl<B: CollisionBackend> World<B> {
         let s = &mut self.scratch;
         s.contacts.clear();
         s.contact_sources.clear();
-        for source in 0..s.manifolds.len() {
-            let m = s.manifolds[source];
-            let ia = Self::solver_index_of(s, &self.state.bodies, m.body_a);
-            let ib = Self::solver_index_of(s, &self.state.bodies, m.body_b);
+        'manifolds: for source in 0..s.manifolds.len() {
+            let (handle_a, handle_b) = (s.manifolds[source].body_a, s.manifolds[source].body_b);
+            let ia = Self::solver_index_of(s, &self.state.bodies, handle_a);
+            let ib = Self::solver_index_of(s, &self.state.bodies, handle_b);
             let (Some(ia), Some(ib)) = (ia, ib) else {
                 continue;
             };
             if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
                 continue;
             }
-            let (Some(body_a), Some(body_b)) = (
-                self.state.bodies.get(m.body_a),
-                self.state.bodies.get(m.body_b),
-            ) else {
-                continue;
-            };
+            let m = &s.manifolds[source];
             let mut contact = Contact::new(ia, ib, m.normal, m.friction, m.restitution)
                 .with_rolling_friction(m.rolling_friction);
             for p in m.points() {
-                let [anchor_a, anchor_b] = p
-                    .solver_lever_arms
-                    .unwrap_or_else(|| lever_arms(body_a, body_b, p));
+                // The collide stage gave every point its lever arms; the bodies are looked up only if not.
+                let [anchor_a, anchor_b] = match p.solver_lever_arms {
+                    Some(arms) => arms,
+                    None => {
+                        let bodies = &self.state.bodies;
+                        let (Some(a), Some(b)) = (bodies.get(handle_a), bodies.get(handle_b))
+                        else {
+                            continue 'manifolds;
+                        };
+                        lever_arms(a, b, p)
+                    }
+                };
                 contact.push_point(ContactPoint {
                     anchor_a,
                     anchor_b,
@@ -522,6 +526,11 @@ impl<B: CollisionBackend> World<B> {
                 && body.can_sleep()
                 && body.body_type() == BodyType::Dynamic
                 && entry.sleep_time >= settings.time_to_sleep;
+        }
+        if !can_rest.contains(&true) {
+            // No island can fall asleep (sleeping off, or everything moving): no islands to build.
+            s.can_rest = can_rest;
+            return;
         }
         s.union_find.reset(n);
         // Only dynamic bodies link islands: fixed and kinematic bodies are shared by many islands.
