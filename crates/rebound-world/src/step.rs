@@ -204,6 +204,13 @@ impl<B: CollisionBackend> World<B> {
         // a persisting point also keeps its lever arms (see `LEVER_ARM_TOLERANCE`). Both lists are sorted by
         // key, so one forward walk through last step's finds every match (a binary search per manifold missed
         // the cache at every probe).
+        //
+        // The same walk finds the manifolds whose approach speed (m/s, before the step) is needed: those of a
+        // contact that may begin this step (no touching manifold last step: the speed goes in the event) and
+        // those with a sleeping body (waking). The others get 0 — computing every speed was 4 % of a pile's
+        // step.
+        let mut speeds = core::mem::take(&mut self.scratch.approach_speeds);
+        speeds.clear();
         let mut previous = self.state.manifolds.iter().peekable();
         for manifold in &mut manifolds {
             let key = manifold.order_key();
@@ -212,8 +219,17 @@ impl<B: CollisionBackend> World<B> {
             let (Some(body_a), Some(body_b)) =
                 (bodies.get(manifold.body_a), bodies.get(manifold.body_b))
             else {
+                speeds.push(0.0);
                 continue;
             };
+            let may_begin = old.is_none_or(|o| !o.is_touching());
+            speeds.push(
+                if may_begin || body_a.is_sleeping() || body_b.is_sleeping() {
+                    approach_speed(manifold, body_a, body_b)
+                } else {
+                    0.0
+                },
+            );
             let count = manifold.point_count;
             let old_points = old.map_or(&[][..], ContactManifold::points);
             for point in &mut manifold.points[..count] {
@@ -229,14 +245,6 @@ impl<B: CollisionBackend> World<B> {
             }
         }
 
-        // The approach speeds, once: waking a body does not change its velocity.
-        let mut speeds = core::mem::take(&mut self.scratch.approach_speeds);
-        speeds.clear();
-        speeds.extend(
-            manifolds
-                .iter()
-                .map(|m| approach_speed(m, &self.state.bodies)),
-        );
         // Waking: repeat until nothing changes (a woken island may touch another sleeping one).
         let mut to_wake = core::mem::take(&mut self.scratch.to_wake);
         loop {
@@ -721,10 +729,11 @@ fn collect_wake(bodies: &BodySet, a: BodyHandle, b: BodyHandle, out: &mut Vec<Bo
 
 /// The approach speed of a manifold before the step: the fastest closing normal velocity over its points
 /// (m/s, ≥ 0).
-fn approach_speed(m: &ContactManifold, bodies: &BodySet) -> f32 {
-    let (Some(a), Some(b)) = (bodies.get(m.body_a), bodies.get(m.body_b)) else {
-        return 0.0;
-    };
+fn approach_speed(
+    m: &ContactManifold,
+    a: &rebound_dynamics::RigidBody,
+    b: &rebound_dynamics::RigidBody,
+) -> f32 {
     m.points().iter().fold(0.0f32, |speed, p| {
         let world = a.pose().transform_point(p.local_anchor_a);
         let closing = -(b.velocity_at_point(world) - a.velocity_at_point(world)).dot(m.normal);
