@@ -269,10 +269,8 @@ impl ContactSolver {
                 continue;
             }
             let (pa, pb) = (&params[contact.body_a], &params[contact.body_b]);
-            let (sa, sb) = (&bodies[contact.body_a], &bodies[contact.body_b]);
             let normal = contact.normal;
             let (t1, t2) = normal.any_orthonormal_pair();
-            let tangents = [t1, t2];
             let both_dynamic = pa.is_dynamic() && pb.is_dynamic();
             let rolling = (contact.rolling_friction > 0.0).then(|| {
                 self.rolling.push(Rolling {
@@ -284,66 +282,15 @@ impl ContactSolver {
                 });
                 self.rolling.len() - 1
             });
-            let first_point = self.points.len();
-            for point in contact.points() {
-                let (ra, rb) = (point.anchor_a, point.anchor_b);
-                let rn_a = ra.cross(normal);
-                let rn_b = rb.cross(normal);
-                let wn_a = pa.inv_inertia_world * rn_a;
-                let wn_b = pb.inv_inertia_world * rn_b;
-                let k_normal = pa.inv_mass + pb.inv_mass + rn_a.dot(wn_a) + rn_b.dot(wn_b);
-                let mut rt_a = [Vec3::ZERO; 2];
-                let mut rt_b = [Vec3::ZERO; 2];
-                let mut wt_a = [Vec3::ZERO; 2];
-                let mut wt_b = [Vec3::ZERO; 2];
-                let mut tangent_mass = [0.0; 2];
-                for (i, t) in tangents.iter().enumerate() {
-                    rt_a[i] = ra.cross(*t);
-                    rt_b[i] = rb.cross(*t);
-                    wt_a[i] = pa.inv_inertia_world * rt_a[i];
-                    wt_b[i] = pb.inv_inertia_world * rt_b[i];
-                    let k = pa.inv_mass + pb.inv_mass + rt_a[i].dot(wt_a[i]) + rt_b[i].dot(wt_b[i]);
-                    tangent_mass[i] = if k > 0.0 { 1.0 / k } else { 0.0 };
-                }
-                let dv = sb.velocity_at(rb) - sa.velocity_at(ra);
-                let (normal_impulse, tangent_impulse) = if ctx.warm_starting {
-                    (
-                        point.normal_impulse,
-                        Vec2::new(point.tangent_impulse.dot(t1), point.tangent_impulse.dot(t2)),
-                    )
-                } else {
-                    (0.0, Vec2::ZERO)
-                };
-                self.points.push(PreparedPoint {
-                    anchor_a: ra,
-                    anchor_b: rb,
-                    separation: point.separation,
-                    relative_velocity: dv.dot(normal),
-                    bounced: false,
-                    normal_impulse,
-                    tangent_impulse,
-                    max_normal_impulse: 0.0,
-                    normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
-                    tangent_mass,
-                    rn_a,
-                    rn_b,
-                    wn_a,
-                    wn_b,
-                    rt_a,
-                    rt_b,
-                    wt_a,
-                    wt_b,
-                });
-            }
             self.contacts.push(PreparedContact {
                 source,
                 body_a: contact.body_a,
                 body_b: contact.body_b,
-                first_point,
-                point_count: self.points.len() - first_point,
+                first_point: NO_POINTS,
+                point_count: contact.points().len(),
                 rolling,
                 normal,
-                tangents,
+                tangents: [t1, t2],
                 friction: contact.friction,
                 restitution: contact.restitution,
                 inv_mass_a: pa.inv_mass,
@@ -356,14 +303,27 @@ impl ContactSolver {
                 both_dynamic,
             });
         }
+        // Wide manifolds get their points straight into their batch's lanes; the scalar ones here.
+        let input = PrepareInput {
+            contacts,
+            bodies,
+            params,
+            ctx,
+        };
         self.coloring.build(
             &self.contacts,
-            &self.points,
-            params,
+            &input,
             &mut self.batches,
             &mut self.slots,
             &mut self.scalar,
         );
+        for &index in &self.scalar {
+            let c = &mut self.contacts[index];
+            c.first_point = self.points.len();
+            for point in contacts[c.source].points() {
+                self.points.push(input.point(c, point));
+            }
+        }
         skipped
     }
 
@@ -562,6 +522,78 @@ impl ContactSolver {
                 (self.contacts[index].source, max)
             });
         scalar.chain(wide)
+    }
+}
+
+/// `first_point` of a manifold whose points live in a wide batch.
+const NO_POINTS: usize = usize::MAX;
+
+/// What *prepare* reads: the contacts as given and the bodies' start-of-step state.
+struct PrepareInput<'a> {
+    contacts: &'a [Contact],
+    bodies: &'a [SolverBody],
+    params: &'a [BodyParams],
+    ctx: &'a StepContext,
+}
+
+impl PrepareInput<'_> {
+    /// The prepared form of `point`, a point of manifold `c`: anchors, angular Jacobian terms, effective
+    /// masses, the pre-step normal velocity and the warm-start impulses in the manifold's tangent basis.
+    fn point(&self, c: &PreparedContact, point: &ContactPoint) -> PreparedPoint {
+        let (pa, pb) = (&self.params[c.body_a], &self.params[c.body_b]);
+        let (sa, sb) = (&self.bodies[c.body_a], &self.bodies[c.body_b]);
+        let normal = c.normal;
+        let (ra, rb) = (point.anchor_a, point.anchor_b);
+        let rn_a = ra.cross(normal);
+        let rn_b = rb.cross(normal);
+        let wn_a = pa.inv_inertia_world * rn_a;
+        let wn_b = pb.inv_inertia_world * rn_b;
+        let k_normal = pa.inv_mass + pb.inv_mass + rn_a.dot(wn_a) + rn_b.dot(wn_b);
+        let mut rt_a = [Vec3::ZERO; 2];
+        let mut rt_b = [Vec3::ZERO; 2];
+        let mut wt_a = [Vec3::ZERO; 2];
+        let mut wt_b = [Vec3::ZERO; 2];
+        let mut tangent_mass = [0.0; 2];
+        for (i, t) in c.tangents.iter().enumerate() {
+            rt_a[i] = ra.cross(*t);
+            rt_b[i] = rb.cross(*t);
+            wt_a[i] = pa.inv_inertia_world * rt_a[i];
+            wt_b[i] = pb.inv_inertia_world * rt_b[i];
+            let k = pa.inv_mass + pb.inv_mass + rt_a[i].dot(wt_a[i]) + rt_b[i].dot(wt_b[i]);
+            tangent_mass[i] = if k > 0.0 { 1.0 / k } else { 0.0 };
+        }
+        let dv = sb.velocity_at(rb) - sa.velocity_at(ra);
+        let (normal_impulse, tangent_impulse) = if self.ctx.warm_starting {
+            (
+                point.normal_impulse,
+                Vec2::new(
+                    point.tangent_impulse.dot(c.tangents[0]),
+                    point.tangent_impulse.dot(c.tangents[1]),
+                ),
+            )
+        } else {
+            (0.0, Vec2::ZERO)
+        };
+        PreparedPoint {
+            anchor_a: ra,
+            anchor_b: rb,
+            separation: point.separation,
+            relative_velocity: dv.dot(normal),
+            bounced: false,
+            normal_impulse,
+            tangent_impulse,
+            max_normal_impulse: 0.0,
+            normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
+            tangent_mass,
+            rn_a,
+            rn_b,
+            wn_a,
+            wn_b,
+            rt_a,
+            rt_b,
+            wt_a,
+            wt_b,
+        }
     }
 }
 

@@ -15,8 +15,8 @@
 //! A batch has as many point slots as its largest manifold; the slots a smaller manifold leaves empty, and
 //! the empty lanes of a colour's last batch, carry zero masses and so apply zero impulses.
 
-use super::{PreparedContact, PreparedPoint};
-use crate::{Bias, BodyParams, SolverBody, StepContext};
+use super::{PrepareInput, PreparedContact};
+use crate::{Bias, SolverBody, StepContext};
 use rebound_math::glam::BVec4A;
 use rebound_math::{Mat4, Vec3, Vec4};
 
@@ -187,6 +187,8 @@ pub(super) struct Coloring {
     used: Vec<u32>,
     /// Manifold indices per colour, in manifold order.
     members: [Vec<usize>; COLORS],
+    /// Leave every manifold to the scalar path (tests compare the two paths).
+    pub(super) scalar_only: bool,
 }
 
 impl Coloring {
@@ -195,12 +197,12 @@ impl Coloring {
     pub(super) fn build(
         &mut self,
         contacts: &[PreparedContact],
-        points: &[PreparedPoint],
-        params: &[BodyParams],
+        input: &PrepareInput<'_>,
         batches: &mut Vec<Batch>,
         slots: &mut Vec<PointX4>,
         scalar: &mut Vec<usize>,
     ) {
+        let params = input.params;
         batches.clear();
         slots.clear();
         scalar.clear();
@@ -210,7 +212,7 @@ impl Coloring {
             members.clear();
         }
         for (index, c) in contacts.iter().enumerate() {
-            if !is_wide(c) {
+            if !is_wide(c) || self.scalar_only {
                 scalar.push(index);
                 continue;
             }
@@ -232,7 +234,7 @@ impl Coloring {
         }
         for members in &self.members {
             for group in members.chunks(LANES) {
-                batches.push(Batch::new(group, contacts, points, slots));
+                batches.push(Batch::new(group, contacts, input, slots));
             }
         }
     }
@@ -243,7 +245,7 @@ impl Batch {
     fn new(
         group: &[usize],
         contacts: &[PreparedContact],
-        points: &[PreparedPoint],
+        input: &PrepareInput<'_>,
         slots: &mut Vec<PointX4>,
     ) -> Self {
         let first_slot = slots.len();
@@ -284,10 +286,8 @@ impl Batch {
             batch.mass_scale[lane] = c.softness.mass_scale;
             batch.impulse_scale[lane] = c.softness.impulse_scale;
             let lane_slots = &mut slots[first_slot..];
-            for (w, p) in lane_slots
-                .iter_mut()
-                .zip(&points[c.first_point..][..c.point_count])
-            {
+            for (w, point) in lane_slots.iter_mut().zip(input.contacts[c.source].points()) {
+                let p = &input.point(c, point);
                 w.anchor_a.set_lane(lane, p.anchor_a);
                 w.anchor_b.set_lane(lane, p.anchor_b);
                 w.separation[lane] = p.separation;
@@ -573,12 +573,9 @@ mod tests {
         }
         let ctx = StepContext::new(1.0 / 60.0, &SolverSettings::default());
         let mut solver = ContactSolver::new();
+        solver.coloring.scalar_only = !wide;
         solver.prepare(&contacts, &bodies, &params, &ctx);
-        if !wide {
-            solver.batches.clear();
-            solver.slots.clear();
-            solver.scalar = (0..solver.contacts.len()).collect();
-        }
+        assert_eq!(solver.batches.is_empty(), !wide);
         solver.warm_start(&mut bodies);
         solver.solve(&mut bodies, &ctx, Bias::On);
         solver.solve(&mut bodies, &ctx, Bias::Off);
