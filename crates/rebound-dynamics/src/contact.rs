@@ -539,6 +539,7 @@ struct PrepareInput<'a> {
 impl PrepareInput<'_> {
     /// The prepared form of `point`, a point of manifold `c`: anchors, angular Jacobian terms, effective
     /// masses, the pre-step normal velocity and the warm-start impulses in the manifold's tangent basis.
+    #[inline]
     fn point(&self, c: &PreparedContact, point: &ContactPoint) -> PreparedPoint {
         let (pa, pb) = (&self.params[c.body_a], &self.params[c.body_b]);
         let (sa, sb) = (&self.bodies[c.body_a], &self.bodies[c.body_b]);

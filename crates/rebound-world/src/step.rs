@@ -641,6 +641,7 @@ impl<B: CollisionBackend> World<B> {
         s.touching.clear();
         let mut contact_events = core::mem::take(&mut s.contact_events);
         contact_events.clear();
+        let mut last = self.state.touching.iter().peekable();
         let mut i = 0;
         while i < s.touching_speeds.len() {
             let pair = s.touching_speeds[i].0;
@@ -650,7 +651,10 @@ impl<B: CollisionBackend> World<B> {
                 i += 1;
             }
             s.touching.push(pair);
-            if self.state.touching.binary_search(&pair).is_err() {
+            // Both lists are sorted: a forward walk through last step's (a binary search per pair missed the
+            // cache at every probe).
+            while last.next_if(|&&old| old < pair).is_some() {}
+            if last.next_if(|&&old| old == pair).is_none() {
                 contact_events.push(Event::ContactBegan {
                     body_a: pair.0,
                     body_b: pair.1,
@@ -658,8 +662,10 @@ impl<B: CollisionBackend> World<B> {
                 });
             }
         }
+        let mut now = s.touching.iter().peekable();
         for pair in &self.state.touching {
-            if s.touching.binary_search(pair).is_err() {
+            while now.next_if(|&&new| new < *pair).is_some() {}
+            if now.next_if(|&&new| new == *pair).is_none() {
                 contact_events.push(Event::ContactEnded {
                     body_a: pair.0,
                     body_b: pair.1,
