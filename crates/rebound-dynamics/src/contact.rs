@@ -321,7 +321,7 @@ impl ContactSolver {
             let c = &mut self.contacts[index];
             c.first_point = self.points.len();
             for point in contacts[c.source].points() {
-                self.points.push(input.point(c, point));
+                self.points.push(input.scalar_point(c, point));
             }
         }
         skipped
@@ -538,11 +538,11 @@ struct PrepareInput<'a> {
 
 impl PrepareInput<'_> {
     /// The prepared form of `point`, a point of manifold `c`: anchors, angular Jacobian terms, effective
-    /// masses, the pre-step normal velocity and the warm-start impulses in the manifold's tangent basis.
+    /// masses and the warm-start impulses in the manifold's tangent basis. The pre-step normal velocity,
+    /// which only a bounce reads, is left at 0 (see [`PrepareInput::scalar_point`]).
     #[inline]
     fn point(&self, c: &PreparedContact, point: &ContactPoint) -> PreparedPoint {
         let (pa, pb) = (&self.params[c.body_a], &self.params[c.body_b]);
-        let (sa, sb) = (&self.bodies[c.body_a], &self.bodies[c.body_b]);
         let normal = c.normal;
         let (ra, rb) = (point.anchor_a, point.anchor_b);
         let rn_a = ra.cross(normal);
@@ -563,7 +563,6 @@ impl PrepareInput<'_> {
             let k = pa.inv_mass + pb.inv_mass + rt_a[i].dot(wt_a[i]) + rt_b[i].dot(wt_b[i]);
             tangent_mass[i] = if k > 0.0 { 1.0 / k } else { 0.0 };
         }
-        let dv = sb.velocity_at(rb) - sa.velocity_at(ra);
         let (normal_impulse, tangent_impulse) = if self.ctx.warm_starting {
             (
                 point.normal_impulse,
@@ -579,7 +578,7 @@ impl PrepareInput<'_> {
             anchor_a: ra,
             anchor_b: rb,
             separation: point.separation,
-            relative_velocity: dv.dot(normal),
+            relative_velocity: 0.0,
             bounced: false,
             normal_impulse,
             tangent_impulse,
@@ -594,6 +593,18 @@ impl PrepareInput<'_> {
             rt_b,
             wt_a,
             wt_b,
+        }
+    }
+}
+
+impl PrepareInput<'_> {
+    /// [`PrepareInput::point`] with the pre-step normal velocity, for the scalar path (which bounces).
+    fn scalar_point(&self, c: &PreparedContact, point: &ContactPoint) -> PreparedPoint {
+        let (sa, sb) = (&self.bodies[c.body_a], &self.bodies[c.body_b]);
+        let dv = sb.velocity_at(point.anchor_b) - sa.velocity_at(point.anchor_a);
+        PreparedPoint {
+            relative_velocity: dv.dot(c.normal),
+            ..self.point(c, point)
         }
     }
 }
