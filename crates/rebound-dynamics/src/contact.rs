@@ -476,27 +476,36 @@ impl ContactSolver {
     /// Stage *store impulses*: writes the accumulated impulses back into `contacts` (the slice given to
     /// [`ContactSolver::prepare`]) for warm starting the next step and for reporting.
     pub fn store_impulses(&self, contacts: &mut [Contact]) {
+        self.for_each_point_result(|source, k, normal, tangent, _| {
+            if let Some(point) = contacts.get_mut(source).and_then(|c| c.points.get_mut(k)) {
+                point.normal_impulse = normal;
+                point.tangent_impulse = tangent;
+            }
+        });
+    }
+
+    /// Calls `f(source, point, normal_impulse, tangent_impulse, max_normal_impulse)` for every point of every
+    /// prepared manifold: the index of its source contact, the point's index in it, its accumulated normal
+    /// impulse (N·s), its friction impulse as a world vector (N·s) and the largest normal impulse it applied
+    /// in one iteration this step (N·s). What [`ContactSolver::store_impulses`] and
+    /// [`ContactSolver::max_normal_impulses`] report, in one pass, for a caller that keeps its own contacts.
+    pub fn for_each_point_result(&self, mut f: impl FnMut(usize, usize, f32, Vec3, f32)) {
         let basis = |c: &PreparedContact, [x, y]: [f32; 2]| c.tangents[0] * x + c.tangents[1] * y;
         for &index in &self.scalar {
-            let prepared = &self.contacts[index];
-            let Some(contact) = contacts.get_mut(prepared.source) else {
-                continue;
-            };
-            let solved = &self.points[prepared.first_point..][..prepared.point_count];
-            for (p, out) in solved.iter().zip(&mut contact.points) {
-                out.normal_impulse = p.normal_impulse;
-                out.tangent_impulse = basis(prepared, p.tangent_impulse.to_array());
+            let c = &self.contacts[index];
+            for (k, p) in self.points[c.first_point..][..c.point_count]
+                .iter()
+                .enumerate()
+            {
+                let tangent = basis(c, p.tangent_impulse.to_array());
+                f(c.source, k, p.normal_impulse, tangent, p.max_normal_impulse);
             }
         }
         for batch in &self.batches {
             for (index, impulses) in batch.results(&self.slots, &self.contacts) {
-                let prepared = &self.contacts[index];
-                let Some(contact) = contacts.get_mut(prepared.source) else {
-                    continue;
-                };
-                for ((normal, tangent, _), out) in impulses.zip(&mut contact.points) {
-                    out.normal_impulse = normal;
-                    out.tangent_impulse = basis(prepared, tangent);
+                let c = &self.contacts[index];
+                for (k, (normal, tangent, max)) in impulses.enumerate() {
+                    f(c.source, k, normal, basis(c, tangent), max);
                 }
             }
         }

@@ -463,21 +463,22 @@ impl<B: CollisionBackend> World<B> {
     /// exceeded their break limits are marked broken and reported.
     fn store_impulses(&mut self, report: &mut StepReport) {
         let s = &mut self.scratch;
-        s.contact_solver.store_impulses(&mut s.contacts);
-        for (contact, &source) in s.contacts.iter().zip(&s.contact_sources) {
-            let manifold = &mut s.manifolds[source];
-            for (point, solved) in manifold.points.iter_mut().zip(contact.points()) {
-                point.normal_impulse = solved.normal_impulse;
-                point.tangent_impulse = solved.tangent_impulse;
-            }
-        }
+        // Straight into the manifolds (the solver's contacts are not read again): impulses for the next
+        // step's warm start, and whether each manifold pushed (for the touching test of the events).
         s.pushed.clear();
         s.pushed.resize(s.manifolds.len(), false);
-        for (contact, max_impulse) in s.contact_solver.max_normal_impulses() {
-            if let Some(&source) = s.contact_sources.get(contact) {
-                s.pushed[source] = max_impulse > 0.0;
-            }
-        }
+        let (manifolds, pushed, sources) = (&mut s.manifolds, &mut s.pushed, &s.contact_sources);
+        s.contact_solver
+            .for_each_point_result(|contact, k, normal, tangent, max| {
+                let Some(&source) = sources.get(contact) else {
+                    return;
+                };
+                if let Some(point) = manifolds[source].points.get_mut(k) {
+                    point.normal_impulse = normal;
+                    point.tangent_impulse = tangent;
+                }
+                pushed[source] |= max > 0.0;
+            });
         s.broken.clear();
         s.joint_solver
             .store_impulses(&mut s.joint_states, &mut s.broken);
