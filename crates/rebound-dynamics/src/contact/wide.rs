@@ -66,13 +66,6 @@ impl Vec3x4 {
         ]
     }
 
-    /// Sets one lane.
-    fn set_lane(&mut self, lane: usize, v: Vec3) {
-        self.x[lane] = v.x;
-        self.y[lane] = v.y;
-        self.z[lane] = v.z;
-    }
-
     #[inline(always)]
     fn dot(&self, o: &Self) -> Vec4 {
         self.x * o.x + self.y * o.y + self.z * o.z
@@ -241,76 +234,89 @@ impl Coloring {
 }
 
 impl Batch {
-    /// The batch of the manifolds `group` (one to four indices into `contacts`).
+    /// The batch of the manifolds `group` (one to four indices into `contacts`); its point slots are pushed
+    /// onto `slots`. Each lane's values are prepared in scalar form and transposed into the lanes four at a
+    /// time (a store into one lane of a `Vec4` is an indexed write).
     fn new(
         group: &[usize],
         contacts: &[PreparedContact],
         input: &PrepareInput<'_>,
         slots: &mut Vec<PointX4>,
     ) -> Self {
+        let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
+        let lanes = [lane(0), lane(1), lane(2), lane(3)];
+        let headers = lanes.map(|c| c.copied().unwrap_or(EMPTY_LANE));
         let first_slot = slots.len();
-        let slot_count = group
+        let slot_count = lanes
             .iter()
-            .map(|&i| contacts[i].point_count)
+            .flatten()
+            .map(|c| c.point_count)
             .max()
             .unwrap_or(0);
-        slots.resize(first_slot + slot_count, PointX4::default());
-        let mut batch = Self {
-            contacts: [0; LANES],
+        for slot in 0..slot_count {
+            let points = lanes.map(|c| {
+                c.and_then(|c| {
+                    let point = input.contacts[c.source].points().get(slot)?;
+                    Some(input.point(c, point))
+                })
+                .unwrap_or_default()
+            });
+            slots.push(PointX4 {
+                anchor_a: gather3(&points, |p| p.anchor_a),
+                anchor_b: gather3(&points, |p| p.anchor_b),
+                separation: gather1(&points, |p| p.separation),
+                normal_impulse: gather1(&points, |p| p.normal_impulse),
+                tangent_impulse: [
+                    gather1(&points, |p| p.tangent_impulse.x),
+                    gather1(&points, |p| p.tangent_impulse.y),
+                ],
+                max_normal_impulse: gather1(&points, |p| p.max_normal_impulse),
+                normal_mass: gather1(&points, |p| p.normal_mass),
+                tangent_mass: [
+                    gather1(&points, |p| p.tangent_mass[0]),
+                    gather1(&points, |p| p.tangent_mass[1]),
+                ],
+                rn_a: gather3(&points, |p| p.rn_a),
+                rn_b: gather3(&points, |p| p.rn_b),
+                wn_a: gather3(&points, |p| p.wn_a),
+                wn_b: gather3(&points, |p| p.wn_b),
+                rt_a: [
+                    gather3(&points, |p| p.rt_a[0]),
+                    gather3(&points, |p| p.rt_a[1]),
+                ],
+                rt_b: [
+                    gather3(&points, |p| p.rt_b[0]),
+                    gather3(&points, |p| p.rt_b[1]),
+                ],
+                wt_a: [
+                    gather3(&points, |p| p.wt_a[0]),
+                    gather3(&points, |p| p.wt_a[1]),
+                ],
+                wt_b: [
+                    gather3(&points, |p| p.wt_b[0]),
+                    gather3(&points, |p| p.wt_b[1]),
+                ],
+            });
+        }
+        Self {
+            contacts: [0, 1, 2, 3].map(|i| group.get(i).copied().unwrap_or(0)),
             lanes: group.len(),
-            body_a: [0; LANES],
-            body_b: [0; LANES],
+            body_a: headers.map(|c| c.body_a),
+            body_b: headers.map(|c| c.body_b),
             first_slot,
             slots: slot_count,
-            normal: Vec3x4::default(),
-            tangents: [Vec3x4::default(); 2],
-            friction: Vec4::ZERO,
-            inv_mass_a: Vec4::ZERO,
-            inv_mass_b: Vec4::ZERO,
-            bias_rate: Vec4::ZERO,
-            mass_scale: Vec4::ZERO,
-            impulse_scale: Vec4::ZERO,
-        };
-        for (lane, &index) in group.iter().enumerate() {
-            let c = &contacts[index];
-            batch.contacts[lane] = index;
-            batch.body_a[lane] = c.body_a;
-            batch.body_b[lane] = c.body_b;
-            batch.normal.set_lane(lane, c.normal);
-            batch.tangents[0].set_lane(lane, c.tangents[0]);
-            batch.tangents[1].set_lane(lane, c.tangents[1]);
-            batch.friction[lane] = c.friction;
-            batch.inv_mass_a[lane] = c.inv_mass_a;
-            batch.inv_mass_b[lane] = c.inv_mass_b;
-            batch.bias_rate[lane] = c.softness.bias_rate;
-            batch.mass_scale[lane] = c.softness.mass_scale;
-            batch.impulse_scale[lane] = c.softness.impulse_scale;
-            let lane_slots = &mut slots[first_slot..];
-            for (w, point) in lane_slots.iter_mut().zip(input.contacts[c.source].points()) {
-                let p = &input.point(c, point);
-                w.anchor_a.set_lane(lane, p.anchor_a);
-                w.anchor_b.set_lane(lane, p.anchor_b);
-                w.separation[lane] = p.separation;
-                w.normal_impulse[lane] = p.normal_impulse;
-                w.tangent_impulse[0][lane] = p.tangent_impulse.x;
-                w.tangent_impulse[1][lane] = p.tangent_impulse.y;
-                w.max_normal_impulse[lane] = p.max_normal_impulse;
-                w.normal_mass[lane] = p.normal_mass;
-                w.tangent_mass[0][lane] = p.tangent_mass[0];
-                w.tangent_mass[1][lane] = p.tangent_mass[1];
-                w.rn_a.set_lane(lane, p.rn_a);
-                w.rn_b.set_lane(lane, p.rn_b);
-                w.wn_a.set_lane(lane, p.wn_a);
-                w.wn_b.set_lane(lane, p.wn_b);
-                for i in 0..2 {
-                    w.rt_a[i].set_lane(lane, p.rt_a[i]);
-                    w.rt_b[i].set_lane(lane, p.rt_b[i]);
-                    w.wt_a[i].set_lane(lane, p.wt_a[i]);
-                    w.wt_b[i].set_lane(lane, p.wt_b[i]);
-                }
-            }
+            normal: gather3(&headers, |c| c.normal),
+            tangents: [
+                gather3(&headers, |c| c.tangents[0]),
+                gather3(&headers, |c| c.tangents[1]),
+            ],
+            friction: gather1(&headers, |c| c.friction),
+            inv_mass_a: gather1(&headers, |c| c.inv_mass_a),
+            inv_mass_b: gather1(&headers, |c| c.inv_mass_b),
+            bias_rate: gather1(&headers, |c| c.softness.bias_rate),
+            mass_scale: gather1(&headers, |c| c.softness.mass_scale),
+            impulse_scale: gather1(&headers, |c| c.softness.impulse_scale),
         }
-        batch
     }
 
     /// One pass (solve or relax) over the batch: normal rows of every slot, then friction — the scalar
@@ -490,6 +496,36 @@ impl Batch {
                 (index, impulses)
             })
     }
+}
+
+/// What an empty lane holds: zero masses, so it applies zero impulses.
+const EMPTY_LANE: PreparedContact = PreparedContact {
+    source: 0,
+    body_a: 0,
+    body_b: 0,
+    first_point: 0,
+    point_count: 0,
+    rolling: None,
+    normal: Vec3::ZERO,
+    tangents: [Vec3::ZERO; 2],
+    friction: 0.0,
+    restitution: 0.0,
+    inv_mass_a: 0.0,
+    inv_mass_b: 0.0,
+    softness: crate::Softness::RIGID,
+    both_dynamic: false,
+};
+
+/// One vector per lane, transposed into lanes.
+#[inline(always)]
+fn gather3<T>(items: &[T; LANES], f: impl Fn(&T) -> Vec3) -> Vec3x4 {
+    Vec3x4::from_lanes([f(&items[0]), f(&items[1]), f(&items[2]), f(&items[3])])
+}
+
+/// One number per lane.
+#[inline(always)]
+fn gather1<T>(items: &[T; LANES], f: impl Fn(&T) -> f32) -> Vec4 {
+    Vec4::new(f(&items[0]), f(&items[1]), f(&items[2]), f(&items[3]))
 }
 
 /// `Δq⁻¹·n − n` in each lane: the rotated normal whose dot with an anchor gives `n·(Δq·r − r)`.
