@@ -56,7 +56,23 @@ pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ct
         }
         state.angular_velocity =
             omega / (1.0 + h * p.angular_damping) + h * (p.inv_inertia_world * p.torque);
+        state.linear_velocity = flush_tiny(state.linear_velocity);
+        state.angular_velocity = flush_tiny(state.angular_velocity);
     }
+}
+
+/// Velocity components smaller than this are set to exactly zero (m/s, rad/s): 1e-15 m/s is 3e-8 m a year.
+///
+/// A body whose motion decays exponentially (damping, a damped spring, friction) with sleeping off would
+/// otherwise reach subnormal floats — below 1.2e-38, and their squares and products long before that — where
+/// every arithmetic operation on x86 takes a slow microcode path: the springs scene's solve ran twice as long
+/// once its springs had settled. Rust gives no safe way to set the processor's flush-to-zero mode.
+pub const TINY_SPEED: f32 = 1e-15;
+
+/// `v` with the components smaller than [`TINY_SPEED`] in magnitude set to zero.
+#[inline]
+fn flush_tiny(v: Vec3) -> Vec3 {
+    Vec3::select(v.abs().cmplt(Vec3::splat(TINY_SPEED)), Vec3::ZERO, v)
 }
 
 /// Stage *integrate positions* of one substep: `Δp += h·v`, `Δq` by ω (first order). Fixed bodies and
@@ -103,4 +119,60 @@ pub fn solve_gyroscopic(
         omega = next * (*local_inv_inertia * (next.conjugate() * momentum));
     }
     omega
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{BodyDesc, RigidBody, SolverSettings};
+
+    /// A damped body coasting with no gravity: its speed decays by `1/(1 + h·c)` per substep. It must reach
+    /// exactly zero without ever holding a subnormal component (which costs a microcode assist per operation).
+    #[test]
+    fn a_decaying_velocity_reaches_zero_without_subnormals() {
+        let mut body = RigidBody::new(
+            &BodyDesc::dynamic()
+                .with_linear_velocity(Vec3::new(1.0, -2.0, 0.5))
+                .with_angular_velocity(Vec3::new(0.3, 0.0, -1.0)),
+        )
+        .expect("valid body");
+        body.set_linear_damping(30.0).expect("valid damping");
+        body.set_angular_damping(30.0).expect("valid damping");
+        let settings = SolverSettings {
+            gravity: Vec3::ZERO,
+            ..SolverSettings::default()
+        };
+        let ctx = StepContext::new(1.0 / 60.0, &settings);
+        let params = [BodyParams::from_body(&body)];
+        let mut states = [SolverBody::from_body(&body)];
+        let decay = 1.0 / (1.0 + ctx.h * 30.0);
+        // 2.0 m/s · decay^n < 1e-15 m/s after this many substeps; run twice as long.
+        let needed = ((1e-15_f32 / 2.0).ln() / decay.ln()).ceil() as usize;
+        for substep in 0..2 * needed {
+            let before = states[0].linear_velocity;
+            integrate_velocities(&mut states, &params, &ctx);
+            let (v, w) = (states[0].linear_velocity, states[0].angular_velocity);
+            for c in v.to_array().into_iter().chain(w.to_array()) {
+                assert!(
+                    !c.is_subnormal(),
+                    "substep {substep}: subnormal component {c:e}"
+                );
+                assert!(
+                    c == 0.0 || c.abs() >= TINY_SPEED,
+                    "substep {substep}: {c:e}"
+                );
+            }
+            // Until it is flushed, each component follows the damping law.
+            for (now, was) in v.to_array().into_iter().zip(before.to_array()) {
+                if now != 0.0 {
+                    assert!(
+                        (now - was * decay).abs() <= 1e-6 * was.abs(),
+                        "{now:e} vs {was:e}"
+                    );
+                }
+            }
+        }
+        assert_eq!(states[0].linear_velocity, Vec3::ZERO);
+        assert_eq!(states[0].angular_velocity, Vec3::ZERO);
+    }
 }
