@@ -24,14 +24,16 @@
 //! xₙ = r'ₙ,                     xᵢ = r'ᵢ − C'ᵢ·xᵢ₊₁
 //! ```
 //!
-//! solves `K·x = r` in O(n). Each row then takes the soft step `Δλ = −mass_scale·x − impulse_scale·λ`
-//! (for one row this is exactly the Gauss–Seidel row update of [`crate::part::solve_row`]) and is clamped to
-//! its bounds. A rope that is slack and not closing its slack this substep is left out of the system (its
-//! row is released); a rope the solution would make push is dropped and the rest solved again (up to 4
-//! rounds), so slack links never push. The sweep runs in f64 (a 500-link chain's `K` has a condition number
-//! near 10⁵), each row's diagonal gets a 10⁻⁶ relative regularisation and a vanishing pivot gives 0 — a bridge
-//! hung from two anchors has redundant rows and a singular `K`. A path of one-row joints (a rope chain) takes a
-//! scalar sweep.
+//! solves `K·x = r` in O(n). The soft step of all rows at once takes `r = mass_scale∘(Ċ + bias) +
+//! impulse_scale∘(K·λ)` row by row and `Δλ = −x` (for one row this is exactly the Gauss–Seidel row update of
+//! [`crate::part::solve_row`]; see [`solve_path`] for why not each row's soft step from one solve), clamped
+//! to the bounds. A rope that is slack and not closing its slack this substep is left out of the system (its
+//! row is released); after a solve, a rope the solution would make push is dropped, a rope left out that it
+//! would stretch is added, and the system solved again (up to 4 rounds), so slack links never push and links
+//! left out are not pulled past their length. The sweep runs in f64 (a 500-link chain's `K` has a condition
+//! number near 10⁵), each row's diagonal gets a 10⁻⁶ relative regularisation and a vanishing pivot gives 0 —
+//! a bridge hung from two anchors has redundant rows and a singular `K`. A path of one-row joints (a rope
+//! chain) takes a scalar sweep.
 //!
 //! # Positions
 //!
@@ -290,9 +292,10 @@ impl Link {
     }
 
     /// Turns a link whose rows' biases are their position errors into a link of the position projection, in
-    /// place. Equality rows take part; a rope only if it is stretched or within [`TAUT_MARGIN`] of its length —
-    /// then with target "no longer than now", so that it may pull if moving its neighbours would stretch it
-    /// (the active-set rounds drop it if it would have to push).
+    /// place. Equality rows take part; a rope only if it is stretched (`C > 0`). A slack rope gets the target
+    /// "no longer than now" and joins through the active-set rounds ([`activate_violations`]) if moving its
+    /// neighbours would lengthen it: it may then pull, but the linear step never spends its slack (which a
+    /// curved chain's linearisation would overshoot).
     pub fn make_positional(&mut self) {
         let mut active = [false; MAX_ROWS];
         for (row, active) in self
@@ -304,9 +307,9 @@ impl Link {
         {
             let c = row.target.bias;
             *active = if row.upper == 0.0 {
-                c > -TAUT_MARGIN
+                c > 0.0
             } else if row.lower == 0.0 {
-                c < TAUT_MARGIN
+                c < 0.0
             } else {
                 true
             };
@@ -360,6 +363,57 @@ impl Link {
         } else {
             Real::from(row.velocity(a, b) + row.target.bias)
         }
+    }
+
+    /// The right-hand side of the soft step of each active row (0 for the others): `mass_scale·r +
+    /// impulse_scale·(K·λ)`, from its residual `r` and its row of `K·λ` (see [`solve_path`]).
+    fn soft_rhs(&self, r: &[Real; MAX_ROWS], k_lambda: &[Real; MAX_ROWS]) -> [Real; MAX_ROWS] {
+        let mut out = [0.0; MAX_ROWS];
+        for (k, row) in self.rows.rows().iter().enumerate() {
+            if self.active[k] {
+                let s = row.target.softness;
+                out[k] =
+                    Real::from(s.mass_scale) * r[k] + Real::from(s.impulse_scale) * k_lambda[k];
+            }
+        }
+        out
+    }
+
+    /// The solution `y` of this link's rows from the solution `x` of `K·x = r` when every row of the path
+    /// has the softness `uniform`: `y = mass_scale·x + impulse_scale·λ`, in f32 as the per-row soft step
+    /// computes it (so that `λ − y` is bit for bit its `λ + Δλ`). Without a uniform softness `x` is `y`.
+    fn finish(&self, mut x: [Real; MAX_ROWS], uniform: Option<Softness>) -> [Real; MAX_ROWS] {
+        // Rigid rows (relax pass, projection): `y = x`, which `λ − y` rounds to f32 as the per-row step did.
+        if let Some(s) =
+            uniform.filter(|s| s.impulse_scale != 0.0 || s.mass_scale.to_bits() != 1.0f32.to_bits())
+        {
+            for (k, x) in x.iter_mut().enumerate().take(self.rows.count) {
+                if self.active[k] {
+                    *x = Real::from(s.mass_scale * *x as f32 + s.impulse_scale * self.lambda[k]);
+                }
+            }
+        }
+        x
+    }
+
+    /// Whether an active row is soft (`impulse_scale > 0`): only then does the right-hand side need `K·λ`.
+    fn has_soft_rows(&self) -> bool {
+        self.rows
+            .rows()
+            .iter()
+            .zip(&self.active)
+            .any(|(row, &active)| active && row.target.softness.impulse_scale > 0.0)
+    }
+
+    /// The accumulated impulses as the solve's unknowns (0 for rows not in the system).
+    fn active_lambda(&self) -> [Real; MAX_ROWS] {
+        let mut out = [0.0; MAX_ROWS];
+        for ((out, &lambda), &active) in out.iter_mut().zip(&self.lambda).zip(&self.active) {
+            if active {
+                *out = Real::from(lambda);
+            }
+        }
+        out
     }
 
     /// The diagonal block `B` (identity for inactive rows, so that they solve to 0).
@@ -426,7 +480,7 @@ impl Link {
             if !self.active[i] {
                 continue;
             }
-            let new = self.lambda[i] + soft_delta(row, x[i], self.lambda[i]);
+            let new = self.lambda[i] - x[i] as f32;
             if (row.upper == 0.0 && new > 0.0) || (row.lower == 0.0 && new < 0.0) {
                 self.active[i] = false;
                 row.apply(&ma, &mb, a, b, -self.lambda[i]);
@@ -435,6 +489,43 @@ impl Link {
             }
         }
         any
+    }
+
+    /// What active row `k` would get from its solution `x`: the clamped soft update of its impulse, as an
+    /// increment (velocity pass) or as the position impulse itself (projection, where `lambda` is 0).
+    fn increment(&self, k: usize, x: Real) -> f32 {
+        let row = &self.rows.rows[k];
+        let new = (self.lambda[k] - x as f32).max(row.lower).min(row.upper);
+        new - self.lambda[k]
+    }
+
+    /// The change of row `row`'s `Ċ` (or `C`) that the increments of this link's active rows, solved as `x`,
+    /// make: through both bodies (`shared` = `None`, `row` is one of this link's rows), or through the one
+    /// body `row`'s link shares with this link, given as (`row` acts on it as its body B, this link does).
+    fn effect_on(&self, row: &Row, shared: Option<(bool, bool)>, x: &[Real; MAX_ROWS]) -> f32 {
+        let mut change = 0.0;
+        for (k, other) in self.rows.rows().iter().enumerate() {
+            if !self.active[k] {
+                continue;
+            }
+            let coupling = match shared {
+                None => {
+                    row.a.coupling(&self.rows.mass_a, &other.a)
+                        + row.b.coupling(&self.rows.mass_b, &other.b)
+                }
+                Some((row_b, own_b)) => {
+                    let side = if row_b { &row.b } else { &row.a };
+                    let (other, mass) = if own_b {
+                        (&other.b, &self.rows.mass_b)
+                    } else {
+                        (&other.a, &self.rows.mass_a)
+                    };
+                    side.coupling(mass, other)
+                }
+            };
+            change += coupling * self.increment(k, x[k]);
+        }
+        change
     }
 
     /// [`Link::coupling`] for two one-row links: the single entry, without building a block.
@@ -462,8 +553,7 @@ impl Link {
             if !self.active[i] {
                 continue;
             }
-            let delta = soft_delta(row, x[i], self.lambda[i]);
-            let new = (self.lambda[i] + delta).max(row.lower).min(row.upper);
+            let new = (self.lambda[i] - x[i] as f32).max(row.lower).min(row.upper);
             if self.positions {
                 row.a.displace(&ma, a, new);
                 row.b.displace(&mb, b, new);
@@ -475,11 +565,53 @@ impl Link {
     }
 }
 
-/// The soft step of one row from its solution `x`: `Δλ = −mass_scale·x − impulse_scale·λ`.
-#[inline]
-fn soft_delta(row: &Row, x: Real, lambda: f32) -> f32 {
-    let s: Softness = row.target.softness;
-    -s.mass_scale * x as f32 - s.impulse_scale * lambda
+/// Active-set step for the rows left out: activates every one-sided row (a rope) that is not in the system
+/// but that the solution `solution` of the rows around it would violate — a slack rope whose neighbours would
+/// pull its bodies apart past its length, or a taut rope that was closing before the solve and would no
+/// longer be. Returns whether any row was activated, so that the system is solved again with them. Without
+/// this step a rope left out at the start of a pass is pulled past its length by the solve of its neighbours
+/// (a chain whipping round stretched links by 30 % within a substep).
+pub(crate) fn activate_violations(
+    links: &mut [Link],
+    solution: &[[Real; MAX_ROWS]],
+    load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
+) -> bool {
+    let mut any = false;
+    for i in 0..links.len() {
+        for r in 0..links[i].rows.count.min(MAX_ROWS) {
+            let link = &links[i];
+            let row = &link.rows.rows[r];
+            if link.active[r] || (row.upper != 0.0 && row.lower != 0.0) {
+                continue;
+            }
+            // A row just added has no solution yet (0), so it changes nothing for the rows after it.
+            let mut free = row.target.bias + link.effect_on(row, None, &solution[i]);
+            if let Some(prev) = i.checked_sub(1).and_then(|p| links.get(p))
+                && let Some((prev_b, this_b)) = prev.shared_with_next
+            {
+                free += prev.effect_on(row, Some((this_b, prev_b)), &solution[i - 1]);
+            }
+            if let (Some((this_b, next_b)), Some(next)) = (link.shared_with_next, links.get(i + 1))
+            {
+                free += next.effect_on(row, Some((this_b, next_b)), &solution[i + 1]);
+            }
+            if !link.positions
+                && let Some((a, b)) = load(i)
+            {
+                free += row.velocity(&a, &b);
+            }
+            let violated = if row.upper == 0.0 {
+                free > 0.0
+            } else {
+                free < 0.0
+            };
+            if violated {
+                links[i].active[r] = true;
+                any = true;
+            }
+        }
+    }
+    any
 }
 
 /// One nonlinear Gauss–Seidel projection of one joint's rows (Box2D v2's position solver): each row whose
@@ -508,7 +640,19 @@ pub(crate) fn project_rows(rows: &JointRows, a: &mut SolverBody, b: &mut SolverB
 }
 
 /// Steps 2 and 3 of a pass: the residuals from the bodies' current velocities (`load(i)` gives link `i`'s
-/// bodies), then the block Thomas sweep; returns the solution of each link in `out`.
+/// bodies), then the block Thomas sweep; returns the solution `y` of each link in `out`, the change of its
+/// accumulated impulses being `−y`.
+///
+/// The system is the soft step of every row at once: `K·y = mass_scale∘r + impulse_scale∘(K·λ)`, `r = Ċ +
+/// bias` (or `C` in a projection), `∘` row by row. After the update each row holds `r' + c·(K·λ')ᵢ = 0` with
+/// `c = impulse_scale/mass_scale`: a soft row is compliant against its row of `K·λ` — the difference of the
+/// loads on either side of it, one ball's weight in a hanging chain whatever the load below — and a rigid
+/// row (`impulse_scale = 0`: a slack rope closing its slack, a projection) holds exactly. For one row this is
+/// the Gauss–Seidel soft step `Δλ = −mass_scale·r/K − impulse_scale·λ`; when every row has the same softness,
+/// `Δλ = −mass_scale·K⁻¹·r − impulse_scale·λ`. Taking each row's soft step from one exact solve of `K·x = r`
+/// instead is wrong as soon as the softness differs along the path: the leak `impulse_scale·λ` of the soft
+/// rows, which carry the chain's load, lands on a rigid row in between, and a chain whipping round came apart
+/// in a zigzag of links stretched and slackened by several centimetres each.
 pub(crate) fn solve_path(
     links: &mut [Link],
     load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
@@ -516,30 +660,67 @@ pub(crate) fn solve_path(
 ) {
     out.clear();
     out.resize(links.len(), [0.0; MAX_ROWS]);
+    // With one softness along the path (a settled or straight chain, a bridge, every relax pass and
+    // projection) the soft step splits into `K·x = r` and `y = mass_scale·x + impulse_scale·λ`: the same
+    // result, without `K·λ`, and bit for bit that of the per-row form.
+    let uniform = uniform_softness(links);
     if links.iter().all(|link| link.rows.count <= 1) {
-        solve_scalar_path(links, load, out);
-        return;
+        solve_scalar_path(links, load, out, uniform);
+    } else {
+        solve_block_path(links, load, out, uniform);
     }
-    // Forward sweep. `previous` holds Cᵢ₋₁ and r'ᵢ₋₁; C'ᵢ₋₁ is stored in link i − 1. Loops run over the
+}
+
+/// The softness every active row of the path shares, if they all do.
+fn uniform_softness(links: &[Link]) -> Option<Softness> {
+    let mut common: Option<Softness> = None;
+    for link in links {
+        for (row, &active) in link.rows.rows().iter().zip(&link.active) {
+            if !active {
+                continue;
+            }
+            let s = row.target.softness;
+            match common {
+                None => common = Some(s),
+                // The same bits: then the split form of `solve_path` is exactly the per-row one.
+                Some(c)
+                    if c.mass_scale.to_bits() == s.mass_scale.to_bits()
+                        && c.impulse_scale.to_bits() == s.impulse_scale.to_bits() => {}
+                Some(_) => return None,
+            }
+        }
+    }
+    Some(common.unwrap_or(Softness::RIGID))
+}
+
+/// [`solve_path`] for paths with multi-row joints: the block Thomas algorithm. With a `uniform` softness the
+/// right-hand side is the residual alone and the soft step is finished in the back substitution.
+fn solve_block_path(
+    links: &mut [Link],
+    load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
+    out: &mut [[Real; MAX_ROWS]],
+    uniform: Option<Softness>,
+) {
+    let split = uniform.is_some();
+    // Forward sweep. `previous` holds Cᵢ₋₁, λᵢ₋₁ and r'ᵢ₋₁; C'ᵢ₋₁ is stored in link i − 1. Loops run over the
     // links' own row counts (1 for a rope, 5 for a hinge).
-    let mut previous: Option<(Block, [Real; MAX_ROWS])> = None;
+    let mut previous: Option<(Block, [Real; MAX_ROWS], [Real; MAX_ROWS])> = None;
     for i in 0..links.len() {
         let n = links[i].rows.count.min(MAX_ROWS);
         let r = load(i).map_or([0.0; MAX_ROWS], |(a, b)| links[i].residual(&a, &b));
         let mut s = links[i].diagonal();
-        let mut rhs = r;
-        if let (Some((c_prev, r_prev)), Some(prev)) =
-            (previous, i.checked_sub(1).map(|p| &links[p]))
-        {
-            // S = B − Cᵢ₋₁ᵀ·C'ᵢ₋₁,   rhs = r − Cᵢ₋₁ᵀ·r'ᵢ₋₁
-            let m = prev.rows.count.min(MAX_ROWS);
+        let lambda = if split {
+            [0.0; MAX_ROWS]
+        } else {
+            links[i].active_lambda()
+        };
+        // K·λ, for the soft rows only: this link's block, then the couplings to the next and the previous
+        // link. (No row is soft in the relax pass and in a projection.)
+        let soft_rows = !split && links[i].has_soft_rows();
+        let mut k_lambda = [0.0; MAX_ROWS];
+        if soft_rows {
             for row in 0..n {
-                for col in 0..n {
-                    let sum: Real = (0..m).map(|k| c_prev[k][row] * prev.c_prime[k][col]).sum();
-                    s[row][col] -= sum;
-                }
-                let sum: Real = (0..m).map(|k| c_prev[k][row] * r_prev[k]).sum();
-                rhs[row] -= sum;
+                k_lambda[row] = (0..n).map(|k| s[row][k] * lambda[k]).sum();
             }
         }
         let next_rows = links
@@ -548,6 +729,39 @@ pub(crate) fn solve_path(
         let c = links
             .get(i + 1)
             .map_or([[0.0; MAX_ROWS]; MAX_ROWS], |next| links[i].coupling(next));
+        if let Some(next) = links.get(i + 1).filter(|_| soft_rows) {
+            let lambda_next = next.active_lambda();
+            for row in 0..n {
+                k_lambda[row] += (0..next_rows)
+                    .map(|k| c[row][k] * lambda_next[k])
+                    .sum::<Real>();
+            }
+        }
+        let mut rhs = if split { r } else { [0.0; MAX_ROWS] };
+        if let (Some((c_prev, lambda_prev, r_prev)), Some(prev)) =
+            (previous, i.checked_sub(1).map(|p| &links[p]))
+        {
+            // S = B − Cᵢ₋₁ᵀ·C'ᵢ₋₁,   rhs = r̃ − Cᵢ₋₁ᵀ·r'ᵢ₋₁
+            let m = prev.rows.count.min(MAX_ROWS);
+            for row in 0..n {
+                for col in 0..n {
+                    let sum: Real = (0..m).map(|k| c_prev[k][row] * prev.c_prime[k][col]).sum();
+                    s[row][col] -= sum;
+                }
+                if soft_rows {
+                    k_lambda[row] += (0..m)
+                        .map(|k| c_prev[k][row] * lambda_prev[k])
+                        .sum::<Real>();
+                }
+                rhs[row] -= (0..m).map(|k| c_prev[k][row] * r_prev[k]).sum::<Real>();
+            }
+        }
+        if !split {
+            let soft = links[i].soft_rhs(&r, &k_lambda);
+            for row in 0..n {
+                rhs[row] += soft[row];
+            }
+        }
         // [C' | r'] = S⁻¹·[C | rhs]: the first `next_rows` columns are C, the last is rhs.
         let mut columns = [[0.0; MAX_ROWS + 1]; MAX_ROWS];
         for row in 0..n {
@@ -560,7 +774,7 @@ pub(crate) fn solve_path(
             link.c_prime[row].copy_from_slice(&columns[row][..MAX_ROWS]);
             link.r_prime[row] = columns[row][MAX_ROWS];
         }
-        previous = Some((c, link.r_prime));
+        previous = Some((c, lambda, link.r_prime));
     }
     // Back substitution.
     let mut next: Option<([Real; MAX_ROWS], usize)> = None;
@@ -574,38 +788,59 @@ pub(crate) fn solve_path(
                 *value -= sum;
             }
         }
-        out[i] = x;
+        out[i] = link.finish(x, uniform);
         next = Some((x, n));
     }
 }
 
 /// [`solve_path`] for a path of one-row joints (a rope chain): the scalar Thomas algorithm, without the
-/// block machinery.
+/// block machinery. `uniform` as in [`solve_block_path`].
 fn solve_scalar_path(
     links: &mut [Link],
     load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
+    uniform: Option<Softness>,
 ) {
-    // Forward sweep: c'ᵢ = cᵢ/sᵢ, r'ᵢ = (rᵢ − cᵢ₋₁·r'ᵢ₋₁)/sᵢ with sᵢ = bᵢ − cᵢ₋₁·c'ᵢ₋₁.
-    let mut previous: Option<(Real, Real, Real)> = None; // (cᵢ₋₁, c'ᵢ₋₁, r'ᵢ₋₁)
+    let split = uniform.is_some();
+    // Forward sweep: c'ᵢ = cᵢ/sᵢ, r'ᵢ = (r̃ᵢ − cᵢ₋₁·r'ᵢ₋₁)/sᵢ with sᵢ = bᵢ − cᵢ₋₁·c'ᵢ₋₁ and r̃ the soft
+    // right-hand side of `solve_path`.
+    let mut previous: Option<(Real, Real, Real, Real)> = None; // (cᵢ₋₁, c'ᵢ₋₁, r'ᵢ₋₁, λᵢ₋₁)
     for i in 0..links.len() {
         let link = &links[i];
         let active = link.rows.count == 1 && link.active[0];
-        let (mut s, mut r) = if active {
-            let row = &link.rows.rows[0];
-            let k = Real::from(row.self_coupling(&link.rows.mass_a, &link.rows.mass_b));
-            let residual = load(i).map_or(0.0, |(a, b)| link.row_residual(row, &a, &b));
-            (k * (1.0 + REGULARIZATION), residual)
-        } else {
-            (1.0, 0.0)
-        };
-        if let Some((c, c_prime, r_prime)) = previous {
-            s -= c * c_prime;
-            r -= c * r_prime;
-        }
+        let lambda = link.active_lambda()[0];
         let c = links
             .get(i + 1)
             .map_or(0.0, |next| links[i].coupling_scalar(next));
+        let (mut s, mut r) = if active {
+            let row = &link.rows.rows[0];
+            let k = Real::from(row.self_coupling(&link.rows.mass_a, &link.rows.mass_b));
+            let diagonal = k * (1.0 + REGULARIZATION);
+            let residual = load(i).map_or(0.0, |(a, b)| link.row_residual(row, &a, &b));
+            let softness = row.target.softness;
+            if split {
+                (diagonal, residual)
+            } else {
+                let mut rhs = Real::from(softness.mass_scale) * residual;
+                if softness.impulse_scale > 0.0 {
+                    let mut k_lambda = diagonal * lambda;
+                    if let Some(next) = links.get(i + 1) {
+                        k_lambda += c * next.active_lambda()[0];
+                    }
+                    if let Some((c_prev, _, _, lambda_prev)) = previous {
+                        k_lambda += c_prev * lambda_prev;
+                    }
+                    rhs += Real::from(softness.impulse_scale) * k_lambda;
+                }
+                (diagonal, rhs)
+            }
+        } else {
+            (1.0, 0.0)
+        };
+        if let Some((c_prev, c_prime, r_prime, _)) = previous {
+            s -= c_prev * c_prime;
+            r -= c_prev * r_prime;
+        }
         let scale = Real::from(links[i].rows.mass_a.mass.max(links[i].rows.mass_b.mass));
         let (c_prime, r_prime) = if s.abs() <= (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE) {
             (0.0, 0.0)
@@ -615,13 +850,14 @@ fn solve_scalar_path(
         let link = &mut links[i];
         link.c_prime[0][0] = c_prime;
         link.r_prime[0] = r_prime;
-        previous = Some((c, c_prime, r_prime));
+        previous = Some((c, c_prime, r_prime, lambda));
     }
     // Back substitution.
     let mut next = 0.0;
     for i in (0..links.len()).rev() {
         let x = links[i].r_prime[0] - links[i].c_prime[0][0] * next;
         out[i][0] = x;
+        out[i] = links[i].finish(out[i], uniform);
         next = x;
     }
 }
@@ -630,9 +866,6 @@ fn solve_scalar_path(
 /// path with redundant rows (a bridge hung from two anchors constrains more than its bodies' degrees of
 /// freedom) well conditioned, as constraint force mixing does.
 const REGULARIZATION: Real = 1e-6;
-
-/// How close to taut (m or rad) a one-sided row must be to take part in the position projection.
-const TAUT_MARGIN: f32 = 1e-2;
 
 /// Pivots smaller than this fraction of the largest diagonal entry count as zero: the row is redundant.
 const RELATIVE_PIVOT: Real = 1e-5;

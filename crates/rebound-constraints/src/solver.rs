@@ -21,7 +21,7 @@
 //! count, a step allocates nothing.
 
 use crate::coordinate::CoordinateRows;
-use crate::direct::{InvMass, JointRows, Link, MAX_ROWS, solve_path};
+use crate::direct::{InvMass, JointRows, Link, MAX_ROWS, activate_violations, solve_path};
 use crate::fixed::PreparedFixed;
 use crate::hinge::PreparedHinge;
 use crate::prismatic::PreparedPrismatic;
@@ -51,16 +51,21 @@ pub(crate) struct Stage {
 }
 
 /// Newton iterations of the position projection (the rows are re-linearised at the moved poses).
-const PROJECTION_ITERATIONS: usize = 2;
+const PROJECTION_ITERATIONS: usize = 4;
 
 /// A path whose worst position error is within this (m, or rad for angular rows) is not projected: 0.1 mm is
 /// below what a game shows, and a settled chain or bridge then costs nothing here.
 const PROJECTION_TOLERANCE: f32 = 1e-4;
 
-/// Nonlinear Gauss–Seidel sweeps (alternating direction) after the direct projection.
-const PROJECTION_SWEEPS: usize = 4;
+/// Nonlinear Gauss–Seidel sweeps (alternating direction) after the direct projection, at most; they stop once
+/// the path is within [`PROJECTION_TOLERANCE`], checked every [`PROJECTION_SWEEP_CHECK`] sweeps.
+const PROJECTION_SWEEPS: usize = 16;
 
-/// How many times a direct path solve may drop rows that would push and solve again.
+/// How many sweeps run between two measurements of the path's worst error.
+const PROJECTION_SWEEP_CHECK: usize = 4;
+
+/// How many times a direct path solve may drop rows that would push, add rows it would violate, and solve
+/// again.
 const ACTIVE_SET_ROUNDS: usize = 4;
 
 /// A joint kind prepared for the substeps.
@@ -534,21 +539,28 @@ impl JointSolver {
                 impulse_scale: 0.0,
             },
         };
-        for _ in 0..PROJECTION_ITERATIONS {
-            for path in 0..self.paths.len() {
-                let Some(range) = self.paths.get(path).cloned() else {
-                    continue;
+        for path in 0..self.paths.len() {
+            let Some(range) = self.paths.get(path).cloned() else {
+                continue;
+            };
+            let Self {
+                joints,
+                path_joints,
+                links,
+                solution,
+                saved,
+                probe,
+                ..
+            } = self;
+            let members = &path_joints[range];
+            let worst =
+                |joints: &mut [PreparedJoint], solver_bodies: &[SolverBody], probe: &mut Link| {
+                    members
+                        .iter()
+                        .map(|&index| violation(&mut joints[index], solver_bodies, &stage, probe))
+                        .fold(0.0f32, f32::max)
                 };
-                let Self {
-                    joints,
-                    path_joints,
-                    links,
-                    solution,
-                    saved,
-                    probe,
-                    ..
-                } = self;
-                let members = &path_joints[range];
+            for _ in 0..PROJECTION_ITERATIONS {
                 let mut before = 0.0f32;
                 for (k, &index) in members.iter().enumerate() {
                     let link = link_at(links, k);
@@ -558,14 +570,16 @@ impl JointSolver {
                 }
                 links.truncate(members.len());
                 if before <= PROJECTION_TOLERANCE {
-                    continue;
+                    break;
                 }
                 solve_links(joints, members, links, solution, solver_bodies);
                 // A Newton step can overshoot where the linearisation is poor (a light body between two
                 // nearly aligned links is moved far sideways): if the step makes the worst error larger,
-                // undo it and take half of it instead (then a quarter).
+                // undo it and take half of it instead (then a quarter). If even that fails, the next
+                // iteration would start from the same pose: stop.
                 save_bodies(joints, members, solver_bodies, saved);
                 let mut scale = 1.0;
+                let mut accepted = false;
                 for _ in 0..3 {
                     for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
                         let pair = &joints[index].pair;
@@ -574,41 +588,20 @@ impl JointSolver {
                             pair.store(solver_bodies, a, b);
                         }
                     }
-                    let probe = link_at(probe, 0);
-                    let after = members
-                        .iter()
-                        .map(|&index| violation(&mut joints[index], solver_bodies, &stage, probe))
-                        .fold(0.0f32, f32::max);
-                    if after <= before {
+                    if worst(joints, solver_bodies, link_at(probe, 0)) <= before {
+                        accepted = true;
                         break;
                     }
                     restore_bodies(saved, solver_bodies);
                     scale *= 0.5;
                 }
+                if !accepted {
+                    break;
+                }
             }
-        }
-        // Nonlinear Gauss–Seidel sweeps, alternating direction, take back what the linearisation missed —
-        // kept only where they do not make the path's worst error larger.
-        for path in 0..self.paths.len() {
-            let Some(range) = self.paths.get(path).cloned() else {
-                continue;
-            };
-            let Self {
-                joints,
-                path_joints,
-                saved,
-                probe,
-                ..
-            } = self;
-            let members = &path_joints[range];
+            // Nonlinear Gauss–Seidel sweeps, alternating direction, take back what the linearisation missed —
+            // kept only where they do not make the path's worst error larger.
             let probe = link_at(probe, 0);
-            let worst =
-                |joints: &mut [PreparedJoint], solver_bodies: &[SolverBody], probe: &mut Link| {
-                    members
-                        .iter()
-                        .map(|&index| violation(&mut joints[index], solver_bodies, &stage, probe))
-                        .fold(0.0f32, f32::max)
-                };
             let before = worst(joints, solver_bodies, probe);
             if before <= PROJECTION_TOLERANCE {
                 continue;
@@ -628,9 +621,16 @@ impl JointSolver {
                         j.pair.store(solver_bodies, a, b);
                     }
                 }
-            }
-            if worst(joints, solver_bodies, probe) > before {
-                restore_bodies(saved, solver_bodies);
+                if (sweep + 1) % PROJECTION_SWEEP_CHECK == 0 || sweep + 1 == PROJECTION_SWEEPS {
+                    let after = worst(joints, solver_bodies, probe);
+                    if after > before {
+                        restore_bodies(saved, solver_bodies);
+                        break;
+                    }
+                    if after <= PROJECTION_TOLERANCE {
+                        break;
+                    }
+                }
             }
         }
     }
@@ -913,14 +913,20 @@ fn solve_links(
         };
         links[slot].shared_with_next = Some((this.index_b == shared, next.index_b == shared));
     }
-    // Active set: a rope the solution would make push is released and the rest solved again.
-    for _ in 0..ACTIVE_SET_ROUNDS {
+    // Active set: a rope the solution would make push is released, a rope left out that the solution would
+    // stretch is added, and the system solved again; the last round's solution is the one applied.
+    for round in 0..ACTIVE_SET_ROUNDS {
         solve_path(
             links,
             |slot| joints[members[slot]].pair.load(solver_bodies),
             solution,
         );
-        let mut changed = false;
+        if round + 1 == ACTIVE_SET_ROUNDS {
+            break;
+        }
+        let mut changed = activate_violations(links, solution, |slot| {
+            joints[members[slot]].pair.load(solver_bodies)
+        });
         for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
             let pair = &joints[index].pair;
             if let Some((mut a, mut b)) = pair.load(solver_bodies)
