@@ -79,7 +79,14 @@ impl Side {
     /// `J_side·M⁻¹·other_sideᵀ`: how an impulse on `other` changes this row's `Ċ` through one body.
     #[inline]
     fn coupling(&self, m: &InvMass, other: &Side) -> f32 {
-        self.linear.dot(other.linear) * m.mass + self.angular.dot(m.inertia * other.angular)
+        self.coupling_turned(m, other, m.inertia * other.angular)
+    }
+
+    /// [`Side::coupling`] with `other`'s angular part already turned by the inverse inertia
+    /// (`turned = I⁻¹·other.angular`, shared by every row it is coupled with).
+    #[inline]
+    fn coupling_turned(&self, m: &InvMass, other: &Side, turned: Vec3) -> f32 {
+        self.linear.dot(other.linear) * m.mass + self.angular.dot(turned)
     }
 
     /// The velocity change an impulse `lambda` along this side gives the body.
@@ -420,10 +427,18 @@ impl Link {
     fn diagonal(&self) -> Block {
         let mut block = [[0.0; MAX_ROWS]; MAX_ROWS];
         let (ma, mb, rows) = (&self.rows.mass_a, &self.rows.mass_b, self.rows.rows());
+        // `I⁻¹·J_angular` of each row, once (not once per pair of rows).
+        let mut turned = [(Vec3::ZERO, Vec3::ZERO); MAX_ROWS];
+        for (t, r) in turned.iter_mut().zip(rows) {
+            *t = (ma.inertia * r.a.angular, mb.inertia * r.b.angular);
+        }
         for (i, ri) in rows.iter().enumerate() {
             for (j, rj) in rows.iter().enumerate() {
                 block[i][j] = if self.active[i] && self.active[j] {
-                    let k = Real::from(ri.a.coupling(ma, &rj.a) + ri.b.coupling(mb, &rj.b));
+                    let (ta, tb) = turned[j];
+                    let k = Real::from(
+                        ri.a.coupling_turned(ma, &rj.a, ta) + ri.b.coupling_turned(mb, &rj.b, tb),
+                    );
                     if i == j {
                         k * (1.0 + REGULARIZATION)
                     } else {
@@ -450,15 +465,20 @@ impl Link {
         } else {
             &self.rows.mass_a
         };
+        // The next link's sides on the shared body, with `I⁻¹·J_angular` computed once per row.
+        let mut sides = [(Side::default(), Vec3::ZERO); MAX_ROWS];
+        for (side, rj) in sides.iter_mut().zip(next.rows.rows()) {
+            let sj = if next_b { rj.b } else { rj.a };
+            *side = (sj, mass.inertia * sj.angular);
+        }
         for (i, ri) in self.rows.rows().iter().enumerate() {
             if !self.active[i] {
                 continue;
             }
             let si = if this_b { &ri.b } else { &ri.a };
-            for (j, rj) in next.rows.rows().iter().enumerate() {
+            for (j, (sj, turned)) in sides.iter().enumerate().take(next.rows.count) {
                 if next.active[j] {
-                    let sj = if next_b { &rj.b } else { &rj.a };
-                    block[i][j] = Real::from(si.coupling(mass, sj));
+                    block[i][j] = Real::from(si.coupling_turned(mass, sj, *turned));
                 }
             }
         }
