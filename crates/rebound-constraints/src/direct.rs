@@ -26,7 +26,7 @@
 //!
 //! solves `K·x = r` in O(n). The soft step of all rows at once takes `r = mass_scale∘(Ċ + bias) +
 //! impulse_scale∘(K·λ)` row by row and `Δλ = −x` (for one row this is exactly the Gauss–Seidel row update of
-//! [`crate::part::solve_row`]; see [`solve_path`] for why not each row's soft step from one solve), clamped
+//! [`crate::part::solve_row`]; see `solve_path` for why not each row's soft step from one solve), clamped
 //! to the bounds. A rope that is slack and not closing its slack this substep is left out of the system (its
 //! row is released); after a solve, a rope the solution would make push is dropped, a rope left out that it
 //! would stretch is added, and the system solved again (up to 4 rounds), so slack links never push and links

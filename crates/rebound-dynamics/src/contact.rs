@@ -363,8 +363,8 @@ impl ContactSolver {
     /// `n·(Δq·r − r) = (Δq⁻¹·n − n)·r` for a rotation, so the two rotations are done once per manifold instead of
     /// once per point and body.
     ///
-    /// Manifolds without restitution or rolling resistance are solved four at a time by the wide path
-    /// ([`wide`]), the rest one by one here, after them.
+    /// Manifolds without restitution or rolling resistance are solved four at a time, in graph-coloured
+    /// batches in `Vec4` lanes (`docs/physics.md`, Contacts); the rest one by one after them.
     pub fn solve(&mut self, bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
         for batch in &self.batches {
             batch.solve(&mut self.slots, bodies, ctx, bias);
