@@ -487,8 +487,8 @@ impl ContactSolver {
     /// Calls `f(source, point, normal_impulse, tangent_impulse, max_normal_impulse)` for every point of every
     /// prepared manifold: the index of its source contact, the point's index in it, its accumulated normal
     /// impulse (N·s), its friction impulse as a world vector (N·s) and the largest normal impulse it applied
-    /// in one iteration this step (N·s). What [`ContactSolver::store_impulses`] and
-    /// [`ContactSolver::max_normal_impulses`] report, in one pass, for a caller that keeps its own contacts.
+    /// in one iteration this step (N·s) — what contact events report as the hit strength. For a caller that
+    /// keeps its own contacts: one pass gives it everything [`ContactSolver::store_impulses`] writes and more.
     pub fn for_each_point_result(&self, mut f: impl FnMut(usize, usize, f32, Vec3, f32)) {
         let basis = |c: &PreparedContact, [x, y]: [f32; 2]| c.tangents[0] * x + c.tangents[1] * y;
         for &index in &self.scalar {
@@ -509,28 +509,6 @@ impl ContactSolver {
                 }
             }
         }
-    }
-
-    /// For each prepared manifold, the index of its source contact and the largest normal impulse any of its
-    /// points applied in one iteration this step (N·s) — what contact events report as the hit strength.
-    pub fn max_normal_impulses(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
-        let scalar = self.scalar.iter().map(|&index| {
-            let c = &self.contacts[index];
-            let max = self.points[c.first_point..][..c.point_count]
-                .iter()
-                .map(|p| p.max_normal_impulse)
-                .fold(0.0, f32::max);
-            (c.source, max)
-        });
-        let wide = self
-            .batches
-            .iter()
-            .flat_map(|batch| batch.results(&self.slots, &self.contacts))
-            .map(|(index, impulses)| {
-                let max = impulses.map(|(_, _, max)| max).fold(0.0, f32::max);
-                (self.contacts[index].source, max)
-            });
-        scalar.chain(wide)
     }
 }
 
@@ -604,9 +582,7 @@ impl PrepareInput<'_> {
             wt_b,
         }
     }
-}
 
-impl PrepareInput<'_> {
     /// [`PrepareInput::point`] with the pre-step normal velocity, for the scalar path (which bounces).
     fn scalar_point(&self, c: &PreparedContact, point: &ContactPoint) -> PreparedPoint {
         let (sa, sb) = (&self.bodies[c.body_a], &self.bodies[c.body_b]);

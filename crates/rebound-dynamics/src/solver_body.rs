@@ -46,14 +46,6 @@ impl SolverBody {
         }
     }
 
-    /// The world-space displacement of a material point that sat at `anchor` (relative to the centre of mass,
-    /// world axes) when the step began: `Δp + Δq·r − r` (m).
-    #[inline]
-    #[must_use]
-    pub fn anchor_displacement(&self, anchor: Vec3) -> Vec3 {
-        self.delta_position + self.delta_rotation * anchor - anchor
-    }
-
     /// Velocity of the material point at `anchor` (relative to the centre of mass): `v + ω × r` (m/s).
     #[inline]
     #[must_use]
