@@ -202,8 +202,7 @@ impl<B: CollisionBackend> World<B> {
 
         // Warm start: copy impulses from last step's manifold with the same key, point by point by feature id;
         // a persisting point also keeps its lever arms (see `LEVER_ARM_TOLERANCE`). Both lists are sorted by
-        // key, so one forward walk through last step's finds every match (a binary search per manifold missed
-        // the cache at every probe).
+        // key, so one forward walk through last step's finds every match (`walk_to`).
         //
         // The same walk finds the manifolds whose approach speed (m/s, before the step) is needed: those of a
         // contact that may begin this step (no touching manifold last step: the speed goes in the event) and
@@ -214,8 +213,7 @@ impl<B: CollisionBackend> World<B> {
         let mut previous = self.state.manifolds.iter().peekable();
         for manifold in &mut manifolds {
             let key = manifold.order_key();
-            while previous.next_if(|m| m.order_key() < key).is_some() {}
-            let old = previous.next_if(|m| m.order_key() == key);
+            let old = walk_to(&mut previous, &key, ContactManifold::order_key);
             let (Some(body_a), Some(body_b)) =
                 (bodies.get(manifold.body_a), bodies.get(manifold.body_b))
             else {
@@ -652,10 +650,8 @@ impl<B: CollisionBackend> World<B> {
                 i += 1;
             }
             s.touching.push(pair);
-            // Both lists are sorted: a forward walk through last step's (a binary search per pair missed the
-            // cache at every probe).
-            while last.next_if(|&&old| old < pair).is_some() {}
-            if last.next_if(|&&old| old == pair).is_none() {
+            // Both lists are sorted: a forward walk through last step's.
+            if walk_to(&mut last, &pair, |&old| old).is_none() {
                 contact_events.push(Event::ContactBegan {
                     body_a: pair.0,
                     body_b: pair.1,
@@ -665,8 +661,7 @@ impl<B: CollisionBackend> World<B> {
         }
         let mut now = s.touching.iter().peekable();
         for pair in &self.state.touching {
-            while now.next_if(|&&new| new < *pair).is_some() {}
-            if now.next_if(|&&new| new == *pair).is_none() {
+            if walk_to(&mut now, pair, |&new| new).is_none() {
                 contact_events.push(Event::ContactEnded {
                     body_a: pair.0,
                     body_b: pair.1,
@@ -688,6 +683,18 @@ impl<B: CollisionBackend> World<B> {
 }
 
 /// Whether a backend's manifold can be used: live, distinct bodies, finite unit normal, finite points.
+/// One step of a forward walk through a list sorted by `key_of`, for keys asked in increasing order: skips the
+/// items below `key` and returns the one equal to it, if any (O(n + m) for two sorted lists, and sequential
+/// reads, where a binary search per key misses the cache at every probe).
+fn walk_to<'a, T: 'a, K: Ord>(
+    walk: &mut core::iter::Peekable<impl Iterator<Item = &'a T>>,
+    key: &K,
+    key_of: impl Fn(&T) -> K,
+) -> Option<&'a T> {
+    while walk.next_if(|item| key_of(item) < *key).is_some() {}
+    walk.next_if(|item| key_of(item) == *key)
+}
+
 /// A contact point's lever arms at the bodies' current poses: from A's and from B's centre of mass to the
 /// point, world axes (m).
 fn lever_arms(
