@@ -4,10 +4,11 @@
 //!
 //! # Pair cache
 //!
-//! Each candidate pair keeps its parry manifolds and its [`ContactManifoldsWorkspace`] (the sub-shape
-//! bookkeeping of meshes, height fields and compounds) in an ordered map keyed by the ordered collider pair
-//! (a vector sorted by key, merged with the step's sorted candidate list in one pass), so iteration is in
-//! handle order and pairs that stop being candidates are dropped.
+//! A candidate pair with a composite shape (mesh, height field, compound) keeps its parry manifolds and its
+//! [`ContactManifoldsWorkspace`] (the sub-shape bookkeeping) in an ordered map keyed by the ordered collider
+//! pair (a vector sorted by key, merged with the step's sorted candidate list in one pass), so iteration is in
+//! handle order and pairs that stop being candidates are dropped. A pair of two convex shapes keeps nothing:
+//! it is computed in one scratch manifold shared by all such pairs (see [`NarrowPhase`]).
 //!
 //! The prediction distance of a pair — how far apart its colliders may be for parry to report points — is
 //! the speculative margin plus what the pair can close in the step: `(|v₁ − v₂| + |ω₁|·r₁ + |ω₂|·r₂)·dt`,
@@ -65,8 +66,7 @@ impl PairCache {
     }
 }
 
-/// Forgets a parry manifold's contact points, normals and sub-shape bookkeeping (see the module docs), keeping
-/// its point buffer.
+/// Forgets a parry manifold's contact points and normals (see the module docs), keeping its point buffer.
 fn forget_manifold_history(manifold: &mut ParryManifold<(), ()>) {
     manifold.points.clear();
     // Room for a face-on-face clip (up to 8 points before reduction), reserved once per manifold, so that a
