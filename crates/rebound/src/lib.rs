@@ -1,6 +1,7 @@
 #![doc = include_str!("../README.md")]
 
 mod backend;
+mod box_box;
 mod broad_phase;
 mod collider;
 mod collider_handle;

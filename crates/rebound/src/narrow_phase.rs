@@ -1,6 +1,6 @@
 //! The narrow phase (second half of the collide stage): parry3d's persistent contact manifolds for each
-//! candidate pair, turned into the world's plain-data [`ContactManifold`] at one seam,
-//! [`to_world_manifold`].
+//! candidate pair (two boxes: our own generator, [`crate::box_box`], into the same parry manifold), turned
+//! into the world's plain-data [`ContactManifold`] at one seam, [`to_world_manifold`].
 //!
 //! # Pair cache
 //!
@@ -35,6 +35,7 @@
 //! [`MAX_MANIFOLD_POINTS`] points, a 32-bit feature id per point and a 64-bit key that is stable for a
 //! collider pair and sub-shape pair.
 
+use crate::box_box::box_box_manifold;
 use crate::broad_phase::BroadPhase;
 use crate::shape::{from_parry_pose, to_parry_pose};
 use crate::{Collider, ColliderHandle, ColliderSet};
@@ -149,12 +150,28 @@ impl NarrowPhase {
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
             if shape1.is_convex() && shape2.is_convex() {
-                // What parry's dispatcher does for two convex shapes, in the scratch manifold.
+                // What parry's dispatcher does for two convex shapes, in the scratch manifold; two boxes
+                // take the specialised generator (crate::box_box).
                 let manifold = &mut self.convex;
                 forget_manifold_history(manifold);
-                let computed = DefaultQueryDispatcher.contact_manifold_convex_convex(
-                    &pos12, shape1, shape2, None, None, prediction, manifold,
-                );
+                let computed =
+                    if let (Some(box1), Some(box2)) = (shape1.as_cuboid(), shape2.as_cuboid()) {
+                        box_box_manifold(
+                            box1.half_extents,
+                            box2.half_extents,
+                            pos12.rotation,
+                            pos12.translation,
+                            prediction,
+                            manifold,
+                        );
+                        Ok(())
+                    } else {
+                        DefaultQueryDispatcher
+                            .contact_manifold_convex_convex(
+                                &pos12, shape1, shape2, None, None, prediction, manifold,
+                            )
+                            .map(|_| ())
+                    };
                 if computed.is_ok() {
                     out.extend(to_world_manifold(key_base, c1, b1, c2, manifold));
                 }
