@@ -35,6 +35,14 @@
 //! a bridge hung from two anchors has redundant rows and a singular `K`. A path of one-row joints (a rope
 //! chain) takes a scalar sweep.
 //!
+//! Each `Sᵢ` is symmetric positive semi-definite (a Schur complement of `K`), so it is factorised as
+//! `L·D·Lᵀ` without pivoting (`ldl_factor`), and the sweep is carried in the factors: `Cᵢ₋₁ᵀ·C'ᵢ₋₁ =
+//! Wᵀ·D⁻¹·W` with `W = L⁻¹·Cᵢ₋₁`, symmetric, so only its upper triangle is formed (see `block_sweep`). The
+//! blocks are as wide as the path's widest joint (5 × 5 for hinges, 3 × 3 for ball joints), with fixed loop
+//! bounds; rows of a narrower link, and rows not in the system, are zero rows and columns, whose pivots
+//! vanish and whose unknowns are 0. `Bᵢ` is built from its upper triangle, with each row's `I⁻¹·J_angular`
+//! turned once when the row is built (`JointRows::turned`), shared by `Bᵢ`, `Cᵢ` and the impulses' updates.
+//!
 //! # Positions
 //!
 //! The same machinery projects positions after the substeps (`JointSolver::project_positions`): with the
@@ -44,13 +52,13 @@
 
 #![allow(
     clippy::needless_range_loop,
-    reason = "dense block algebra (Thomas sweep, Gaussian elimination) reads as the formulas with indices"
+    reason = "dense block algebra (Thomas sweep, LDLᵀ factorisation) reads as the formulas with indices"
 )]
 
 use crate::part::RowTarget;
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
-use rebound_math::{Mat3, Vec3};
+use rebound_math::{Mat3, Vec3, Vec4};
 
 /// The most rows one joint gives the direct solve: a hinge's 3 point rows and 2 alignment rows.
 pub(crate) const MAX_ROWS: usize = 5;
@@ -76,32 +84,28 @@ pub(crate) struct InvMass {
 }
 
 impl Side {
-    /// `J_side·M⁻¹·other_sideᵀ`: how an impulse on `other` changes this row's `Ċ` through one body.
-    #[inline]
-    fn coupling(&self, m: &InvMass, other: &Side) -> f32 {
-        self.coupling_turned(m, other, m.inertia * other.angular)
-    }
-
-    /// [`Side::coupling`] with `other`'s angular part already turned by the inverse inertia
-    /// (`turned = I⁻¹·other.angular`, shared by every row it is coupled with).
+    /// `J_side·M⁻¹·other_sideᵀ`: how an impulse on `other` changes this row's `Ċ` through one body, with
+    /// `other`'s angular part already turned by the body's inverse inertia (`turned = I⁻¹·other.angular`,
+    /// see [`JointRows::turned`]): `m⁻¹·(linear·other.linear) + angular·turned`.
     #[inline]
     fn coupling_turned(&self, m: &InvMass, other: &Side, turned: Vec3) -> f32 {
         self.linear.dot(other.linear) * m.mass + self.angular.dot(turned)
     }
 
-    /// The velocity change an impulse `lambda` along this side gives the body.
+    /// The velocity change an impulse `lambda` along this side gives the body (`turned = I⁻¹·angular`):
+    /// `Δv = m⁻¹·linear·λ`, `Δω = I⁻¹·angular·λ`.
     #[inline]
-    fn apply(&self, m: &InvMass, body: &mut SolverBody, lambda: f32) {
+    fn apply(&self, m: &InvMass, turned: Vec3, body: &mut SolverBody, lambda: f32) {
         body.linear_velocity += self.linear * (m.mass * lambda);
-        body.angular_velocity += m.inertia * (self.angular * lambda);
+        body.angular_velocity += turned * lambda;
     }
 
-    /// The displacement a position impulse `p` (kg·m) along this side gives the body: `Δx = M⁻¹·Jᵀ·p`, the
-    /// rotation as a small rotation vector.
+    /// The displacement a position impulse `p` (kg·m) along this side gives the body (`turned =
+    /// I⁻¹·angular`): `Δx = M⁻¹·Jᵀ·p`, the rotation as a small rotation vector.
     #[inline]
-    fn displace(&self, m: &InvMass, body: &mut SolverBody, p: f32) {
+    fn displace(&self, m: &InvMass, turned: Vec3, body: &mut SolverBody, p: f32) {
         body.delta_position += self.linear * (m.mass * p);
-        let turn = m.inertia * (self.angular * p);
+        let turn = turned * p;
         if turn != Vec3::ZERO {
             body.delta_rotation = integrate_rotation(
                 body.delta_rotation,
@@ -179,34 +183,15 @@ impl Row {
     fn velocity(&self, a: &SolverBody, b: &SolverBody) -> f32 {
         self.a.velocity(a) + self.b.velocity(b)
     }
-
-    /// `J·M⁻¹·Jᵀ` of the row with itself.
-    #[inline]
-    fn self_coupling(&self, ma: &InvMass, mb: &InvMass) -> f32 {
-        self.a.coupling(ma, &self.a) + self.b.coupling(mb, &self.b)
-    }
-
-    /// Applies the impulse `lambda` to both bodies.
-    #[inline]
-    fn apply(
-        &self,
-        ma: &InvMass,
-        mb: &InvMass,
-        a: &mut SolverBody,
-        b: &mut SolverBody,
-        lambda: f32,
-    ) {
-        if lambda != 0.0 {
-            self.a.apply(ma, a, lambda);
-            self.b.apply(mb, b, lambda);
-        }
-    }
 }
 
 /// The rows one joint contributes to a pass, with its bodies' inverse masses.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct JointRows {
     pub rows: [Row; MAX_ROWS],
+    /// `[I_a⁻¹·J_a,angular, I_b⁻¹·J_b,angular]` of each row, turned once when the row is pushed (with the
+    /// masses given to [`JointRows::new`] or [`Link::reset`], which no row outlives).
+    turned: [[Vec3; 2]; MAX_ROWS],
     pub count: usize,
     pub mass_a: InvMass,
     pub mass_b: InvMass,
@@ -217,17 +202,62 @@ impl JointRows {
     pub fn new(mass_a: InvMass, mass_b: InvMass) -> Self {
         Self {
             rows: [Row::angular(Vec3::ZERO, RowTarget::speed(0.0)); MAX_ROWS],
+            turned: [[Vec3::ZERO; 2]; MAX_ROWS],
             count: 0,
             mass_a,
             mass_b,
         }
     }
 
-    /// Adds a row (ignored past [`MAX_ROWS`]).
+    /// Adds a row (ignored past [`MAX_ROWS`]) and turns its angular parts by the inverse inertias.
     pub fn push(&mut self, row: Row) {
-        if let Some(slot) = self.rows.get_mut(self.count) {
+        if let (Some(slot), Some(turned)) = (
+            self.rows.get_mut(self.count),
+            self.turned.get_mut(self.count),
+        ) {
             *slot = row;
+            *turned = [
+                self.mass_a.inertia * row.a.angular,
+                self.mass_b.inertia * row.b.angular,
+            ];
             self.count += 1;
+        }
+    }
+
+    /// `[I_a⁻¹·J_a,angular, I_b⁻¹·J_b,angular]` of row `k` (zero past the rows pushed).
+    #[inline]
+    fn turned(&self, k: usize) -> [Vec3; 2] {
+        self.turned.get(k).copied().unwrap_or([Vec3::ZERO; 2])
+    }
+
+    /// `J·M⁻¹·Jᵀ` of row `k` with itself (0 past the rows pushed).
+    #[inline]
+    fn self_coupling(&self, k: usize) -> f32 {
+        let Some(row) = self.rows.get(k) else {
+            return 0.0;
+        };
+        let [ta, tb] = self.turned(k);
+        row.a.coupling_turned(&self.mass_a, &row.a, ta)
+            + row.b.coupling_turned(&self.mass_b, &row.b, tb)
+    }
+
+    /// Applies the impulse `lambda` along row `k` to both bodies.
+    #[inline]
+    fn apply(&self, k: usize, a: &mut SolverBody, b: &mut SolverBody, lambda: f32) {
+        if let (Some(row), true) = (self.rows.get(k), lambda != 0.0) {
+            let [ta, tb] = self.turned(k);
+            row.a.apply(&self.mass_a, ta, a, lambda);
+            row.b.apply(&self.mass_b, tb, b, lambda);
+        }
+    }
+
+    /// Displaces both bodies by the position impulse `p` along row `k`.
+    #[inline]
+    fn displace(&self, k: usize, a: &mut SolverBody, b: &mut SolverBody, p: f32) {
+        if let Some(row) = self.rows.get(k) {
+            let [ta, tb] = self.turned(k);
+            row.a.displace(&self.mass_a, ta, a, p);
+            row.b.displace(&self.mass_b, tb, b, p);
         }
     }
 
@@ -267,9 +297,12 @@ pub(crate) struct Link {
     /// Whether this is a position projection: the rows' biases hold their position errors `C`, the solve is
     /// `K·x = C` and the result moves the bodies instead of changing their velocities.
     positions: bool,
-    /// Scratch of the Thomas sweep: `C'` and `r'`.
-    c_prime: Block,
-    r_prime: [Real; MAX_ROWS],
+    /// Scratch of the Thomas sweep (see [`solve_block_path`]): the strictly lower part of the unit lower
+    /// triangular `L` of `Sᵢ = L·D·Lᵀ`, then `V = D⁻¹·L⁻¹·Cᵢ` and `y = D⁻¹·L⁻¹·r̃ᵢ`. For a one-row link (the
+    /// scalar sweep) `L` is 1 and `V`, `y` are the single entries `c' = c/s`, `r' = r̃/s`.
+    factor: Block,
+    v: Block,
+    y: [Real; MAX_ROWS],
 }
 
 impl Link {
@@ -281,8 +314,9 @@ impl Link {
             active: [false; MAX_ROWS],
             shared_with_next: None,
             positions: false,
-            c_prime: [[0.0; MAX_ROWS]; MAX_ROWS],
-            r_prime: [0.0; MAX_ROWS],
+            factor: [[0.0; MAX_ROWS]; MAX_ROWS],
+            v: [[0.0; MAX_ROWS]; MAX_ROWS],
+            y: [0.0; MAX_ROWS],
         }
     }
 
@@ -333,20 +367,20 @@ impl Link {
     /// on one side (a rope, a limit) takes part if, without its own impulse, the bodies would violate it this
     /// substep (`Ċ + bias` on the wrong side); equality rows always take part.
     pub fn activate(&mut self, a: &mut SolverBody, b: &mut SolverBody) {
-        let (ma, mb) = (self.rows.mass_a, self.rows.mass_b);
-        for (i, row) in self.rows.rows.iter().enumerate().take(self.rows.count) {
-            let own = row.self_coupling(&ma, &mb) * self.lambda[i];
+        for i in 0..self.rows.count.min(MAX_ROWS) {
+            let row = &self.rows.rows[i];
+            let (upper, lower) = (row.upper == 0.0, row.lower == 0.0);
+            // An equality row takes part whatever its state: no need for its free velocity.
+            if !upper && !lower {
+                self.active[i] = true;
+                continue;
+            }
+            let own = self.rows.self_coupling(i) * self.lambda[i];
             let free = row.velocity(a, b) - own + row.target.bias;
-            let active = if row.upper == 0.0 {
-                free > 0.0
-            } else if row.lower == 0.0 {
-                free < 0.0
-            } else {
-                true
-            };
+            let active = if upper { free > 0.0 } else { free < 0.0 };
             self.active[i] = active;
             if !active {
-                row.apply(&ma, &mb, a, b, -self.lambda[i]);
+                self.rows.apply(i, a, b, -self.lambda[i]);
                 self.lambda[i] = 0.0;
             }
         }
@@ -423,66 +457,91 @@ impl Link {
         out
     }
 
-    /// The diagonal block `B` (identity for inactive rows, so that they solve to 0).
-    fn diagonal(&self) -> Block {
-        let mut block = [[0.0; MAX_ROWS]; MAX_ROWS];
-        let (ma, mb, rows) = (&self.rows.mass_a, &self.rows.mass_b, self.rows.rows());
-        // `I⁻¹·J_angular` of each row, once (not once per pair of rows).
-        let mut turned = [(Vec3::ZERO, Vec3::ZERO); MAX_ROWS];
-        for (t, r) in turned.iter_mut().zip(rows) {
-            *t = (ma.inertia * r.a.angular, mb.inertia * r.b.angular);
+    /// The rows that take part in the system: active ones (never one past the row count).
+    fn live_rows(&self) -> [bool; MAX_ROWS] {
+        let mut live = [false; MAX_ROWS];
+        for (k, (live, &active)) in live.iter_mut().zip(&self.active).enumerate() {
+            *live = active && k < self.rows.count;
         }
-        for (i, ri) in rows.iter().enumerate() {
-            for (j, rj) in rows.iter().enumerate() {
-                block[i][j] = if self.active[i] && self.active[j] {
-                    let (ta, tb) = turned[j];
-                    let k = Real::from(
-                        ri.a.coupling_turned(ma, &rj.a, ta) + ri.b.coupling_turned(mb, &rj.b, tb),
-                    );
-                    if i == j {
-                        k * (1.0 + REGULARIZATION)
-                    } else {
-                        k
-                    }
-                } else if i == j {
-                    1.0
-                } else {
-                    0.0
-                };
-            }
-        }
-        block
+        live
     }
 
-    /// The coupling block `C` of this link's rows with the next link's through their shared body.
-    fn coupling(&self, next: &Link) -> Block {
-        let mut block = [[0.0; MAX_ROWS]; MAX_ROWS];
-        let Some((this_b, next_b)) = self.shared_with_next else {
-            return block;
-        };
-        let mass = if this_b {
-            &self.rows.mass_b
-        } else {
-            &self.rows.mass_a
-        };
-        // The next link's sides on the shared body, with `I⁻¹·J_angular` computed once per row.
-        let mut sides = [(Side::default(), Vec3::ZERO); MAX_ROWS];
-        for (side, rj) in sides.iter_mut().zip(next.rows.rows()) {
-            let sj = if next_b { rj.b } else { rj.a };
-            *side = (sj, mass.inertia * sj.angular);
+    /// The diagonal block `B` of this link (`J·M⁻¹·Jᵀ` of its rows over both bodies, each diagonal entry
+    /// regularised) and its coupling block `C` with `next` through their shared body, over the first `N`
+    /// rows. A row not in the system — inactive, or past the link's row count — has a zero row and column
+    /// in both, which the factorisation ([`ldl_factor`]) solves to 0.
+    ///
+    /// `B` is symmetric: its upper triangle is computed and mirrored. Each row's `I⁻¹·J_angular`, turned once
+    /// when the row was pushed ([`JointRows::turned`]), serves both blocks: with `sᵢ` this link's side of row
+    /// `i` on the shared body and `sⱼ` the next link's, `Cᵢⱼ = sⱼ·M⁻¹·sᵢᵀ = m⁻¹·(sⱼ.linear·sᵢ.linear) +
+    /// sⱼ.angular·(I⁻¹·sᵢ.angular)`, so the next link's rows are not turned again here. The entries are
+    /// summed in f32 (the precision of the rows), four lanes at a time, and the blocks kept in f64.
+    fn blocks<const N: usize>(&self, next: Option<&Link>) -> (Block, Block) {
+        let mut b = [[0.0; MAX_ROWS]; MAX_ROWS];
+        let mut c = [[0.0; MAX_ROWS]; MAX_ROWS];
+        let (ma, mb, rows) = (&self.rows.mass_a, &self.rows.mass_b, &self.rows.rows);
+        let live = self.live_rows();
+        // Each row's Jacobian `[J_a,linear, J_a,angular, J_b,linear, J_b,angular]` and `M⁻¹·Jᵀ` in the same
+        // order, as 4-lane vectors (w = 0): an entry is then four lane products summed once.
+        let lanes = |v: Vec3| v.extend(0.0);
+        let mut jacobian = [[Vec4::ZERO; 4]; MAX_ROWS];
+        let mut inverse = [[Vec4::ZERO; 4]; MAX_ROWS];
+        for k in 0..N {
+            if live[k] {
+                let (row, [ta, tb]) = (&rows[k], self.rows.turned(k));
+                jacobian[k] = [row.a.linear, row.a.angular, row.b.linear, row.b.angular].map(lanes);
+                inverse[k] = [row.a.linear * ma.mass, ta, row.b.linear * mb.mass, tb].map(lanes);
+            }
         }
-        for (i, ri) in self.rows.rows().iter().enumerate() {
-            if !self.active[i] {
+        // Bᵢⱼ = Jᵢ·M⁻¹·Jⱼᵀ over both bodies, i ≤ j;   Bᵢᵢ·(1 + ε)
+        for i in 0..N {
+            if !live[i] {
                 continue;
             }
-            let si = if this_b { &ri.b } else { &ri.a };
-            for (j, (sj, turned)) in sides.iter().enumerate().take(next.rows.count) {
-                if next.active[j] {
-                    block[i][j] = Real::from(si.coupling_turned(mass, sj, *turned));
+            let ji = &jacobian[i];
+            for j in i..N {
+                if !live[j] {
+                    continue;
+                }
+                let wj = &inverse[j];
+                let k = Real::from(
+                    (ji[0] * wj[0] + ji[1] * wj[1] + ji[2] * wj[2] + ji[3] * wj[3]).element_sum(),
+                );
+                if i == j {
+                    b[i][i] = k * (1.0 + REGULARIZATION);
+                } else {
+                    b[i][j] = k;
+                    b[j][i] = k;
                 }
             }
         }
-        block
+        let (Some(next), Some((this_b, next_b))) = (next, self.shared_with_next) else {
+            return (b, c);
+        };
+        // Cᵢⱼ = sⱼ·(M⁻¹·sᵢᵀ) through the shared body (`s` = `[linear, angular]` of a row's side on it).
+        let shared = if this_b { 2 } else { 0 };
+        let next_live = next.live_rows();
+        let mut next_sides = [[Vec4::ZERO; 2]; MAX_ROWS];
+        for j in 0..N {
+            if next_live[j] {
+                let row = &next.rows.rows[j];
+                let side = if next_b { &row.b } else { &row.a };
+                next_sides[j] = [side.linear, side.angular].map(lanes);
+            }
+        }
+        for i in 0..N {
+            if !live[i] {
+                continue;
+            }
+            let (wl, wa) = (inverse[i][shared], inverse[i][shared + 1]);
+            for j in 0..N {
+                if next_live[j] {
+                    let [sl, sa] = next_sides[j];
+                    c[i][j] = Real::from((sl * wl + sa * wa).element_sum());
+                }
+            }
+        }
+        (b, c)
     }
 
     /// Active-set step: deactivates (and releases) every active row whose update from `x` would cross a bound
@@ -494,16 +553,16 @@ impl Link {
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) -> bool {
-        let (ma, mb) = (self.rows.mass_a, self.rows.mass_b);
         let mut any = false;
-        for (i, row) in self.rows.rows.iter().enumerate().take(self.rows.count) {
-            if !self.active[i] {
+        for i in 0..self.rows.count.min(MAX_ROWS) {
+            let row = &self.rows.rows[i];
+            if !self.active[i] || (row.upper != 0.0 && row.lower != 0.0) {
                 continue;
             }
             let new = self.lambda[i] - x[i] as f32;
             if (row.upper == 0.0 && new > 0.0) || (row.lower == 0.0 && new < 0.0) {
                 self.active[i] = false;
-                row.apply(&ma, &mb, a, b, -self.lambda[i]);
+                self.rows.apply(i, a, b, -self.lambda[i]);
                 self.lambda[i] = 0.0;
                 any = true;
             }
@@ -528,19 +587,20 @@ impl Link {
             if !self.active[k] {
                 continue;
             }
+            let [ta, tb] = self.rows.turned(k);
             let coupling = match shared {
                 None => {
-                    row.a.coupling(&self.rows.mass_a, &other.a)
-                        + row.b.coupling(&self.rows.mass_b, &other.b)
+                    row.a.coupling_turned(&self.rows.mass_a, &other.a, ta)
+                        + row.b.coupling_turned(&self.rows.mass_b, &other.b, tb)
                 }
                 Some((row_b, own_b)) => {
                     let side = if row_b { &row.b } else { &row.a };
-                    let (other, mass) = if own_b {
-                        (&other.b, &self.rows.mass_b)
+                    let (other, mass, turned) = if own_b {
+                        (&other.b, &self.rows.mass_b, tb)
                     } else {
-                        (&other.a, &self.rows.mass_a)
+                        (&other.a, &self.rows.mass_a, ta)
                     };
-                    side.coupling(mass, other)
+                    side.coupling_turned(mass, other, turned)
                 }
             };
             change += coupling * self.increment(k, x[k]);
@@ -556,30 +616,31 @@ impl Link {
         if self.rows.count != 1 || next.rows.count != 1 || !self.active[0] || !next.active[0] {
             return 0.0;
         }
+        // As in `Link::blocks`: this link's side turned, the next link's side dotted with it.
         let (ri, rj) = (&self.rows.rows[0], &next.rows.rows[0]);
-        let (si, mass) = if this_b {
-            (&ri.b, &self.rows.mass_b)
+        let [ta, tb] = self.rows.turned(0);
+        let (si, mass, turned) = if this_b {
+            (&ri.b, &self.rows.mass_b, tb)
         } else {
-            (&ri.a, &self.rows.mass_a)
+            (&ri.a, &self.rows.mass_a, ta)
         };
         let sj = if next_b { &rj.b } else { &rj.a };
-        Real::from(si.coupling(mass, sj))
+        Real::from(sj.coupling_turned(mass, si, turned))
     }
 
     /// Step 4: the soft update of each active row from the solution `x`, clamped; applies the increments.
     pub fn apply_solution(&mut self, x: &[Real; MAX_ROWS], a: &mut SolverBody, b: &mut SolverBody) {
-        let (ma, mb) = (self.rows.mass_a, self.rows.mass_b);
-        for (i, row) in self.rows.rows.iter().enumerate().take(self.rows.count) {
+        for i in 0..self.rows.count.min(MAX_ROWS) {
             if !self.active[i] {
                 continue;
             }
+            let row = &self.rows.rows[i];
             let new = (self.lambda[i] - x[i] as f32).max(row.lower).min(row.upper);
             if self.positions {
-                row.a.displace(&ma, a, new);
-                row.b.displace(&mb, b, new);
+                self.rows.displace(i, a, b, new);
                 continue;
             }
-            row.apply(&ma, &mb, a, b, new - self.lambda[i]);
+            self.rows.apply(i, a, b, new - self.lambda[i]);
             self.lambda[i] = new;
         }
     }
@@ -639,8 +700,7 @@ pub(crate) fn activate_violations(
 /// first order, never past it, so repeated sweeps cannot diverge. Used after the direct projection to take
 /// back what its linearisation missed.
 pub(crate) fn project_rows(rows: &JointRows, a: &mut SolverBody, b: &mut SolverBody) {
-    let (ma, mb) = (rows.mass_a, rows.mass_b);
-    for row in rows.rows() {
+    for (k, row) in rows.rows().iter().enumerate() {
         let c = row.target.bias;
         let violated = if row.upper == 0.0 {
             c > 0.0
@@ -649,13 +709,11 @@ pub(crate) fn project_rows(rows: &JointRows, a: &mut SolverBody, b: &mut SolverB
         } else {
             c != 0.0
         };
-        let k = row.self_coupling(&ma, &mb);
-        if !violated || k <= 0.0 {
+        let mass = rows.self_coupling(k);
+        if !violated || mass <= 0.0 {
             continue;
         }
-        let p = -c / k;
-        row.a.displace(&ma, a, p);
-        row.b.displace(&mb, b, p);
+        rows.displace(k, a, b, -c / mass);
     }
 }
 
@@ -713,103 +771,128 @@ fn uniform_softness(links: &[Link]) -> Option<Softness> {
     Some(common.unwrap_or(Softness::RIGID))
 }
 
-/// [`solve_path`] for paths with multi-row joints: the block Thomas algorithm. With a `uniform` softness the
-/// right-hand side is the residual alone and the soft step is finished in the back substitution.
+/// [`solve_path`] for paths with multi-row joints: the block Thomas algorithm, over blocks of the path's
+/// largest row count (a link with fewer rows is padded with rows that solve to 0; a path of hinges runs the
+/// 5 × 5 sweep, one of ball joints the 3 × 3). With a `uniform` softness the right-hand side is the residual
+/// alone and the soft step is finished in the back substitution.
 fn solve_block_path(
     links: &mut [Link],
     load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
     uniform: Option<Softness>,
 ) {
+    let rows = links.iter().map(|link| link.rows.count).max().unwrap_or(0);
+    match rows {
+        0..=2 => block_sweep::<2>(links, load, out, uniform),
+        3 => block_sweep::<3>(links, load, out, uniform),
+        4 => block_sweep::<4>(links, load, out, uniform),
+        _ => block_sweep::<MAX_ROWS>(links, load, out, uniform),
+    }
+}
+
+/// The block Thomas sweep of [`solve_block_path`] over `N × N` blocks, with each `Sᵢ` factorised as
+/// `L·D·Lᵀ` ([`ldl_factor`]) and the sweep written in its factors (`W = L⁻¹·C`, `V = D⁻¹·W`,
+/// `y = D⁻¹·L⁻¹·rhs`):
+///
+/// ```text
+/// Sᵢ = Bᵢ − Wᵢ₋₁ᵀ·Vᵢ₋₁          (= Bᵢ − Cᵢ₋₁ᵀ·Sᵢ₋₁⁻¹·Cᵢ₋₁, symmetric: upper triangle only)
+/// rhsᵢ = r̃ᵢ − Wᵢ₋₁ᵀ·yᵢ₋₁        (= r̃ᵢ − Cᵢ₋₁ᵀ·r'ᵢ₋₁)
+/// xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁)       (= Sᵢ⁻¹·(rhsᵢ − Cᵢ·xᵢ₊₁))
+/// ```
+fn block_sweep<const N: usize>(
+    links: &mut [Link],
+    load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
+    out: &mut [[Real; MAX_ROWS]],
+    uniform: Option<Softness>,
+) {
     let split = uniform.is_some();
-    // Forward sweep. `previous` holds Cᵢ₋₁, λᵢ₋₁ and r'ᵢ₋₁; C'ᵢ₋₁ is stored in link i − 1. Loops run over the
-    // links' own row counts (1 for a rope, 5 for a hinge).
-    let mut previous: Option<(Block, [Real; MAX_ROWS], [Real; MAX_ROWS])> = None;
+    // Forward sweep. `previous` holds Cᵢ₋₁, λᵢ₋₁ and Wᵢ₋₁; Vᵢ₋₁ and yᵢ₋₁ are stored in link i − 1.
+    let mut previous: Option<(Block, [Real; MAX_ROWS], Block)> = None;
     for i in 0..links.len() {
-        let n = links[i].rows.count.min(MAX_ROWS);
-        let r = load(i).map_or([0.0; MAX_ROWS], |(a, b)| links[i].residual(&a, &b));
-        let mut s = links[i].diagonal();
+        let (done, rest) = links.split_at_mut(i);
+        let Some((link, after)) = rest.split_first_mut() else {
+            break;
+        };
+        let next = after.first();
+        let r = load(i).map_or([0.0; MAX_ROWS], |(a, b)| link.residual(&a, &b));
+        let (mut s, c) = link.blocks::<N>(next);
         let lambda = if split {
             [0.0; MAX_ROWS]
         } else {
-            links[i].active_lambda()
+            link.active_lambda()
         };
         // K·λ, for the soft rows only: this link's block, then the couplings to the next and the previous
         // link. (No row is soft in the relax pass and in a projection.)
-        let soft_rows = !split && links[i].has_soft_rows();
+        let soft_rows = !split && link.has_soft_rows();
         let mut k_lambda = [0.0; MAX_ROWS];
         if soft_rows {
-            for row in 0..n {
-                k_lambda[row] = (0..n).map(|k| s[row][k] * lambda[k]).sum();
-            }
-        }
-        let next_rows = links
-            .get(i + 1)
-            .map_or(0, |next| next.rows.count.min(MAX_ROWS));
-        let c = links
-            .get(i + 1)
-            .map_or([[0.0; MAX_ROWS]; MAX_ROWS], |next| links[i].coupling(next));
-        if let Some(next) = links.get(i + 1).filter(|_| soft_rows) {
-            let lambda_next = next.active_lambda();
-            for row in 0..n {
-                k_lambda[row] += (0..next_rows)
-                    .map(|k| c[row][k] * lambda_next[k])
-                    .sum::<Real>();
+            let lambda_next = next.map_or([0.0; MAX_ROWS], Link::active_lambda);
+            for row in 0..N {
+                let mut sum = 0.0;
+                for k in 0..N {
+                    sum += s[row][k] * lambda[k] + c[row][k] * lambda_next[k];
+                }
+                k_lambda[row] = sum;
             }
         }
         let mut rhs = if split { r } else { [0.0; MAX_ROWS] };
-        if let (Some((c_prev, lambda_prev, r_prev)), Some(prev)) =
-            (previous, i.checked_sub(1).map(|p| &links[p]))
-        {
-            // S = B − Cᵢ₋₁ᵀ·C'ᵢ₋₁,   rhs = r̃ − Cᵢ₋₁ᵀ·r'ᵢ₋₁
-            let m = prev.rows.count.min(MAX_ROWS);
-            for row in 0..n {
-                for col in 0..n {
-                    let sum: Real = (0..m).map(|k| c_prev[k][row] * prev.c_prime[k][col]).sum();
+        if let (Some((c_prev, lambda_prev, w_prev)), Some(prev)) = (&previous, done.last()) {
+            // S = B − Wᵢ₋₁ᵀ·Vᵢ₋₁ (upper triangle),   rhs = r̃ − Wᵢ₋₁ᵀ·yᵢ₋₁
+            for row in 0..N {
+                for col in row..N {
+                    let mut sum = 0.0;
+                    for k in 0..N {
+                        sum += w_prev[k][row] * prev.v[k][col];
+                    }
                     s[row][col] -= sum;
                 }
-                if soft_rows {
-                    k_lambda[row] += (0..m)
-                        .map(|k| c_prev[k][row] * lambda_prev[k])
-                        .sum::<Real>();
+                let mut sum = 0.0;
+                for k in 0..N {
+                    sum += w_prev[k][row] * prev.y[k];
                 }
-                rhs[row] -= (0..m).map(|k| c_prev[k][row] * r_prev[k]).sum::<Real>();
+                rhs[row] -= sum;
+                if soft_rows {
+                    let mut sum = 0.0;
+                    for k in 0..N {
+                        sum += c_prev[k][row] * lambda_prev[k];
+                    }
+                    k_lambda[row] += sum;
+                }
             }
         }
         if !split {
-            let soft = links[i].soft_rhs(&r, &k_lambda);
-            for row in 0..n {
+            let soft = link.soft_rhs(&r, &k_lambda);
+            for row in 0..N {
                 rhs[row] += soft[row];
             }
         }
-        // [C' | r'] = S⁻¹·[C | rhs]: the first `next_rows` columns are C, the last is rhs.
-        let mut columns = [[0.0; MAX_ROWS + 1]; MAX_ROWS];
-        for row in 0..n {
-            columns[row][..next_rows].copy_from_slice(&c[row][..next_rows]);
-            columns[row][MAX_ROWS] = rhs[row];
-        }
-        gauss_solve(&mut s, n, &mut columns, next_rows);
-        let link = &mut links[i];
-        for row in 0..MAX_ROWS {
-            link.c_prime[row].copy_from_slice(&columns[row][..MAX_ROWS]);
-            link.r_prime[row] = columns[row][MAX_ROWS];
-        }
-        previous = Some((c, lambda, link.r_prime));
-    }
-    // Back substitution.
-    let mut next: Option<([Real; MAX_ROWS], usize)> = None;
-    for i in (0..links.len()).rev() {
-        let link = &links[i];
-        let n = link.rows.count.min(MAX_ROWS);
-        let mut x = link.r_prime;
-        if let Some((x_next, m)) = next {
-            for (row, value) in x.iter_mut().enumerate().take(n) {
-                let sum: Real = (0..m).map(|k| link.c_prime[row][k] * x_next[k]).sum();
-                *value -= sum;
+        // S = L·D·Lᵀ;   W = L⁻¹·C,  V = D⁻¹·W,  y = D⁻¹·L⁻¹·rhs
+        let (factor, inv_pivot) = ldl_factor::<N>(&s);
+        let mut w = c;
+        forward_substitute::<N>(&factor, &mut w, &mut rhs);
+        for row in 0..N {
+            for col in 0..N {
+                link.v[row][col] = w[row][col] * inv_pivot[row];
             }
+            link.y[row] = rhs[row] * inv_pivot[row];
         }
-        out[i] = link.finish(x, uniform);
-        next = Some((x, n));
+        link.factor = factor;
+        previous = Some((c, lambda, w));
+    }
+    // Back substitution: xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁) (`V` of the last link is 0).
+    let mut x_next = [0.0; MAX_ROWS];
+    for (link, out) in links.iter().zip(out.iter_mut()).rev() {
+        let mut x = [0.0; MAX_ROWS];
+        for row in 0..N {
+            let mut sum = 0.0;
+            for k in 0..N {
+                sum += link.v[row][k] * x_next[k];
+            }
+            x[row] = link.y[row] - sum;
+        }
+        back_substitute::<N>(&link.factor, &mut x);
+        *out = link.finish(x, uniform);
+        x_next = x;
     }
 }
 
@@ -834,7 +917,7 @@ fn solve_scalar_path(
             .map_or(0.0, |next| links[i].coupling_scalar(next));
         let (mut s, mut r) = if active {
             let row = &link.rows.rows[0];
-            let k = Real::from(row.self_coupling(&link.rows.mass_a, &link.rows.mass_b));
+            let k = Real::from(link.rows.self_coupling(0));
             let diagonal = k * (1.0 + REGULARIZATION);
             let residual = load(i).map_or(0.0, |(a, b)| link.row_residual(row, &a, &b));
             let softness = row.target.softness;
@@ -868,14 +951,14 @@ fn solve_scalar_path(
             (c / s, r / s)
         };
         let link = &mut links[i];
-        link.c_prime[0][0] = c_prime;
-        link.r_prime[0] = r_prime;
+        link.v[0][0] = c_prime;
+        link.y[0] = r_prime;
         previous = Some((c, c_prime, r_prime, lambda));
     }
     // Back substitution.
     let mut next = 0.0;
     for i in (0..links.len()).rev() {
-        let x = links[i].r_prime[0] - links[i].c_prime[0][0] * next;
+        let x = links[i].y[0] - links[i].v[0][0] * next;
         out[i][0] = x;
         out[i] = links[i].finish(out[i], uniform);
         next = x;
@@ -890,79 +973,279 @@ const REGULARIZATION: Real = 1e-6;
 /// Pivots smaller than this fraction of the largest diagonal entry count as zero: the row is redundant.
 const RELATIVE_PIVOT: Real = 1e-5;
 
-/// Solves `s·X = columns` in place (Gaussian elimination with partial pivoting) for the top-left `n × n` of
-/// `s`, with right-hand sides in the first `m` columns and the last column of `columns`. A pivot that vanishes
-/// — a row no body can move along, or a row redundant with the rows before it (a bridge hung from two
-/// anchors constrains more than its bodies' degrees of freedom) — gives 0 for that unknown, never a NaN or a
-/// huge impulse.
-fn gauss_solve(s: &mut Block, n: usize, columns: &mut [[Real; MAX_ROWS + 1]; MAX_ROWS], m: usize) {
-    let n = n.min(MAX_ROWS);
-    let used = |k: usize| k < m || k == MAX_ROWS;
-    let scale = (0..n).map(|i| s[i][i].abs()).fold(0.0, Real::max);
+/// The factorisation `S = L·D·Lᵀ` of the symmetric positive semi-definite top-left `N × N` of `s` (only its
+/// upper triangle, row ≤ column, is read): returns the strictly lower part of the unit lower triangular `L`
+/// and the reciprocal pivots `D⁻¹`. No pivoting: `S` is a Schur complement of `K = J·M⁻¹·Jᵀ`, whose pivots
+/// are positive. A pivot at or below [`RELATIVE_PIVOT`] × the largest diagonal entry — a row no body can move
+/// along, a row of zeros (not in the system), or a row redundant with the rows before it (a bridge hung from
+/// two anchors constrains more than its bodies' degrees of freedom) — gets a reciprocal of 0 and a zero column
+/// of `L`: that unknown solves to 0 and its equation is dropped, never a NaN or a huge impulse.
+///
+/// ```text
+/// dⱼ = Sⱼⱼ − Σₖ<ⱼ Lⱼₖ²·dₖ,        Lᵢⱼ = (Sⱼᵢ − Σₖ<ⱼ Lᵢₖ·Lⱼₖ·dₖ) / dⱼ,   i > j
+/// ```
+fn ldl_factor<const N: usize>(s: &Block) -> (Block, [Real; MAX_ROWS]) {
+    let mut scale: Real = 0.0;
+    for k in 0..N {
+        scale = scale.max(s[k][k]);
+    }
     let tiny = (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE);
-    let mut singular = [false; MAX_ROWS];
-    for c in 0..n {
-        let pivot = (c..n)
-            .max_by(|&i, &j| s[i][c].abs().total_cmp(&s[j][c].abs()))
-            .unwrap_or(c);
-        if s[pivot][c].abs() <= tiny {
-            singular[c] = true;
-            continue;
+    let mut l = [[0.0; MAX_ROWS]; MAX_ROWS];
+    let mut pivots = [0.0; MAX_ROWS];
+    let mut inv_pivots = [0.0; MAX_ROWS];
+    for j in 0..N {
+        // lj_d[k] = Lⱼₖ·dₖ, shared by the pivot and the column below it.
+        let mut lj_d = [0.0; MAX_ROWS];
+        let mut pivot = s[j][j];
+        for k in 0..j {
+            lj_d[k] = l[j][k] * pivots[k];
+            pivot -= l[j][k] * lj_d[k];
         }
-        s.swap(c, pivot);
-        columns.swap(c, pivot);
-        let inv = 1.0 / s[c][c];
-        for i in (c + 1)..n {
-            let factor = s[i][c] * inv;
-            if factor == 0.0 {
-                continue;
-            }
-            for k in c..n {
-                s[i][k] -= factor * s[c][k];
-            }
-            for k in (0..=MAX_ROWS).filter(|&k| used(k)) {
-                columns[i][k] -= factor * columns[c][k];
+        // Written so that a NaN pivot counts as vanishing too.
+        if pivot > tiny {
+            let inv = 1.0 / pivot;
+            pivots[j] = pivot;
+            inv_pivots[j] = inv;
+            for i in (j + 1)..N {
+                let mut value = s[j][i];
+                for k in 0..j {
+                    value -= l[i][k] * lj_d[k];
+                }
+                l[i][j] = value * inv;
             }
         }
     }
-    for c in (0..n).rev() {
-        if singular[c] {
-            columns[c] = [0.0; MAX_ROWS + 1];
-            continue;
-        }
-        for k in (0..=MAX_ROWS).filter(|&k| used(k)) {
-            let mut value = columns[c][k];
-            for j in (c + 1)..n {
-                value -= s[c][j] * columns[j][k];
+    (l, inv_pivots)
+}
+
+/// `L⁻¹` applied in place to the columns of the top-left `N × N` of `w` and to `z` (forward substitution with
+/// the unit lower triangular factor of [`ldl_factor`]).
+fn forward_substitute<const N: usize>(l: &Block, w: &mut Block, z: &mut [Real; MAX_ROWS]) {
+    for i in 1..N {
+        for k in 0..i {
+            let f = l[i][k];
+            for col in 0..N {
+                w[i][col] -= f * w[k][col];
             }
-            columns[c][k] = value / s[c][c];
+            z[i] -= f * z[k];
         }
+    }
+}
+
+/// `L⁻ᵀ` applied in place to `x` (back substitution with the transpose of [`ldl_factor`]'s factor).
+fn back_substitute<const N: usize>(l: &Block, x: &mut [Real; MAX_ROWS]) {
+    for j in (0..N).rev() {
+        let mut value = x[j];
+        for i in (j + 1)..N {
+            value -= l[i][j] * x[i];
+        }
+        x[j] = value;
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rebound_math::Quat;
+
+    /// Solves `s·x = b` with the block path's factorisation: `x = L⁻ᵀ·D⁻¹·L⁻¹·b`.
+    fn ldl_solve<const N: usize>(s: &Block, b: [Real; MAX_ROWS]) -> [Real; MAX_ROWS] {
+        let (l, inv_pivots) = ldl_factor::<N>(s);
+        let (mut w, mut x) = ([[0.0; MAX_ROWS]; MAX_ROWS], b);
+        forward_substitute::<N>(&l, &mut w, &mut x);
+        for (x, inv) in x.iter_mut().zip(&inv_pivots) {
+            *x *= inv;
+        }
+        back_substitute::<N>(&l, &mut x);
+        x
+    }
+
+    /// `m·x`.
+    fn product(m: &Block, x: &[Real; MAX_ROWS]) -> [Real; MAX_ROWS] {
+        m.map(|line| line.iter().zip(x).map(|(a, x)| a * x).sum())
+    }
 
     #[test]
-    fn gauss_solve_inverts_a_symmetric_positive_matrix_and_zeroes_singular_unknowns() {
-        let mut s = [[0.0; MAX_ROWS]; MAX_ROWS];
-        let m = [
+    fn ldl_solves_a_symmetric_positive_system_and_zeroes_a_row_of_zeros() {
+        let s = [
             [4.0, 1.0, 0.5, 0.0, 0.0],
             [1.0, 3.0, 0.2, 0.1, 0.0],
             [0.5, 0.2, 2.0, 0.3, 0.0],
             [0.0, 0.1, 0.3, 1.5, 0.0],
             [0.0, 0.0, 0.0, 0.0, 0.0],
         ];
-        s.copy_from_slice(&m);
         let x_true = [1.0, -2.0, 0.5, 3.0, 0.0];
-        let mut columns = [[0.0; MAX_ROWS + 1]; MAX_ROWS];
-        for (row, line) in m.iter().enumerate() {
-            columns[row][0] = line.iter().zip(&x_true).map(|(a, x)| a * x).sum();
+        let x = ldl_solve::<MAX_ROWS>(&s, product(&s, &x_true));
+        for (row, (x, t)) in x.iter().zip(&x_true).enumerate() {
+            assert!((x - t).abs() <= 1e-9 * t.abs().max(1.0), "{row}: {x:?}");
         }
-        gauss_solve(&mut s, MAX_ROWS, &mut columns, 1);
-        for (row, x) in x_true.iter().enumerate() {
-            assert!((columns[row][0] - x).abs() < 1e-5, "{row}: {columns:?}");
+        assert!(x[4] == 0.0, "{x:?}");
+    }
+
+    #[test]
+    fn ldl_gives_a_redundant_row_zero_and_solves_the_rest() {
+        // `S = J·Jᵀ` with row 2 of `J` the sum of rows 0 and 1: rank 3 of 4, row 2 redundant.
+        let j = [
+            [1.0, 0.5, 0.0, 0.2],
+            [0.0, 1.0, 0.3, 0.0],
+            [1.0, 1.5, 0.3, 0.2],
+            [0.1, 0.0, 0.0, 2.0],
+        ];
+        let mut s = [[0.0; MAX_ROWS]; MAX_ROWS];
+        for r in 0..4 {
+            for c in 0..4 {
+                s[r][c] = (0..4).map(|k| j[r][k] * j[c][k]).sum();
+            }
         }
+        // A consistent right-hand side: `S·x₀` for some `x₀`.
+        let b = product(&s, &[0.3, -1.0, 0.7, 2.0, 0.0]);
+        let x = ldl_solve::<4>(&s, b);
+        assert!(x.iter().all(|x| x.is_finite()), "{x:?}");
+        assert!(x[2] == 0.0, "{x:?}");
+        let residual = product(&s, &x);
+        for (row, (r, b)) in residual.iter().zip(&b).enumerate() {
+            assert!(
+                (r - b).abs() <= 1e-9 * b.abs().max(1.0),
+                "{row}: {residual:?} vs {b:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn ldl_solves_an_identity_row_to_its_right_hand_side_of_zero() {
+        // Row 1 not in the system, given an identity row: it solves to 0, the others as without it.
+        let s = [
+            [2.0, 0.0, 0.4, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0, 0.0],
+            [0.4, 0.0, 0.5, 0.0, 0.0],
+            [0.0; MAX_ROWS],
+            [0.0; MAX_ROWS],
+        ];
+        let x_true = [0.25, 0.0, -4.0, 0.0, 0.0];
+        let x = ldl_solve::<3>(&s, product(&s, &x_true));
+        for (row, (x, t)) in x.iter().zip(&x_true).enumerate() {
+            assert!((x - t).abs() <= 1e-9 * t.abs().max(1.0), "{row}: {x:?}");
+        }
+        assert!(x[1] == 0.0, "{x:?}");
+    }
+
+    /// A hinge's five rows between bodies with anchors `r_a`, `r_b` and hinge axis `axis`.
+    fn hinge_rows(r_a: Vec3, r_b: Vec3, axis: Vec3, mass_a: InvMass, mass_b: InvMass) -> JointRows {
+        let mut rows = JointRows::new(mass_a, mass_b);
+        for direction in [Vec3::X, Vec3::Y, Vec3::Z] {
+            rows.push(Row::linear(direction, r_a, r_b, RowTarget::speed(0.0)));
+        }
+        let axis = axis.normalize();
+        let side = axis.any_orthonormal_vector();
+        for perpendicular in [side, axis.cross(side)] {
+            rows.push(Row::angular(perpendicular, RowTarget::speed(0.0)));
+        }
+        rows
+    }
+
+    #[test]
+    fn the_block_sweep_solves_the_path_system_as_a_dense_solve_does() {
+        // Four bodies, link i joins bodies i and i + 1 (its body B is the next link's body A). Link 1 is a
+        // ball joint (3 rows, padded in the 5 × 5 sweep) with one row left out.
+        let inertia = |k: f32| {
+            let turn = Quat::from_rotation_y(0.3 * k) * Quat::from_rotation_x(0.2 + k);
+            let m = Mat3::from_quat(turn);
+            m * Mat3::from_diagonal(Vec3::new(2.0 + k, 1.0, 0.5 + 0.3 * k)) * m.transpose()
+        };
+        let masses: [InvMass; 4] = core::array::from_fn(|k| InvMass {
+            mass: 0.5 + 0.25 * k as f32,
+            inertia: inertia(k as f32),
+        });
+        let bodies: [SolverBody; 4] = core::array::from_fn(|k| SolverBody {
+            linear_velocity: Vec3::new(0.3 * k as f32, -1.0, 0.5),
+            angular_velocity: Vec3::new(0.2, 0.1 * k as f32, -0.4),
+            ..SolverBody::STATIC
+        });
+        let r_a = Vec3::new(0.5, 0.1, 0.0);
+        let r_b = Vec3::new(-0.4, 0.0, 0.2);
+        let mut links = [0, 1, 2].map(|i| {
+            let mut rows = hinge_rows(
+                r_a,
+                r_b,
+                Vec3::new(0.1 * i as f32, 0.0, 1.0),
+                masses[i],
+                masses[i + 1],
+            );
+            if i == 1 {
+                rows.count = 3;
+            }
+            let mut link = Link::new(rows, [0.0; MAX_ROWS]);
+            link.active = [true; MAX_ROWS];
+            link.active[rows.count..].fill(false);
+            link.shared_with_next = (i < 2).then_some((true, false));
+            link
+        });
+        links[1].active[1] = false;
+        let mut out = Vec::new();
+        solve_path(&mut links, |i| Some((bodies[i], bodies[i + 1])), &mut out);
+
+        // The dense system over the active rows: K = J·M⁻¹·Jᵀ (diagonal regularised), r = Ċ.
+        let mut index = Vec::new();
+        for (i, link) in links.iter().enumerate() {
+            for k in 0..link.rows.count {
+                if link.active[k] {
+                    index.push((i, k));
+                }
+            }
+        }
+        let n = index.len();
+        // `J_p·M⁻¹·J_qᵀ` through one body, from scratch.
+        let coupling = |p: &Side, m: &InvMass, q: &Side| {
+            p.linear.dot(q.linear) * m.mass + p.angular.dot(m.inertia * q.angular)
+        };
+        let mut k_dense = vec![vec![0.0; n + 1]; n];
+        for (p, &(i, a)) in index.iter().enumerate() {
+            let row_p = &links[i].rows.rows[a];
+            k_dense[p][n] = Real::from(row_p.velocity(&bodies[i], &bodies[i + 1]));
+            for (q, &(j, b)) in index.iter().enumerate() {
+                let row_q = &links[j].rows.rows[b];
+                let value = if i == j {
+                    coupling(&row_p.a, &masses[i], &row_q.a)
+                        + coupling(&row_p.b, &masses[i + 1], &row_q.b)
+                } else if j == i + 1 {
+                    coupling(&row_p.b, &masses[j], &row_q.a)
+                } else if i == j + 1 {
+                    coupling(&row_p.a, &masses[i], &row_q.b)
+                } else {
+                    0.0
+                };
+                k_dense[p][q] = Real::from(value) * if p == q { 1.0 + REGULARIZATION } else { 1.0 };
+            }
+        }
+        // Gauss–Jordan with partial pivoting.
+        for c in 0..n {
+            let pivot = (c..n)
+                .max_by(|&x, &y| k_dense[x][c].abs().total_cmp(&k_dense[y][c].abs()))
+                .unwrap_or(c);
+            k_dense.swap(c, pivot);
+            for r in 0..n {
+                if r != c {
+                    let f = k_dense[r][c] / k_dense[c][c];
+                    for k in c..=n {
+                        k_dense[r][k] -= f * k_dense[c][k];
+                    }
+                }
+            }
+        }
+        let largest = index
+            .iter()
+            .map(|&(i, k)| out[i][k].abs())
+            .fold(0.0, Real::max);
+        assert!(largest > 0.1, "{out:?}");
+        for (p, &(i, k)) in index.iter().enumerate() {
+            let dense = k_dense[p][n] / k_dense[p][p];
+            assert!(
+                (out[i][k] - dense).abs() <= 1e-7 * largest,
+                "link {i} row {k}: {} vs {dense}",
+                out[i][k]
+            );
+        }
+        assert!(out[1][1] == 0.0, "a row left out solves to 0");
+        assert!(out[1][3..].iter().all(|&x| x == 0.0), "padding solves to 0");
     }
 }
