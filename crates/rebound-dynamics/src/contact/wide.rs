@@ -28,6 +28,14 @@ pub(super) const COLORS: usize = 24;
 /// Lanes per batch.
 const LANES: usize = 4;
 
+/// Manifolds coloured together: the batches of the first `CHUNK` manifolds (colour by colour), then those of
+/// the next `CHUNK`, and so on. A chunk's bodies stay in cache while its colours are solved one after the
+/// other; coloured all at once, a pile of 16,384 balls swept its whole body array once per colour, in
+/// *prepare* and in every solve pass. Scenes with fewer manifolds are one chunk (the solve order does not
+/// change; stacks are sensitive to it). Each chunk's colours start afresh: the chunks are solved one after
+/// the other, so a body may have one colour in each.
+const CHUNK: usize = 4096;
+
 /// A 3-vector in each of the four lanes (structure of arrays).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct Vec3x4 {
@@ -178,7 +186,7 @@ pub(super) fn is_wide(c: &PreparedContact) -> bool {
 pub(super) struct Coloring {
     /// Per body, bit `c` set when a manifold of colour `c` moves it.
     used: Vec<u32>,
-    /// Manifold indices per colour, in manifold order.
+    /// Manifold indices per colour, in manifold order, for the chunk being coloured (see [`CHUNK`]).
     members: [Vec<usize>; COLORS],
     /// Leave every manifold to the scalar path (tests compare the two paths).
     pub(super) scalar_only: bool,
@@ -205,6 +213,15 @@ impl Coloring {
             members.clear();
         }
         for (index, c) in contacts.iter().enumerate() {
+            if index % CHUNK == 0 && index > 0 {
+                self.flush(
+                    &contacts[index - CHUNK..index],
+                    contacts,
+                    input,
+                    batches,
+                    slots,
+                );
+            }
             if !is_wide(c) || self.scalar_only {
                 scalar.push(index);
                 continue;
@@ -225,9 +242,31 @@ impl Coloring {
             }
             self.members[color].push(index);
         }
-        for members in &self.members {
+        let last = contacts.len().saturating_sub(1) / CHUNK * CHUNK;
+        self.flush(&contacts[last..], contacts, input, batches, slots);
+    }
+
+    /// Ends a chunk: its batches, colour by colour (each colour's manifolds four at a time, in manifold
+    /// order), then the colours of its bodies are freed for the next chunk.
+    fn flush(
+        &mut self,
+        chunk: &[PreparedContact],
+        contacts: &[PreparedContact],
+        input: &PrepareInput<'_>,
+        batches: &mut Vec<Batch>,
+        slots: &mut Vec<PointX4>,
+    ) {
+        for members in &mut self.members {
             for group in members.chunks(LANES) {
                 batches.push(Batch::new(group, contacts, input, slots));
+            }
+            members.clear();
+        }
+        for c in chunk {
+            for body in [c.body_a, c.body_b] {
+                if let Some(used) = self.used.get_mut(body) {
+                    *used = 0;
+                }
             }
         }
     }
@@ -649,7 +688,21 @@ mod tests {
 
     #[test]
     fn no_batch_holds_a_moving_body_twice() {
-        let (bodies, params, contacts) = scene(9);
+        check_batches(9);
+    }
+
+    #[test]
+    fn chunked_colouring_keeps_batches_independent() {
+        // 2 · 2100 − 1 manifolds: more than one chunk, and a chunk boundary inside the run of bodies.
+        let (_, _, contacts) = scene(2100);
+        assert!(contacts.len() > super::CHUNK);
+        check_batches(2100);
+    }
+
+    /// Every manifold of `scene(n)` solved exactly once (in a batch or by the scalar path), and no batch
+    /// holding a moving body in two lanes.
+    fn check_batches(n: usize) {
+        let (bodies, params, contacts) = scene(n);
         let ctx = StepContext::new(1.0 / 60.0, &SolverSettings::default());
         let mut solver = ContactSolver::new();
         solver.prepare(&contacts, &bodies, &params, &ctx);
