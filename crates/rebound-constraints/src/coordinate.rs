@@ -48,6 +48,15 @@ impl CoordinateRows {
         }
     }
 
+    /// Whether a pass of stage `bias` has nothing to solve: no limits, no motor, and no spring (or the relax
+    /// pass, where springs rest). Then the caller need not measure the coordinate at all.
+    #[inline]
+    pub(crate) fn is_idle(&self, bias: Bias) -> bool {
+        self.limits.is_none()
+            && self.motor.is_none()
+            && (self.spring.is_none() || bias == Bias::Off)
+    }
+
     /// One pass over the rows, at the coordinate value `position` (m or rad).
     pub(crate) fn solve<R: Row>(
         &self,

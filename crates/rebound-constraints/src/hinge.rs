@@ -222,6 +222,10 @@ impl PreparedHinge {
         b: &mut SolverBody,
         stage: &Stage,
     ) {
+        // A plain hinge (no limit, motor or spring; every hinge of a bridge) skips the angle and its row.
+        if self.rows.is_idle(stage.bias) {
+            return;
+        }
         let (fa, fb) = pair.frames(a, b);
         let part = AnglePart::new(pair, fa * Vec3::X);
         self.rows
@@ -238,9 +242,11 @@ impl PreparedHinge {
     ) {
         let (fa, fb) = pair.frames(a, b);
         let axis = fa * Vec3::X;
-        let part = AnglePart::new(pair, axis);
-        self.rows
-            .solve(&part, pair, twist_angle(fa, fb), state, a, b, stage);
+        if !self.rows.is_idle(stage.bias) {
+            let part = AnglePart::new(pair, axis);
+            self.rows
+                .solve(&part, pair, twist_angle(fa, fb), state, a, b, stage);
+        }
         let align = AlignPart::new(pair, axis, [fb * Vec3::Y, fb * Vec3::Z]);
         let mut lambda = state.angular_impulse.truncate();
         align.solve(a, b, stage.bias, stage.joint_softness, &mut lambda);
