@@ -279,14 +279,14 @@ fn face_contact(
     let mut polygon = Polygon::EMPTY;
     // The quad's corners in order; the edge leaving corner k runs along u for k = 0, 2 and along v for 1, 3.
     let corners = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)];
-    let reference_face = PackedFeatureId::face(face_id(axis, side));
+    let reference_face = face_feature(face_id(axis, side));
     for (k, &(su, sv)) in corners.iter().enumerate() {
         let mut signs = [0.0; 3];
         (signs[j], signs[u], signs[v]) = (facing, su, sv);
         let leaving = if k % 2 == 0 { u } else { v };
         polygon.push(ClipVertex {
             point: face_center + du * su + dv * sv,
-            features: [reference_face, PackedFeatureId::vertex(vertex_id(signs))],
+            features: [reference_face, vertex_feature(vertex_id(signs))],
             edge: edge_id(leaving, signs),
         });
     }
@@ -355,17 +355,14 @@ fn clip(polygon: &Polygon, plane: &Plane, incident_face: u32, out: &mut Polygon)
     let cut = |from: &ClipVertex, to: &ClipVertex, d_from: f32, d_to: f32, edge: Carrier| {
         let s = d_from / (d_from - d_to);
         let features = if from.edge < REFERENCE_PLANE {
-            [
-                PackedFeatureId::edge(plane.edge),
-                PackedFeatureId::edge(from.edge),
-            ]
+            [edge_feature(plane.edge), edge_feature(from.edge)]
         } else {
             let other = (from.edge - REFERENCE_PLANE) as usize;
             let mut signs = plane.signs;
             signs[other / 2] = if other.is_multiple_of(2) { 1.0 } else { -1.0 };
             [
-                PackedFeatureId::vertex(vertex_id(signs)),
-                PackedFeatureId::face(incident_face),
+                vertex_feature(vertex_id(signs)),
+                face_feature(incident_face),
             ]
         };
         ClipVertex {
@@ -405,6 +402,28 @@ fn clip(polygon: &Polygon, plane: &Plane, incident_face: u32, out: &mut Polygon)
         previous = current;
         previous_distance = current_distance;
     }
+}
+
+/// A feature id of parry's layout (kind in the top two bits, our code below), built directly: our codes are
+/// below 16, so parry's constructors' range check (an assert that stays out of line: 4 % of the pyramid's
+/// step) has nothing to check.
+const fn feature(kind: u32, code: u32) -> PackedFeatureId {
+    PackedFeatureId(kind << 30 | code)
+}
+
+/// A vertex as a feature id.
+const fn vertex_feature(code: u32) -> PackedFeatureId {
+    feature(0b01, code)
+}
+
+/// An edge as a feature id.
+const fn edge_feature(code: u32) -> PackedFeatureId {
+    feature(0b10, code)
+}
+
+/// A face as a feature id.
+const fn face_feature(code: u32) -> PackedFeatureId {
+    feature(0b11, code)
 }
 
 /// A cuboid's face on `axis` (0, 1, 2) on the side `sign`: ids 0..6.
@@ -479,8 +498,8 @@ fn edge_contact(
     out.points.push(TrackedContact::new(
         p1,
         r.transpose() * (p2 - t),
-        PackedFeatureId::edge(edge_id(i, signs1)),
-        PackedFeatureId::edge(edge_id(j, signs2)),
+        edge_feature(edge_id(i, signs1)),
+        edge_feature(edge_id(j, signs2)),
         separation,
     ));
 }
@@ -594,6 +613,15 @@ mod tests {
         let mut unique = before.clone();
         unique.dedup();
         assert_eq!(unique.len(), before.len());
+    }
+
+    #[test]
+    fn feature_ids_have_parrys_layout() {
+        for code in 0..16 {
+            assert_eq!(vertex_feature(code), PackedFeatureId::vertex(code));
+            assert_eq!(edge_feature(code), PackedFeatureId::edge(code));
+            assert_eq!(face_feature(code), PackedFeatureId::face(code));
+        }
     }
 
     #[test]
