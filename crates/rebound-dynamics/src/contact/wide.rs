@@ -15,10 +15,10 @@
 //! A batch has as many point slots as its largest manifold; the slots a smaller manifold leaves empty, and
 //! the empty lanes of a colour's last batch, carry zero masses and so apply zero impulses.
 
-use super::{PrepareInput, PreparedContact};
+use super::{ContactPoint, PrepareInput, PreparedContact};
 use crate::{Bias, SolverBody, StepContext};
 use rebound_math::glam::BVec4A;
-use rebound_math::{Mat4, Vec3, Vec4};
+use rebound_math::{Mat3, Mat4, Vec3, Vec4};
 
 /// The number of colours tried before a manifold is left to the scalar path. A body touching more manifolds
 /// than this overflows (Box2D v3 uses 24; a box in a pyramid touches 6, a ball in a pile about 12). At most
@@ -129,6 +129,25 @@ impl Vec3x4 {
         self.x -= v.x * s;
         self.y -= v.y * s;
         self.z -= v.z * s;
+    }
+}
+
+/// A 3 × 3 matrix in each lane, by columns.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Mat3x4 {
+    x_axis: Vec3x4,
+    y_axis: Vec3x4,
+    z_axis: Vec3x4,
+}
+
+impl Mat3x4 {
+    /// `M·v` in each lane, summed as glam's `Mat3 * Vec3` sums (x, then y, then z column).
+    #[inline(always)]
+    fn mul(&self, v: &Vec3x4) -> Vec3x4 {
+        self.x_axis
+            .scale(v.x)
+            .add(&self.y_axis.scale(v.y))
+            .add(&self.z_axis.scale(v.z))
     }
 }
 
@@ -274,8 +293,9 @@ impl Coloring {
 
 impl Batch {
     /// The batch of the manifolds `group` (one to four indices into `contacts`); its point slots are pushed
-    /// onto `slots`. Each lane's values are prepared in scalar form and transposed into the lanes four at a
-    /// time (a store into one lane of a `Vec4` is an indexed write).
+    /// onto `slots`. The points are prepared in the lanes, with the scalar path's formulas in the same order of
+    /// operations ([`PrepareInput::point`]: `r × n`, `I⁻¹·(r × n)`, `1/K`), so each lane holds bit for bit
+    /// what the scalar path would compute.
     fn new(
         group: &[usize],
         contacts: &[PreparedContact],
@@ -292,50 +312,66 @@ impl Batch {
             .map(|c| c.point_count)
             .max()
             .unwrap_or(0);
+        let normal = gather3(&headers, |c| c.normal);
+        let tangents = [
+            gather3(&headers, |c| c.tangents[0]),
+            gather3(&headers, |c| c.tangents[1]),
+        ];
+        let inv_mass_a = gather1(&headers, |c| c.inv_mass_a);
+        let inv_mass_b = gather1(&headers, |c| c.inv_mass_b);
+        // Each lane's inverse world inertia, once per batch (every slot of a lane shares its bodies).
+        let inertia = |body: fn(&PreparedContact) -> usize| {
+            let m =
+                lanes.map(|c| c.map_or(Mat3::ZERO, |c| input.params[body(c)].inv_inertia_world));
+            Mat3x4 {
+                x_axis: Vec3x4::from_lanes(m.map(|m| m.x_axis)),
+                y_axis: Vec3x4::from_lanes(m.map(|m| m.y_axis)),
+                z_axis: Vec3x4::from_lanes(m.map(|m| m.z_axis)),
+            }
+        };
+        let (inertia_a, inertia_b) = (inertia(|c| c.body_a), inertia(|c| c.body_b));
+        let mass_sum = inv_mass_a + inv_mass_b;
+        let invert = |k: Vec4, present: BVec4A| {
+            Vec4::select(k.cmpgt(Vec4::ZERO) & present, Vec4::ONE / k, Vec4::ZERO)
+        };
         for slot in 0..slot_count {
-            let points = lanes.map(|c| {
-                c.and_then(|c| {
-                    let point = input.contacts[c.source].points().get(slot)?;
-                    Some(input.point(c, point))
-                })
-                .unwrap_or_default()
-            });
-            slots.push(PointX4 {
-                anchor_a: gather3(&points, |p| p.anchor_a),
-                anchor_b: gather3(&points, |p| p.anchor_b),
-                separation: gather1(&points, |p| p.separation),
-                normal_impulse: gather1(&points, |p| p.normal_impulse),
-                tangent_impulse: [
-                    gather1(&points, |p| p.tangent_impulse.x),
-                    gather1(&points, |p| p.tangent_impulse.y),
-                ],
-                max_normal_impulse: gather1(&points, |p| p.max_normal_impulse),
-                normal_mass: gather1(&points, |p| p.normal_mass),
-                tangent_mass: [
-                    gather1(&points, |p| p.tangent_mass[0]),
-                    gather1(&points, |p| p.tangent_mass[1]),
-                ],
-                rn_a: gather3(&points, |p| p.rn_a),
-                rn_b: gather3(&points, |p| p.rn_b),
-                wn_a: gather3(&points, |p| p.wn_a),
-                wn_b: gather3(&points, |p| p.wn_b),
-                rt_a: [
-                    gather3(&points, |p| p.rt_a[0]),
-                    gather3(&points, |p| p.rt_a[1]),
-                ],
-                rt_b: [
-                    gather3(&points, |p| p.rt_b[0]),
-                    gather3(&points, |p| p.rt_b[1]),
-                ],
-                wt_a: [
-                    gather3(&points, |p| p.wt_a[0]),
-                    gather3(&points, |p| p.wt_a[1]),
-                ],
-                wt_b: [
-                    gather3(&points, |p| p.wt_b[0]),
-                    gather3(&points, |p| p.wt_b[1]),
-                ],
-            });
+            let points = lanes.map(|c| c.and_then(|c| input.contacts[c.source].points().get(slot)));
+            let present = BVec4A::from_array(points.map(|p| p.is_some()));
+            let point =
+                |f: fn(&ContactPoint) -> Vec3| gather3(&points, |p| p.map_or(Vec3::ZERO, f));
+            let (anchor_a, anchor_b) = (point(|p| p.anchor_a), point(|p| p.anchor_b));
+            let rn_a = anchor_a.cross(&normal);
+            let rn_b = anchor_b.cross(&normal);
+            let wn_a = inertia_a.mul(&rn_a);
+            let wn_b = inertia_b.mul(&rn_b);
+            let normal_mass = invert(mass_sum + rn_a.dot(&wn_a) + rn_b.dot(&wn_b), present);
+            let mut x4 = PointX4 {
+                anchor_a,
+                anchor_b,
+                separation: gather1(&points, |p| p.map_or(0.0, |p| p.separation)),
+                normal_mass,
+                rn_a,
+                rn_b,
+                wn_a,
+                wn_b,
+                ..PointX4::default()
+            };
+            for (i, t) in tangents.iter().enumerate() {
+                x4.rt_a[i] = anchor_a.cross(t);
+                x4.rt_b[i] = anchor_b.cross(t);
+                x4.wt_a[i] = inertia_a.mul(&x4.rt_a[i]);
+                x4.wt_b[i] = inertia_b.mul(&x4.rt_b[i]);
+                x4.tangent_mass[i] = invert(
+                    mass_sum + x4.rt_a[i].dot(&x4.wt_a[i]) + x4.rt_b[i].dot(&x4.wt_b[i]),
+                    present,
+                );
+            }
+            if input.ctx.warm_starting {
+                x4.normal_impulse = gather1(&points, |p| p.map_or(0.0, |p| p.normal_impulse));
+                let impulse = point(|p| p.tangent_impulse);
+                x4.tangent_impulse = [impulse.dot(&tangents[0]), impulse.dot(&tangents[1])];
+            }
+            slots.push(x4);
         }
         Self {
             contacts: [0, 1, 2, 3].map(|i| group.get(i).copied().unwrap_or(0)),
@@ -344,14 +380,11 @@ impl Batch {
             body_b: headers.map(|c| c.body_b),
             first_slot,
             slots: slot_count,
-            normal: gather3(&headers, |c| c.normal),
-            tangents: [
-                gather3(&headers, |c| c.tangents[0]),
-                gather3(&headers, |c| c.tangents[1]),
-            ],
+            normal,
+            tangents,
             friction: gather1(&headers, |c| c.friction),
-            inv_mass_a: gather1(&headers, |c| c.inv_mass_a),
-            inv_mass_b: gather1(&headers, |c| c.inv_mass_b),
+            inv_mass_a,
+            inv_mass_b,
             bias_rate: gather1(&headers, |c| c.softness.bias_rate),
             mass_scale: gather1(&headers, |c| c.softness.mass_scale),
             impulse_scale: gather1(&headers, |c| c.softness.impulse_scale),
@@ -684,6 +717,54 @@ mod tests {
                 .iter()
                 .all(|c| c.points[0].normal_impulse > 0.0)
         );
+    }
+
+    #[test]
+    fn lanes_are_prepared_bit_for_bit_as_the_scalar_points() {
+        let (bodies, params, contacts) = scene(9);
+        let ctx = StepContext::new(1.0 / 60.0, &SolverSettings::default());
+        let mut solver = ContactSolver::new();
+        solver.prepare(&contacts, &bodies, &params, &ctx);
+        let input = super::PrepareInput {
+            contacts: &contacts,
+            bodies: &bodies,
+            params: &params,
+            ctx: &ctx,
+        };
+        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+        let mut compared = 0;
+        for batch in &solver.batches {
+            for (l, &index) in batch.contacts[..batch.lanes].iter().enumerate() {
+                let c = &solver.contacts[index];
+                for (k, point) in contacts[c.source].points().iter().enumerate() {
+                    let scalar = input.point(c, point);
+                    let slot = &solver.slots[batch.first_slot + k];
+                    let lane_of = |v: &super::Vec3x4| v.lanes()[l];
+                    assert_eq!(bits(lane_of(&slot.wn_a)), bits(scalar.wn_a));
+                    assert_eq!(bits(lane_of(&slot.wn_b)), bits(scalar.wn_b));
+                    assert_eq!(bits(lane_of(&slot.wt_b[1])), bits(scalar.wt_b[1]));
+                    assert_eq!(slot.normal_mass[l].to_bits(), scalar.normal_mass.to_bits());
+                    assert_eq!(
+                        slot.tangent_mass[0][l].to_bits(),
+                        scalar.tangent_mass[0].to_bits()
+                    );
+                    assert_eq!(
+                        slot.tangent_mass[1][l].to_bits(),
+                        scalar.tangent_mass[1].to_bits()
+                    );
+                    assert_eq!(
+                        slot.normal_impulse[l].to_bits(),
+                        scalar.normal_impulse.to_bits()
+                    );
+                    assert_eq!(
+                        slot.tangent_impulse[1][l].to_bits(),
+                        scalar.tangent_impulse.y.to_bits()
+                    );
+                    compared += 1;
+                }
+            }
+        }
+        assert!(compared >= 9 * 4, "{compared} points compared");
     }
 
     #[test]
