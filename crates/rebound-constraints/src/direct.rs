@@ -367,21 +367,26 @@ impl Link {
     /// on one side (a rope, a limit) takes part if, without its own impulse, the bodies would violate it this
     /// substep (`Ċ + bias` on the wrong side); equality rows always take part.
     pub fn activate(&mut self, a: &mut SolverBody, b: &mut SolverBody) {
-        for i in 0..self.rows.count.min(MAX_ROWS) {
-            let row = &self.rows.rows[i];
+        let rows = &self.rows;
+        for (i, ((row, lambda), active)) in rows
+            .rows()
+            .iter()
+            .zip(&mut self.lambda)
+            .zip(&mut self.active)
+            .enumerate()
+        {
             let (upper, lower) = (row.upper == 0.0, row.lower == 0.0);
             // An equality row takes part whatever its state: no need for its free velocity.
             if !upper && !lower {
-                self.active[i] = true;
+                *active = true;
                 continue;
             }
-            let own = self.rows.self_coupling(i) * self.lambda[i];
+            let own = rows.self_coupling(i) * *lambda;
             let free = row.velocity(a, b) - own + row.target.bias;
-            let active = if upper { free > 0.0 } else { free < 0.0 };
-            self.active[i] = active;
-            if !active {
-                self.rows.apply(i, a, b, -self.lambda[i]);
-                self.lambda[i] = 0.0;
+            *active = if upper { free > 0.0 } else { free < 0.0 };
+            if !*active {
+                rows.apply(i, a, b, -*lambda);
+                *lambda = 0.0;
             }
         }
     }
@@ -453,6 +458,15 @@ impl Link {
             if active {
                 *out = Real::from(lambda);
             }
+        }
+        out
+    }
+
+    /// The rows bounded at 0 (ropes, limits) that are not in the system.
+    fn left_out(&self) -> [bool; MAX_ROWS] {
+        let mut out = [false; MAX_ROWS];
+        for ((out, row), &active) in out.iter_mut().zip(self.rows.rows()).zip(&self.active) {
+            *out = !active && (row.upper == 0.0 || row.lower == 0.0);
         }
         out
     }
@@ -553,21 +567,36 @@ impl Link {
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) -> bool {
+        let rows = &self.rows;
         let mut any = false;
-        for i in 0..self.rows.count.min(MAX_ROWS) {
-            let row = &self.rows.rows[i];
-            if !self.active[i] || (row.upper != 0.0 && row.lower != 0.0) {
-                continue;
-            }
-            let new = self.lambda[i] - x[i] as f32;
-            if (row.upper == 0.0 && new > 0.0) || (row.lower == 0.0 && new < 0.0) {
-                self.active[i] = false;
-                self.rows.apply(i, a, b, -self.lambda[i]);
-                self.lambda[i] = 0.0;
+        for (i, (((row, &x), lambda), active)) in rows
+            .rows()
+            .iter()
+            .zip(x)
+            .zip(&mut self.lambda)
+            .zip(&mut self.active)
+            .enumerate()
+        {
+            if *active && crosses_zero(row, *lambda, x) {
+                *active = false;
+                rows.apply(i, a, b, -*lambda);
+                *lambda = 0.0;
                 any = true;
             }
         }
         any
+    }
+
+    /// Whether [`Link::deactivate_violations`] would deactivate a row for the solution `x` (checked without
+    /// the bodies, which only a row released needs).
+    pub fn would_deactivate(&self, x: &[Real; MAX_ROWS]) -> bool {
+        self.rows
+            .rows()
+            .iter()
+            .zip(x)
+            .zip(&self.lambda)
+            .zip(&self.active)
+            .any(|(((row, &x), &lambda), &active)| active && crosses_zero(row, lambda, x))
     }
 
     /// What active row `k` would get from its solution `x`: the clamped soft update of its impulse, as an
@@ -583,10 +612,14 @@ impl Link {
     /// body `row`'s link shares with this link, given as (`row` acts on it as its body B, this link does).
     fn effect_on(&self, row: &Row, shared: Option<(bool, bool)>, x: &[Real; MAX_ROWS]) -> f32 {
         let mut change = 0.0;
-        for (k, other) in self.rows.rows().iter().enumerate() {
-            if !self.active[k] {
-                continue;
-            }
+        for ((k, other), _) in self
+            .rows
+            .rows()
+            .iter()
+            .enumerate()
+            .zip(&self.active)
+            .filter(|(_, active)| **active)
+        {
             let [ta, tb] = self.rows.turned(k);
             let coupling = match shared {
                 None => {
@@ -630,20 +663,35 @@ impl Link {
 
     /// Step 4: the soft update of each active row from the solution `x`, clamped; applies the increments.
     pub fn apply_solution(&mut self, x: &[Real; MAX_ROWS], a: &mut SolverBody, b: &mut SolverBody) {
-        for i in 0..self.rows.count.min(MAX_ROWS) {
-            if !self.active[i] {
+        let rows = &self.rows;
+        for (i, (((row, &x), lambda), &active)) in rows
+            .rows()
+            .iter()
+            .zip(x)
+            .zip(&mut self.lambda)
+            .zip(&self.active)
+            .enumerate()
+        {
+            if !active {
                 continue;
             }
-            let row = &self.rows.rows[i];
-            let new = (self.lambda[i] - x[i] as f32).max(row.lower).min(row.upper);
+            let new = (*lambda - x as f32).max(row.lower).min(row.upper);
             if self.positions {
-                self.rows.displace(i, a, b, new);
+                rows.displace(i, a, b, new);
                 continue;
             }
-            self.rows.apply(i, a, b, new - self.lambda[i]);
-            self.lambda[i] = new;
+            rows.apply(i, a, b, new - *lambda);
+            *lambda = new;
         }
     }
+}
+
+/// Whether the update `λ − x` of a row bounded at 0 (a rope, a limit) would cross that bound — a rope that
+/// would push; never for a row without a bound at 0.
+#[inline]
+fn crosses_zero(row: &Row, lambda: f32, x: Real) -> bool {
+    let new = lambda - x as f32;
+    (row.upper == 0.0 && new > 0.0) || (row.lower == 0.0 && new < 0.0)
 }
 
 /// Active-set step for the rows left out: activates every one-sided row (a rope) that is not in the system
@@ -659,12 +707,13 @@ pub(crate) fn activate_violations(
 ) -> bool {
     let mut any = false;
     for i in 0..links.len() {
-        for r in 0..links[i].rows.count.min(MAX_ROWS) {
+        let left_out = links[i].left_out();
+        if !left_out.contains(&true) {
+            continue;
+        }
+        for r in (0..MAX_ROWS).filter(|&r| left_out[r]) {
             let link = &links[i];
             let row = &link.rows.rows[r];
-            if link.active[r] || (row.upper != 0.0 && row.lower != 0.0) {
-                continue;
-            }
             // A row just added has no solution yet (0), so it changes nothing for the rows after it.
             let mut free = row.target.bias + link.effect_on(row, None, &solution[i]);
             if let Some(prev) = i.checked_sub(1).and_then(|p| links.get(p))

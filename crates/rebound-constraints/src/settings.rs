@@ -34,7 +34,8 @@ pub struct JointSettings {
     /// Gauss–Seidel passes over all joints per relax call. Default: 1.
     pub relax_iterations: u32,
     /// Whether bodies hanging from fixed bodies through chains of ropes, rods, ball, hinge or fixed joints get
-    /// long-range tethers ([`crate::tether`]). Default: true.
+    /// long-range tethers ([`crate::tether`]; not those whose whole chain is one path solved directly, see
+    /// `direct_chains`). Default: true.
     pub tethers: bool,
     /// Whether paths of rope, rod, ball and hinge joints (chains, ropes of links, bridges) are solved as one
     /// system each pass instead of joint by joint ([`crate::direct`] explains why: stretch that does not

@@ -111,8 +111,9 @@ struct PreparedJoint {
     break_force: f32,
     break_torque: f32,
     kind: Prepared,
-    /// Whether the joint's equality rows belong to a path solved directly ([`crate::direct`]).
-    direct: bool,
+    /// The path solved directly ([`crate::direct`]) that the joint's equality rows belong to, as an index
+    /// into the solver's `paths`; `None` for a joint solved by Gauss–Seidel alone.
+    path: Option<usize>,
 }
 
 /// The joint solver. Holds the prepared joints between stages and reuses its buffer from step to step.
@@ -122,6 +123,9 @@ struct PreparedJoint {
 pub struct JointSolver {
     settings: JointSettings,
     joints: Vec<PreparedJoint>,
+    /// The joints a Gauss–Seidel pass visits (indices into `joints`, in order): those on no direct path, and
+    /// hinges on one for their limit, motor and spring rows. A rope chain solved directly has none.
+    iterated: Vec<usize>,
     /// Long-range tethers of chains hanging from fixed bodies (see [`crate::tether`]).
     tethers: Vec<Tether>,
     /// Scratch: the joints as graph edges, and the graph search's buffers.
@@ -154,6 +158,7 @@ impl Default for JointSolver {
         Self {
             settings: JointSettings::default(),
             joints: Vec::new(),
+            iterated: Vec::new(),
             tethers: Vec::new(),
             edges: Vec::new(),
             graph: JointGraph::default(),
@@ -296,11 +301,13 @@ impl JointSolver {
                 break_force: joint.break_force(),
                 break_torque: joint.break_torque(),
                 kind,
-                direct: false,
+                path: None,
             });
         }
-        self.analyse_graph(params);
+        // The paths first: the graph search leaves out the tethers they make redundant.
         self.find_paths(body_count);
+        self.list_iterated();
+        self.analyse_graph(params);
         skipped
     }
 
@@ -383,9 +390,24 @@ impl JointSolver {
             }
             self.paths.push(first..self.path_joints.len());
         }
-        for &index in &self.path_joints {
-            self.joints[index].direct = true;
+        for (path, range) in self.paths.iter().enumerate() {
+            for &index in &self.path_joints[range.clone()] {
+                self.joints[index].path = Some(path);
+            }
         }
+    }
+
+    /// The joints a Gauss–Seidel pass visits: all but the ones whose rows a path solves entirely (a hinge on a
+    /// path keeps its coordinate rows — limit, motor, spring — in the pass).
+    fn list_iterated(&mut self) {
+        self.iterated.clear();
+        self.iterated.extend(
+            self.joints
+                .iter()
+                .enumerate()
+                .filter(|(_, j)| j.path.is_none() || matches!(j.kind, Prepared::Hinge(_)))
+                .map(|(index, _)| index),
+        );
     }
 
     /// The joint graph and its tethers (see [`crate::tether`]).
@@ -398,6 +420,7 @@ impl JointSolver {
         self.edges.extend(self.joints.iter().map(|j| Edge {
             pair: j.pair,
             length: j.kind.bounded_length(),
+            path: j.path,
         }));
         self.graph.analyse(&self.edges, params.len());
         let body = |i: usize| {
@@ -466,7 +489,8 @@ impl JointSolver {
     /// Stages *solve* (`Bias::On`: [`JointSettings::solve_iterations`] Gauss–Seidel passes with soft position
     /// correction) and *relax* (`Bias::Off`: [`JointSettings::relax_iterations`] passes on velocities only;
     /// soft springs are left alone, see [`crate::spring`]). Each pass visits the joints in the order given to
-    /// [`JointSolver::prepare`], then the tethers.
+    /// [`JointSolver::prepare`] (all but those a direct path solves entirely), then the paths, then the
+    /// tethers.
     pub fn solve(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
         let stage = Stage {
             bias,
@@ -479,12 +503,14 @@ impl JointSolver {
             Bias::Off => self.settings.relax_iterations,
         };
         for _ in 0..iterations {
-            for j in &mut self.joints {
+            // Joints on a direct path are solved below, all but a hinge's limit, motor and spring rows (they
+            // are not in `iterated`).
+            for &index in &self.iterated {
+                let Some(j) = self.joints.get_mut(index) else {
+                    continue;
+                };
                 // Springs act in the bias pass only: skip them in the relax pass without touching the bodies.
-                // Joints on a direct path are solved below, all but a hinge's limit, motor and spring rows.
-                if (bias == Bias::Off && matches!(j.kind, Prepared::Spring(_)))
-                    || (j.direct && !matches!(j.kind, Prepared::Hinge(_)))
-                {
+                if bias == Bias::Off && matches!(j.kind, Prepared::Spring(_)) {
                     continue;
                 }
                 let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
@@ -496,7 +522,7 @@ impl JointSolver {
                     Prepared::Rope(p) => p.solve(pair, state, &mut a, &mut b, &stage),
                     Prepared::Rod(p) => p.solve(pair, state, &mut a, &mut b, &stage),
                     Prepared::Ball => ball::solve(pair, state, &mut a, &mut b, &stage),
-                    Prepared::Hinge(p) if j.direct => {
+                    Prepared::Hinge(p) if j.path.is_some() => {
                         p.solve_coordinate(pair, state, &mut a, &mut b, &stage);
                     }
                     Prepared::Hinge(p) => p.solve(pair, state, &mut a, &mut b, &stage),
@@ -652,8 +678,10 @@ impl JointSolver {
         for (k, &index) in members.iter().enumerate() {
             let j = &mut joints[index];
             let link = link_at(links, k);
-            link.lambda = direct_rows(j, solver_bodies, stage, link);
-            if let Some((mut a, mut b)) = j.pair.load(solver_bodies) {
+            // One load serves the rows and the activation.
+            let bodies = j.pair.load(solver_bodies);
+            link.lambda = rows_at(j, bodies.as_ref(), stage, link);
+            if let Some((mut a, mut b)) = bodies {
                 link.activate(&mut a, &mut b);
                 j.pair.store(solver_bodies, a, b);
             }
@@ -806,6 +834,17 @@ fn direct_rows(
     stage: &Stage,
     link: &mut Link,
 ) -> [f32; MAX_ROWS] {
+    let bodies = j.pair.load(solver_bodies);
+    rows_at(j, bodies.as_ref(), stage, link)
+}
+
+/// [`direct_rows`] with the joint's bodies already loaded (`None`: no rows).
+fn rows_at(
+    j: &mut PreparedJoint,
+    bodies: Option<&(SolverBody, SolverBody)>,
+    stage: &Stage,
+    link: &mut Link,
+) -> [f32; MAX_ROWS] {
     let mass = |inv_mass, inertia| InvMass {
         mass: inv_mass,
         inertia,
@@ -815,26 +854,26 @@ fn direct_rows(
         mass(j.pair.inv_mass_b, j.pair.inv_inertia_b),
     );
     let rows = &mut link.rows;
-    let Some((a, b)) = j.pair.load(solver_bodies) else {
+    let Some((a, b)) = bodies else {
         return [0.0; MAX_ROWS];
     };
     let s = &j.state;
     let (l, w) = (s.linear_impulse, s.angular_impulse);
     match &mut j.kind {
         Prepared::Rope(p) => {
-            rows.push(p.direct_row(&j.pair, &a, &b, stage));
+            rows.push(p.direct_row(&j.pair, a, b, stage));
             [s.upper_impulse, 0.0, 0.0, 0.0, 0.0]
         }
         Prepared::Rod(p) => {
-            rows.push(p.direct_row(&j.pair, &a, &b, stage));
+            rows.push(p.direct_row(&j.pair, a, b, stage));
             [s.axial_impulse, 0.0, 0.0, 0.0, 0.0]
         }
         Prepared::Ball => {
-            ball::direct_rows(&j.pair, &a, &b, stage, rows);
+            ball::direct_rows(&j.pair, a, b, stage, rows);
             [l.x, l.y, l.z, 0.0, 0.0]
         }
         Prepared::Hinge(_) => {
-            PreparedHinge::direct_rows(&j.pair, &a, &b, stage, rows);
+            PreparedHinge::direct_rows(&j.pair, a, b, stage, rows);
             [l.x, l.y, l.z, w.x, w.y]
         }
         _ => [0.0; MAX_ROWS],
@@ -928,6 +967,9 @@ fn solve_links(
             joints[members[slot]].pair.load(solver_bodies)
         });
         for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
+            if !link.would_deactivate(x) {
+                continue;
+            }
             let pair = &joints[index].pair;
             if let Some((mut a, mut b)) = pair.load(solver_bodies)
                 && link.deactivate_violations(x, &mut a, &mut b)

@@ -20,6 +20,16 @@
 //! while slack, joint softness in the bias pass, rigid in the relax pass. Its impulse is stored in the
 //! [`crate::JointState::tether_impulse`] of the joint through which the body was reached, for warm starting.
 //!
+//! **Paths solved directly.** A body whose every joint back to the root belongs to one path solved directly
+//! ([`crate::direct`]) — a rope chain hanging from a fixed body, a deck hung between two anchors — gets no
+//! tether. The tether exists to carry the load below a link in one row instead of one link per Gauss–Seidel
+//! iteration; the direct solve already gives each of the path's rows the effective mass of the whole chain
+//! behind it, and the tether's bound is implied by the path's rows (it is the sum of their lengths), so it
+//! would only cost a row per body and per pass. The condition is checked joint by joint in the search: the
+//! first joint (at the root) is on a path, and each later joint is on the same path as the joint before it.
+//! A body reached through a joint solved by Gauss–Seidel (a fixed joint, a closed loop, direct chains off)
+//! or across a branching body (where two paths meet, coupled only by Gauss–Seidel) keeps its tether.
+//!
 //! The graph search is breadth-first from every fixed or kinematic body (inverse mass 0) over the prepared
 //! joints; each body gets its distance in joints and, when the path to it is made only of tetherable joints and
 //! at least two joints long, a tether. A body reached through two paths keeps the first (fewest joints; ties
@@ -39,6 +49,8 @@ pub(crate) struct Edge {
     /// The distance the joint allows between its anchors (m): a rope's or rod's length, 0 for a point
     /// joint; `None` for joints that do not bound the distance (springs, prismatic, wheel).
     pub length: Option<f32>,
+    /// The path solved directly ([`crate::direct`]) the joint belongs to, if any.
+    pub path: Option<usize>,
 }
 
 /// What the search found about one body.
@@ -48,6 +60,9 @@ struct Node {
     depth: u32,
     /// Whether a tether path reaches it (only tetherable joints on the way).
     tethered: bool,
+    /// Whether every joint between it and the root belongs to one directly solved path: its tether would be
+    /// redundant.
+    direct: bool,
     /// The fixed body at the root of its path.
     root: usize,
     /// The root joint's anchor on the fixed body (relative to its centre of mass, world axes, m).
@@ -63,6 +78,7 @@ struct Node {
 const UNREACHED: Node = Node {
     depth: u32::MAX,
     tethered: false,
+    direct: false,
     root: 0,
     root_anchor: Vec3::ZERO,
     in_anchor: Vec3::ZERO,
@@ -147,9 +163,13 @@ impl JointGraph {
                 if let Some(length) = e.length {
                     if node.depth == 0 {
                         next.tethered = true;
+                        next.direct = e.path.is_some();
                         next.root_anchor = here;
                         next.length = length;
                     } else if node.tethered {
+                        next.direct = node.direct
+                            && e.path.is_some()
+                            && joints.get(node.in_joint).map(|p| p.path) == Some(e.path);
                         next.tethered = true;
                         next.root_anchor = node.root_anchor;
                         next.length = node.length + (here - node.in_anchor).length() + length;
@@ -162,7 +182,8 @@ impl JointGraph {
     }
 
     /// The tethers: one per body two or more joints away from a fixed body along tetherable joints, in body
-    /// order. `params` gives the bodies' masses and centres (inverse masses and inertias, start-of-step
+    /// order — except bodies whose whole way to the fixed body is one directly solved path (see the module
+    /// documentation). `params` gives the bodies' masses and centres (inverse masses and inertias, start-of-step
     /// centres of mass).
     pub(crate) fn tethers<'a>(
         &'a self,
@@ -171,7 +192,7 @@ impl JointGraph {
         self.nodes
             .iter()
             .enumerate()
-            .filter(|(_, n)| n.tethered && n.depth >= 2)
+            .filter(|(_, n)| n.tethered && !n.direct && n.depth >= 2)
             .map(move |(body, n)| {
                 let (inv_mass_a, inv_inertia_a, center_a) = inv_mass(n.root);
                 let (inv_mass_b, inv_inertia_b, center_b) = inv_mass(body);
@@ -235,5 +256,59 @@ impl Tether {
             f32::NEG_INFINITY,
             0.0,
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rope of 1 m between bodies `a` and `b` (body 0 fixed, the others 1 kg), on direct path `path`.
+    fn rope(a: usize, b: usize, path: Option<usize>) -> Edge {
+        let inv_mass = |i: usize| if i == 0 { 0.0 } else { 1.0 };
+        Edge {
+            pair: BodyPair {
+                index_a: a,
+                index_b: b,
+                inv_mass_a: inv_mass(a),
+                inv_mass_b: inv_mass(b),
+                inv_inertia_a: Mat3::ZERO,
+                inv_inertia_b: Mat3::ZERO,
+                anchor_a: Vec3::ZERO,
+                anchor_b: Vec3::ZERO,
+                basis_a: rebound_math::Quat::IDENTITY,
+                basis_b: rebound_math::Quat::IDENTITY,
+                delta_center: Vec3::ZERO,
+            },
+            length: Some(1.0),
+            path,
+        }
+    }
+
+    /// The bodies that get a tether, for a chain 0 (fixed) – 1 – 2 – 3 – 4 whose joints are on `paths`.
+    fn tethered(paths: [Option<usize>; 4]) -> Vec<usize> {
+        let edges: Vec<Edge> = (0..4).map(|i| rope(i, i + 1, paths[i])).collect();
+        let mut graph = JointGraph::default();
+        graph.analyse(&edges, 5);
+        graph
+            .tethers(|_| (1.0, Mat3::ZERO, Vec3::ZERO))
+            .map(|t| t.pair.index_b)
+            .collect()
+    }
+
+    #[test]
+    fn a_chain_solved_as_one_path_from_its_fixed_body_gets_no_tethers() {
+        assert_eq!(tethered([Some(0); 4]), Vec::<usize>::new());
+    }
+
+    #[test]
+    fn bodies_reached_past_the_end_of_a_path_keep_their_tethers() {
+        // Joint by joint: every body two or more joints away.
+        assert_eq!(tethered([None; 4]), vec![2, 3, 4]);
+        // The path stops at body 2 (another path, or Gauss–Seidel, beyond it).
+        assert_eq!(tethered([Some(0), Some(0), Some(1), Some(1)]), vec![3, 4]);
+        assert_eq!(tethered([Some(0), Some(0), None, Some(1)]), vec![3, 4]);
+        // The path does not start at the fixed body.
+        assert_eq!(tethered([None, Some(0), Some(0), Some(0)]), vec![2, 3, 4]);
     }
 }
