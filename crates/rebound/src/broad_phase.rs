@@ -90,6 +90,8 @@ pub(crate) struct BroadPhase {
     /// Whether any collider of a moving body took part in the last pair search (without one there are no
     /// pairs to find).
     any_mover: bool,
+    /// Scratch of the pair sort (reused: no allocation per step).
+    sort_scratch: Vec<(ColliderHandle, ColliderHandle)>,
     /// Per collider slot, how far rotation can move the collider's surface per second this step: |ω|·r (m/s;
     /// 0 for colliders of inactive bodies). Read by the narrow phase's prediction distance.
     pub(crate) rotation_reach: Vec<f32>,
@@ -176,11 +178,9 @@ impl BroadPhase {
                     pairs.push(ordered(h1, h2));
                 }
             });
-        // Sorted by the two slot indices packed in one integer: the same order as the handles' (live colliders
-        // have distinct slots, and a handle orders by slot first), at one integer comparison per step.
-        self.pairs.sort_unstable_by_key(|&(h1, h2)| {
-            (u64::from(h1.0.index) << 32) | u64::from(h2.0.index)
-        });
+        // Sorted by the two slot indices: the same order as the handles' (live colliders have distinct
+        // slots, and a handle orders by slot first).
+        radix_sort_pairs(&mut self.pairs, &mut self.sort_scratch);
         self.pairs.dedup();
     }
 
@@ -267,5 +267,94 @@ impl BroadPhase {
         }
         out.sort_unstable();
         out.dedup();
+    }
+}
+
+/// Bits per digit of the pair sort: 2,048 buckets, so a pile of 16,384 colliders (28-bit keys) sorts in three
+/// passes.
+const RADIX_BITS: u32 = 11;
+
+/// Sorts `pairs` by (first slot, second slot): an LSD radix sort on the two slot indices packed into one key
+/// (`first << b | second`, `b` bits per slot), one counting pass per 11-bit digit. The pairs of a 4,096-ball
+/// pile (tens of thousands per step) sorted by comparison took 8 % of the step; this is linear. Stable, so
+/// equal keys keep their order; `scratch` is reused.
+fn radix_sort_pairs(
+    pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
+    scratch: &mut Vec<(ColliderHandle, ColliderHandle)>,
+) {
+    let largest = pairs
+        .iter()
+        .map(|(h1, h2)| h1.0.index.max(h2.0.index))
+        .max()
+        .unwrap_or(0);
+    let slot_bits = u32::BITS - largest.leading_zeros();
+    let key = |&(h1, h2): &(ColliderHandle, ColliderHandle)| {
+        (u64::from(h1.0.index) << slot_bits) | u64::from(h2.0.index)
+    };
+    let key_bits = 2 * slot_bits;
+    let buckets = 1usize << RADIX_BITS;
+    let mask = (buckets - 1) as u64;
+    // Every pass writes all of `scratch` before it becomes `pairs`: one resize suffices.
+    scratch.clear();
+    scratch.resize(
+        pairs.len(),
+        (ColliderHandle::invalid(), ColliderHandle::invalid()),
+    );
+    let mut shift = 0;
+    while shift < key_bits {
+        let mut count = [0u32; 1 << RADIX_BITS];
+        for pair in pairs.iter() {
+            count[((key(pair) >> shift) & mask) as usize] += 1;
+        }
+        let mut start = 0;
+        for c in &mut count {
+            let n = *c;
+            *c = start;
+            start += n;
+        }
+        for pair in pairs.iter() {
+            let digit = ((key(pair) >> shift) & mask) as usize;
+            scratch[count[digit] as usize] = *pair;
+            count[digit] += 1;
+        }
+        core::mem::swap(pairs, scratch);
+        shift += RADIX_BITS;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The radix sort orders pairs as a comparison sort of the handles does, for slot indices of any size
+        /// (one to three digits per slot).
+        #[test]
+        fn radix_sort_orders_pairs_as_handles_order(
+            raw in proptest::collection::vec((0u32..1 << 20, 0u32..1 << 20, 0u32..4), 0..300),
+            scale in 0u32..3,
+        ) {
+            let shrink = [1 << 12, 1 << 6, 1][scale as usize];
+            let mut pairs: Vec<_> = raw
+                .iter()
+                .map(|&(a, b, g)| {
+                    (
+                        ColliderHandle::from_raw_parts(a / shrink, g),
+                        ColliderHandle::from_raw_parts(b / shrink, g),
+                    )
+                })
+                .collect();
+            let mut expected = pairs.clone();
+            expected.sort_by_key(|&(h1, h2)| (h1.0.index, h2.0.index));
+            let mut scratch = Vec::new();
+            radix_sort_pairs(&mut pairs, &mut scratch);
+            let slots = |v: &[(ColliderHandle, ColliderHandle)]| {
+                v.iter().map(|(a, b)| (a.0.index, b.0.index)).collect::<Vec<_>>()
+            };
+            prop_assert_eq!(slots(&pairs), slots(&expected));
+            // Stable: equal slot pairs keep their order, so the generations match the stable sort too.
+            prop_assert_eq!(pairs, expected);
+        }
     }
 }
