@@ -38,11 +38,13 @@
 use crate::box_box::box_box_manifold;
 use crate::broad_phase::BroadPhase;
 use crate::shape::{from_parry_pose, to_parry_pose};
-use crate::{Collider, ColliderHandle, ColliderSet};
+use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape};
+use parry3d::query::details::contact_manifold_ball_ball;
 use parry3d::query::{
     ContactManifold as ParryManifold, ContactManifoldsWorkspace, DefaultQueryDispatcher,
     PersistentQueryDispatcher, TrackedContact,
 };
+use parry3d::shape::Ball;
 use rebound_dynamics::{CombineRule, RigidBody};
 use rebound_math::{Pose, Vec3};
 use rebound_world::{BodySet, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint};
@@ -150,28 +152,43 @@ impl NarrowPhase {
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
             if shape1.is_convex() && shape2.is_convex() {
-                // What parry's dispatcher does for two convex shapes, in the scratch manifold; two boxes
-                // take the specialised generator (crate::box_box).
+                // What parry's dispatcher does for two convex shapes, in the scratch manifold. The two
+                // commonest pairs skip its dispatch (two trait-object downcasts per shape and pair): two
+                // balls go straight to parry's ball–ball generator, two boxes to ours (crate::box_box). The
+                // shape kind is read from the collider's description, which built the parry shape.
                 let manifold = &mut self.convex;
                 forget_manifold_history(manifold);
-                let computed =
-                    if let (Some(box1), Some(box2)) = (shape1.as_cuboid(), shape2.as_cuboid()) {
+                let computed = match (&c1.desc.shape, &c2.desc.shape) {
+                    (ColliderShape::Ball { radius: r1 }, ColliderShape::Ball { radius: r2 }) => {
+                        contact_manifold_ball_ball(
+                            &pos12,
+                            &Ball::new(*r1),
+                            &Ball::new(*r2),
+                            prediction,
+                            manifold,
+                        );
+                        Ok(())
+                    }
+                    (
+                        ColliderShape::Cuboid { half_extents: h1 },
+                        ColliderShape::Cuboid { half_extents: h2 },
+                    ) => {
                         box_box_manifold(
-                            box1.half_extents,
-                            box2.half_extents,
+                            *h1,
+                            *h2,
                             pos12.rotation,
                             pos12.translation,
                             prediction,
                             manifold,
                         );
                         Ok(())
-                    } else {
-                        DefaultQueryDispatcher
-                            .contact_manifold_convex_convex(
-                                &pos12, shape1, shape2, None, None, prediction, manifold,
-                            )
-                            .map(|_| ())
-                    };
+                    }
+                    _ => DefaultQueryDispatcher
+                        .contact_manifold_convex_convex(
+                            &pos12, shape1, shape2, None, None, prediction, manifold,
+                        )
+                        .map(|_| ()),
+                };
                 if computed.is_ok() {
                     out.extend(to_world_manifold(key_base, c1, b1, c2, manifold));
                 }
