@@ -1,8 +1,8 @@
 //! The ball (spherical) joint: two anchor points held together, rotation free. Stages: *prepare*, *warm
 //! start*, *solve* and *relax*.
 
-use crate::direct::{JointRows, Row};
-use crate::part::{PointPart, RowTarget, block_target};
+use crate::direct::{JointRows, Row, TargetRule};
+use crate::part::{PointPart, block_target};
 use crate::solver::Stage;
 use crate::{BodyPair, JointState};
 use rebound_dynamics::SolverBody;
@@ -63,13 +63,11 @@ pub(crate) fn direct_rows(
     out: &mut JointRows,
 ) {
     let anchors = pair.anchors(a, b);
-    let (bias, softness) = block_target(anchors.d, stage.bias, stage.joint_softness);
-    for (axis, bias) in [(Vec3::X, bias.x), (Vec3::Y, bias.y), (Vec3::Z, bias.z)] {
-        out.push(Row::linear(
-            axis,
-            anchors.r_a,
-            anchors.r_b,
-            RowTarget { bias, softness },
-        ));
+    let d = anchors.d;
+    for (axis, c) in [(Vec3::X, d.x), (Vec3::Y, d.y), (Vec3::Z, d.z)] {
+        // The component of `block_target(d, …)` along `axis`, as the Gauss–Seidel block builds it.
+        let rule = TargetRule::Block;
+        let target = rule.target(c, stage);
+        out.push(Row::linear(axis, anchors.r_a, anchors.r_b, target), c, rule);
     }
 }

@@ -49,13 +49,30 @@
 //! rows' biases set to their position errors `C`, the solve of `K·x = C` moves the bodies by `−M⁻¹·Jᵀ·x`
 //! (`project_rows` is the one-joint Gauss–Seidel version used after it). Derivations and measurements are
 //! in `docs/physics.md`, "Chains solved directly".
+//!
+//! # Rows and factorisations kept between passes
+//!
+//! A step runs `solve` (bias on), the world integrates positions, `relax` (bias off), per substep, then the
+//! projection. Between a relax pass and the next substep's solve pass (and the projection after the last
+//! one) only velocities change, so both passes see the same Jacobians and the same `K`. A [`Link`] therefore
+//! stays with its joint from pass to pass (one per path member, in the solver) and records the pose its rows
+//! were built at ([`PoseKey`]: the bits of both bodies' `delta_position` and `delta_rotation`, all that row
+//! building reads of the bodies). At an unchanged pose the pass keeps the rows — Jacobians, turned vectors
+//! and position errors `C` — and recomputes only the targets, which depend on the stage, from the stored
+//! `C` with the functions that built them ([`TargetRule`]); any other pose, and the first pass of a step,
+//! builds them again. The sweep then keeps each link's factorisation (`B`, `C`, `L`, `D⁻¹`, `W`, `V`) while
+//! it and its neighbours have the rows and the rows in the system ([`FactorKey`]) it was made for — a rope
+//! joining or leaving the system refactorises from the link before it on — and sweeps only the right-hand
+//! side. Everything kept is what the same operations on the same values would give again, so a pass gives
+//! the bits it gave when it rebuilt everything.
 
 #![allow(
     clippy::needless_range_loop,
     reason = "dense block algebra (Thomas sweep, LDLᵀ factorisation) reads as the formulas with indices"
 )]
 
-use crate::part::RowTarget;
+use crate::part::{RowTarget, block_target};
+use crate::solver::Stage;
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
 use rebound_math::{Mat3, Vec3, Vec4};
@@ -81,6 +98,87 @@ pub(crate) struct Side {
 pub(crate) struct InvMass {
     pub mass: f32,
     pub inertia: Mat3,
+}
+
+/// How a row's target follows from its position error `C` (m or rad) and the stage, so that a pass at an
+/// unchanged pose recomputes the targets alone ([`JointRows::retarget`]) from the errors stored when the rows
+/// were built — with the very functions that built them, so the targets are the same bits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum TargetRule {
+    /// A component of an equality block (the point rows of ball joints and hinges): [`block_target`],
+    /// `bias = bias_rate·C` with the joint softness in the bias pass, `bias = 0`, rigid, in the relax pass.
+    Block,
+    /// An equality row (a rod, a hinge's alignment rows): [`RowTarget::equality`].
+    Equality,
+    /// A rope's upper limit: [`RowTarget::upper_limit`], speculative (`bias = C·inv_h`, rigid) while slack.
+    UpperLimit,
+}
+
+impl TargetRule {
+    /// The target of a row with position error `c` in a pass of `stage`.
+    #[inline]
+    pub fn target(self, c: f32, stage: &Stage) -> RowTarget {
+        match self {
+            Self::Block => {
+                let (bias, softness) =
+                    block_target(Vec3::new(c, 0.0, 0.0), stage.bias, stage.joint_softness);
+                RowTarget {
+                    bias: bias.x,
+                    softness,
+                }
+            }
+            Self::Equality => RowTarget::equality(c, stage.bias, stage.joint_softness),
+            Self::UpperLimit => {
+                RowTarget::upper_limit(c, stage.bias, stage.joint_softness, stage.inv_h)
+            }
+        }
+    }
+}
+
+/// The bits of what a link's rows are built from that changes within a step: both bodies' displacement and
+/// rotation since the step began (`SolverBody::delta_position`, `delta_rotation`; the anchors, distance and
+/// frames of [`crate::BodyPair`] read nothing else of the bodies). Equal keys mean the rows would be built
+/// again bit for bit; any difference, even of a zero's sign, means they are built again.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct PoseKey([u32; 14]);
+
+impl PoseKey {
+    /// The key of bodies `a` and `b`'s current pose.
+    #[inline]
+    pub fn of(a: &SolverBody, b: &SolverBody) -> Self {
+        let mut key = [0; 14];
+        let fields = [
+            a.delta_position.x,
+            a.delta_position.y,
+            a.delta_position.z,
+            a.delta_rotation.x,
+            a.delta_rotation.y,
+            a.delta_rotation.z,
+            a.delta_rotation.w,
+            b.delta_position.x,
+            b.delta_position.y,
+            b.delta_position.z,
+            b.delta_rotation.x,
+            b.delta_rotation.y,
+            b.delta_rotation.z,
+            b.delta_rotation.w,
+        ];
+        for (key, field) in key.iter_mut().zip(fields) {
+            *key = field.to_bits();
+        }
+        Self(key)
+    }
+}
+
+/// What a link's stored factorisation was made for: the block width of the sweep (1 for the scalar sweep),
+/// the rows in the system and the sharing with the next link. Together with unchanged rows (the key is
+/// dropped when they are built again) and the same key for every link of the path, the factorisation would
+/// come out the same bits, so [`solve_path`] keeps it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct FactorKey {
+    width: usize,
+    active: [bool; MAX_ROWS],
+    shared: Option<(bool, bool)>,
 }
 
 impl Side {
@@ -192,6 +290,8 @@ pub(crate) struct JointRows {
     /// `[I_a⁻¹·J_a,angular, I_b⁻¹·J_b,angular]` of each row, turned once when the row is pushed (with the
     /// masses given to [`JointRows::new`] or [`Link::reset`], which no row outlives).
     turned: [[Vec3; 2]; MAX_ROWS],
+    /// Each row's position error `C` (m or rad) and how its target follows from it (see [`TargetRule`]).
+    errors: [(f32, TargetRule); MAX_ROWS],
     pub count: usize,
     pub mass_a: InvMass,
     pub mass_b: InvMass,
@@ -203,24 +303,37 @@ impl JointRows {
         Self {
             rows: [Row::angular(Vec3::ZERO, RowTarget::speed(0.0)); MAX_ROWS],
             turned: [[Vec3::ZERO; 2]; MAX_ROWS],
+            errors: [(0.0, TargetRule::Equality); MAX_ROWS],
             count: 0,
             mass_a,
             mass_b,
         }
     }
 
-    /// Adds a row (ignored past [`MAX_ROWS`]) and turns its angular parts by the inverse inertias.
-    pub fn push(&mut self, row: Row) {
-        if let (Some(slot), Some(turned)) = (
+    /// Adds a row (ignored past [`MAX_ROWS`]) whose target is `rule`'s for the position error `c` (the
+    /// row's target must be `rule.target(c, stage)` of the pass's stage), and turns its angular parts by the
+    /// inverse inertias.
+    pub fn push(&mut self, row: Row, c: f32, rule: TargetRule) {
+        if let (Some(slot), Some(turned), Some(error)) = (
             self.rows.get_mut(self.count),
             self.turned.get_mut(self.count),
+            self.errors.get_mut(self.count),
         ) {
             *slot = row;
+            *error = (c, rule);
             *turned = [
                 self.mass_a.inertia * row.a.angular,
                 self.mass_b.inertia * row.b.angular,
             ];
             self.count += 1;
+        }
+    }
+
+    /// Recomputes each row's target for a pass of `stage` from its stored position error: the rows of a pass
+    /// at the pose they were built at, whose Jacobians and turned vectors are still those of the pose.
+    pub fn retarget(&mut self, stage: &Stage) {
+        for (row, &(c, rule)) in self.rows.iter_mut().zip(&self.errors).take(self.count) {
+            row.target = rule.target(c, stage);
         }
     }
 
@@ -303,6 +416,18 @@ pub(crate) struct Link {
     factor: Block,
     v: Block,
     y: [Real; MAX_ROWS],
+    /// The rest of the factorisation, kept for the next pass ([`FactorKey`]): the link's blocks `B` and `C`
+    /// (`K·λ` of a soft row reads them), `W = L⁻¹·C` (the next link's forward step reads it) and `D⁻¹`. For
+    /// a one-row link `B`, `C` and `factor` hold the single entries `b`, `c` and the Schur complement `s` of
+    /// the scalar sweep (0 for a vanishing pivot).
+    b_block: Block,
+    c_block: Block,
+    w: Block,
+    inv_pivot: [Real; MAX_ROWS],
+    /// What `factor`, `v`, `w`, `inv_pivot` and the blocks were made for; `None` when they are stale.
+    factored: Option<FactorKey>,
+    /// The pose the rows were built at ([`PoseKey`]); `None` when the rows are to be built.
+    pose: Option<PoseKey>,
 }
 
 impl Link {
@@ -317,24 +442,64 @@ impl Link {
             factor: [[0.0; MAX_ROWS]; MAX_ROWS],
             v: [[0.0; MAX_ROWS]; MAX_ROWS],
             y: [0.0; MAX_ROWS],
+            b_block: [[0.0; MAX_ROWS]; MAX_ROWS],
+            c_block: [[0.0; MAX_ROWS]; MAX_ROWS],
+            w: [[0.0; MAX_ROWS]; MAX_ROWS],
+            inv_pivot: [0.0; MAX_ROWS],
+            factored: None,
+            pose: None,
         }
     }
 
     /// Makes this (reused) link empty, for a joint whose bodies have the given inverse masses: no rows, no
-    /// impulses, not linked. Reusing links keeps a pass from copying 700-byte records around.
+    /// impulses, not linked, nothing kept from an earlier pass. Reusing links keeps a pass from copying
+    /// 1.5-kilobyte records around.
     pub fn reset(&mut self, mass_a: InvMass, mass_b: InvMass) {
         self.rows.count = 0;
         self.rows.mass_a = mass_a;
         self.rows.mass_b = mass_b;
+        self.forget();
+        self.restart();
+    }
+
+    /// Starts a pass with the rows as they are: no impulses, no row in the system, not linked, a velocity
+    /// pass.
+    fn restart(&mut self) {
         self.lambda = [0.0; MAX_ROWS];
         self.active = [false; MAX_ROWS];
         self.shared_with_next = None;
         self.positions = false;
     }
 
+    /// Drops what is kept from earlier passes (the pose of the rows, the factorisation): the next pass
+    /// builds the rows and factorises again.
+    pub fn forget(&mut self) {
+        self.pose = None;
+        self.factored = None;
+    }
+
+    /// The pose the rows were built at, as recorded by [`Link::built_at`] (`None`: none, or forgotten).
+    pub fn pose(&self) -> Option<PoseKey> {
+        self.pose
+    }
+
+    /// Records that the rows just built (after [`Link::reset`]) are those of the pose `pose`.
+    pub fn built_at(&mut self, pose: Option<PoseKey>) {
+        self.pose = pose;
+    }
+
+    /// Starts a pass of `stage` at the pose the rows were built at (the caller has checked [`Link::pose`]):
+    /// the Jacobians, turned vectors and position errors stay, the targets are recomputed from the errors,
+    /// and the factorisation stays for [`solve_path`] to reuse if the same rows end up in the system.
+    pub fn reuse(&mut self, stage: &Stage) {
+        self.restart();
+        self.rows.retarget(stage);
+    }
+
     /// Turns a link whose rows' biases are their position errors into a link of the position projection, in
-    /// place. Equality rows take part; a rope only if it is stretched (`C > 0`). A slack rope gets the target
-    /// "no longer than now" and joins through the active-set rounds ([`activate_violations`]) if moving its
+    /// place (the rows stay reusable: [`Link::reuse`] recomputes the targets and starts a velocity pass).
+    /// Equality rows take part; a rope only if it is stretched (`C > 0`). A slack rope gets the target "no
+    /// longer than now" and joins through the active-set rounds ([`activate_violations`]) if moving its
     /// neighbours would lengthen it: it may then pull, but the linear step never spends its slack (which a
     /// curved chain's linearisation would overshoot).
     pub fn make_positional(&mut self) {
@@ -848,6 +1013,12 @@ fn solve_block_path(
 /// rhsᵢ = r̃ᵢ − Wᵢ₋₁ᵀ·yᵢ₋₁        (= r̃ᵢ − Cᵢ₋₁ᵀ·r'ᵢ₋₁)
 /// xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁)       (= Sᵢ⁻¹·(rhsᵢ − Cᵢ·xᵢ₊₁))
 /// ```
+///
+/// `B`, `C`, `L`, `D⁻¹`, `W` and `V` depend on the rows and on which of them are in the system, not on the
+/// velocities: while the links up to the next one still have the rows and the active sets they were
+/// factorised with ([`FactorKey`], [`keeps_factor`]; a pass at an unchanged pose), they are kept and only the
+/// right-hand side is swept (`rhsᵢ`, then `y = D⁻¹·L⁻¹·rhsᵢ`) — the same operations on the same values, so
+/// the same bits.
 fn block_sweep<const N: usize>(
     links: &mut [Link],
     load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
@@ -855,16 +1026,25 @@ fn block_sweep<const N: usize>(
     uniform: Option<Softness>,
 ) {
     let split = uniform.is_some();
-    // Forward sweep. `previous` holds Cᵢ₋₁, λᵢ₋₁ and Wᵢ₋₁; Vᵢ₋₁ and yᵢ₋₁ are stored in link i − 1.
-    let mut previous: Option<(Block, [Real; MAX_ROWS], Block)> = None;
+    let key = |link: &Link| FactorKey {
+        width: N,
+        active: link.active,
+        shared: link.shared_with_next,
+    };
+    let stale = first_stale(links, key);
+    // Forward sweep. `lambda_prev` holds λᵢ₋₁; Cᵢ₋₁, Wᵢ₋₁, Vᵢ₋₁ and yᵢ₋₁ are stored in link i − 1.
+    let mut lambda_prev = [0.0; MAX_ROWS];
     for i in 0..links.len() {
+        let reuse = keeps_factor(i, stale, links.len());
         let (done, rest) = links.split_at_mut(i);
         let Some((link, after)) = rest.split_first_mut() else {
             break;
         };
         let next = after.first();
         let r = load(i).map_or([0.0; MAX_ROWS], |(a, b)| link.residual(&a, &b));
-        let (mut s, c) = link.blocks::<N>(next);
+        if !reuse {
+            (link.b_block, link.c_block) = link.blocks::<N>(next);
+        }
         let lambda = if split {
             [0.0; MAX_ROWS]
         } else {
@@ -876,34 +1056,28 @@ fn block_sweep<const N: usize>(
         let mut k_lambda = [0.0; MAX_ROWS];
         if soft_rows {
             let lambda_next = next.map_or([0.0; MAX_ROWS], Link::active_lambda);
+            let (b, c) = (&link.b_block, &link.c_block);
             for row in 0..N {
                 let mut sum = 0.0;
                 for k in 0..N {
-                    sum += s[row][k] * lambda[k] + c[row][k] * lambda_next[k];
+                    sum += b[row][k] * lambda[k] + c[row][k] * lambda_next[k];
                 }
                 k_lambda[row] = sum;
             }
         }
         let mut rhs = if split { r } else { [0.0; MAX_ROWS] };
-        if let (Some((c_prev, lambda_prev, w_prev)), Some(prev)) = (&previous, done.last()) {
-            // S = B − Wᵢ₋₁ᵀ·Vᵢ₋₁ (upper triangle),   rhs = r̃ − Wᵢ₋₁ᵀ·yᵢ₋₁
+        if let Some(prev) = done.last() {
+            // rhs = r̃ − Wᵢ₋₁ᵀ·yᵢ₋₁
             for row in 0..N {
-                for col in row..N {
-                    let mut sum = 0.0;
-                    for k in 0..N {
-                        sum += w_prev[k][row] * prev.v[k][col];
-                    }
-                    s[row][col] -= sum;
-                }
                 let mut sum = 0.0;
                 for k in 0..N {
-                    sum += w_prev[k][row] * prev.y[k];
+                    sum += prev.w[k][row] * prev.y[k];
                 }
                 rhs[row] -= sum;
                 if soft_rows {
                     let mut sum = 0.0;
                     for k in 0..N {
-                        sum += c_prev[k][row] * lambda_prev[k];
+                        sum += prev.c_block[k][row] * lambda_prev[k];
                     }
                     k_lambda[row] += sum;
                 }
@@ -915,18 +1089,39 @@ fn block_sweep<const N: usize>(
                 rhs[row] += soft[row];
             }
         }
-        // S = L·D·Lᵀ;   W = L⁻¹·C,  V = D⁻¹·W,  y = D⁻¹·L⁻¹·rhs
-        let (factor, inv_pivot) = ldl_factor::<N>(&s);
-        let mut w = c;
-        forward_substitute::<N>(&factor, &mut w, &mut rhs);
-        for row in 0..N {
-            for col in 0..N {
-                link.v[row][col] = w[row][col] * inv_pivot[row];
+        // S = B − Wᵢ₋₁ᵀ·Vᵢ₋₁ (upper triangle);  S = L·D·Lᵀ;  W = L⁻¹·C,  V = D⁻¹·W  (kept when `reuse`)
+        if !reuse {
+            let mut s = link.b_block;
+            if let Some(prev) = done.last() {
+                for row in 0..N {
+                    for col in row..N {
+                        let mut sum = 0.0;
+                        for k in 0..N {
+                            sum += prev.w[k][row] * prev.v[k][col];
+                        }
+                        s[row][col] -= sum;
+                    }
+                }
             }
-            link.y[row] = rhs[row] * inv_pivot[row];
+            let (factor, inv_pivot) = ldl_factor::<N>(&s);
+            let mut w = link.c_block;
+            forward_substitute_block::<N>(&factor, &mut w);
+            for row in 0..N {
+                for col in 0..N {
+                    link.v[row][col] = w[row][col] * inv_pivot[row];
+                }
+            }
+            link.factor = factor;
+            link.inv_pivot = inv_pivot;
+            link.w = w;
+            link.factored = Some(key(link));
         }
-        link.factor = factor;
-        previous = Some((c, lambda, w));
+        // y = D⁻¹·L⁻¹·rhs
+        forward_substitute::<N>(&link.factor, &mut rhs);
+        for row in 0..N {
+            link.y[row] = rhs[row] * link.inv_pivot[row];
+        }
+        lambda_prev = lambda;
     }
     // Back substitution: xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁) (`V` of the last link is 0).
     let mut x_next = [0.0; MAX_ROWS];
@@ -945,8 +1140,28 @@ fn block_sweep<const N: usize>(
     }
 }
 
+/// The first link of the path whose stored factorisation is not for its current rows and active set (its
+/// [`FactorKey`] differs from `key(link)`), or the number of links if there is none.
+fn first_stale(links: &[Link], key: impl Fn(&Link) -> FactorKey) -> usize {
+    links
+        .iter()
+        .position(|link| link.factored != Some(key(link)))
+        .unwrap_or(links.len())
+}
+
+/// Whether link `i` of a path of `len` links keeps its factorisation when link `stale` is the first one
+/// whose key changed ([`first_stale`]): `Sᵢ` depends on links `0..=i` and `Cᵢ` on link `i + 1`, so every
+/// link before `stale − 1` does (all of them when none changed). A kept link's factorisation is then the
+/// one that the links it depends on had — they were factorised in the same sweep or kept with it.
+#[inline]
+fn keeps_factor(i: usize, stale: usize, len: usize) -> bool {
+    stale == len || i + 1 < stale
+}
+
 /// [`solve_path`] for a path of one-row joints (a rope chain): the scalar Thomas algorithm, without the
-/// block machinery. `uniform` as in [`solve_block_path`].
+/// block machinery. `uniform` as in [`solve_block_path`]. As there, the entries `b`, `c`, `s` and `c'` of a
+/// link are kept from the last pass while it and the links before and after it have the rows and active
+/// sets they were computed for ([`keeps_factor`]).
 fn solve_scalar_path(
     links: &mut [Link],
     load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
@@ -954,24 +1169,57 @@ fn solve_scalar_path(
     uniform: Option<Softness>,
 ) {
     let split = uniform.is_some();
+    let key = |link: &Link| FactorKey {
+        width: 1,
+        active: link.active,
+        shared: link.shared_with_next,
+    };
+    let stale = first_stale(links, key);
     // Forward sweep: c'ᵢ = cᵢ/sᵢ, r'ᵢ = (r̃ᵢ − cᵢ₋₁·r'ᵢ₋₁)/sᵢ with sᵢ = bᵢ − cᵢ₋₁·c'ᵢ₋₁ and r̃ the soft
-    // right-hand side of `solve_path`.
-    let mut previous: Option<(Real, Real, Real, Real)> = None; // (cᵢ₋₁, c'ᵢ₋₁, r'ᵢ₋₁, λᵢ₋₁)
+    // right-hand side of `solve_path`; bᵢ is the row's regularised `K` (1 for a row not in the system).
+    // Link i − 1 holds cᵢ₋₁ (`c_block`), c'ᵢ₋₁ (`v`) and r'ᵢ₋₁ (`y`); `lambda_prev` is λᵢ₋₁.
+    let mut lambda_prev = 0.0;
     for i in 0..links.len() {
+        if !keeps_factor(i, stale, links.len()) {
+            let link = &links[i];
+            let active = link.rows.count == 1 && link.active[0];
+            let c = links
+                .get(i + 1)
+                .map_or(0.0, |next| links[i].coupling_scalar(next));
+            let diagonal = if active {
+                Real::from(link.rows.self_coupling(0)) * (1.0 + REGULARIZATION)
+            } else {
+                1.0
+            };
+            let mut s = diagonal;
+            if let Some(prev) = i.checked_sub(1).and_then(|p| links.get(p)) {
+                s -= prev.c_block[0][0] * prev.v[0][0];
+            }
+            let scale = Real::from(link.rows.mass_a.mass.max(link.rows.mass_b.mass));
+            // A vanishing pivot is kept as s = 0 (never a pivot that passes the test: |s| > MIN_POSITIVE).
+            let (s, c_prime) = if s.abs() <= (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE) {
+                (0.0, 0.0)
+            } else {
+                (s, c / s)
+            };
+            let link = &mut links[i];
+            link.b_block[0][0] = diagonal;
+            link.c_block[0][0] = c;
+            link.factor[0][0] = s;
+            link.v[0][0] = c_prime;
+            link.factored = Some(key(link));
+        }
         let link = &links[i];
         let active = link.rows.count == 1 && link.active[0];
         let lambda = link.active_lambda()[0];
-        let c = links
-            .get(i + 1)
-            .map_or(0.0, |next| links[i].coupling_scalar(next));
-        let (mut s, mut r) = if active {
+        let (diagonal, c) = (link.b_block[0][0], link.c_block[0][0]);
+        let prev = i.checked_sub(1).and_then(|p| links.get(p));
+        let mut r = if active {
             let row = &link.rows.rows[0];
-            let k = Real::from(link.rows.self_coupling(0));
-            let diagonal = k * (1.0 + REGULARIZATION);
             let residual = load(i).map_or(0.0, |(a, b)| link.row_residual(row, &a, &b));
             let softness = row.target.softness;
             if split {
-                (diagonal, residual)
+                residual
             } else {
                 let mut rhs = Real::from(softness.mass_scale) * residual;
                 if softness.impulse_scale > 0.0 {
@@ -979,30 +1227,23 @@ fn solve_scalar_path(
                     if let Some(next) = links.get(i + 1) {
                         k_lambda += c * next.active_lambda()[0];
                     }
-                    if let Some((c_prev, _, _, lambda_prev)) = previous {
-                        k_lambda += c_prev * lambda_prev;
+                    if let Some(prev) = prev {
+                        k_lambda += prev.c_block[0][0] * lambda_prev;
                     }
                     rhs += Real::from(softness.impulse_scale) * k_lambda;
                 }
-                (diagonal, rhs)
+                rhs
             }
         } else {
-            (1.0, 0.0)
+            0.0
         };
-        if let Some((c_prev, c_prime, r_prime, _)) = previous {
-            s -= c_prev * c_prime;
-            r -= c_prev * r_prime;
+        if let Some(prev) = prev {
+            r -= prev.c_block[0][0] * prev.y[0];
         }
-        let scale = Real::from(links[i].rows.mass_a.mass.max(links[i].rows.mass_b.mass));
-        let (c_prime, r_prime) = if s.abs() <= (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE) {
-            (0.0, 0.0)
-        } else {
-            (c / s, r / s)
-        };
-        let link = &mut links[i];
-        link.v[0][0] = c_prime;
-        link.y[0] = r_prime;
-        previous = Some((c, c_prime, r_prime, lambda));
+        let s = link.factor[0][0];
+        let r_prime = if s == 0.0 { 0.0 } else { r / s };
+        links[i].y[0] = r_prime;
+        lambda_prev = lambda;
     }
     // Back substitution.
     let mut next = 0.0;
@@ -1067,16 +1308,24 @@ fn ldl_factor<const N: usize>(s: &Block) -> (Block, [Real; MAX_ROWS]) {
     (l, inv_pivots)
 }
 
-/// `L⁻¹` applied in place to the columns of the top-left `N × N` of `w` and to `z` (forward substitution with
-/// the unit lower triangular factor of [`ldl_factor`]).
-fn forward_substitute<const N: usize>(l: &Block, w: &mut Block, z: &mut [Real; MAX_ROWS]) {
+/// `L⁻¹` applied in place to the columns of the top-left `N × N` of `w` (forward substitution with the unit
+/// lower triangular factor of [`ldl_factor`]): `wᵢ −= Lᵢₖ·wₖ`, k < i.
+fn forward_substitute_block<const N: usize>(l: &Block, w: &mut Block) {
     for i in 1..N {
         for k in 0..i {
             let f = l[i][k];
             for col in 0..N {
                 w[i][col] -= f * w[k][col];
             }
-            z[i] -= f * z[k];
+        }
+    }
+}
+
+/// `L⁻¹` applied in place to `z` (as [`forward_substitute_block`], one column): `zᵢ −= Lᵢₖ·zₖ`, k < i.
+fn forward_substitute<const N: usize>(l: &Block, z: &mut [Real; MAX_ROWS]) {
+    for i in 1..N {
+        for k in 0..i {
+            z[i] -= l[i][k] * z[k];
         }
     }
 }
@@ -1100,8 +1349,8 @@ mod tests {
     /// Solves `s·x = b` with the block path's factorisation: `x = L⁻ᵀ·D⁻¹·L⁻¹·b`.
     fn ldl_solve<const N: usize>(s: &Block, b: [Real; MAX_ROWS]) -> [Real; MAX_ROWS] {
         let (l, inv_pivots) = ldl_factor::<N>(s);
-        let (mut w, mut x) = ([[0.0; MAX_ROWS]; MAX_ROWS], b);
-        forward_substitute::<N>(&l, &mut w, &mut x);
+        let mut x = b;
+        forward_substitute::<N>(&l, &mut x);
         for (x, inv) in x.iter_mut().zip(&inv_pivots) {
             *x *= inv;
         }
@@ -1182,12 +1431,20 @@ mod tests {
     fn hinge_rows(r_a: Vec3, r_b: Vec3, axis: Vec3, mass_a: InvMass, mass_b: InvMass) -> JointRows {
         let mut rows = JointRows::new(mass_a, mass_b);
         for direction in [Vec3::X, Vec3::Y, Vec3::Z] {
-            rows.push(Row::linear(direction, r_a, r_b, RowTarget::speed(0.0)));
+            rows.push(
+                Row::linear(direction, r_a, r_b, RowTarget::speed(0.0)),
+                0.0,
+                TargetRule::Equality,
+            );
         }
         let axis = axis.normalize();
         let side = axis.any_orthonormal_vector();
         for perpendicular in [side, axis.cross(side)] {
-            rows.push(Row::angular(perpendicular, RowTarget::speed(0.0)));
+            rows.push(
+                Row::angular(perpendicular, RowTarget::speed(0.0)),
+                0.0,
+                TargetRule::Equality,
+            );
         }
         rows
     }

@@ -3,16 +3,16 @@
 //! Stages: *prepare*, *warm start*, *solve* and *relax*.
 
 use crate::coordinate::CoordinateRows;
-use crate::direct::{JointRows, Row};
+use crate::direct::{JointRows, Row, TargetRule};
 use crate::error::check_in_range;
 use crate::limits::Limits;
 use crate::motor::Motor;
-use crate::part::{AlignPart, AnglePart, RowTarget};
+use crate::part::{AlignPart, AnglePart};
 use crate::soft_spring::JointSpring;
 use crate::solver::Stage;
 use crate::{BodyPair, ConstraintError, JointState, ball};
 use core::f32::consts::{PI, TAU};
-use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
+use rebound_dynamics::{Softness, SolverBody, StepContext};
 use rebound_math::{Quat, Vec3};
 
 /// A hinge joint. Free by default: no limits, no motor, no spring.
@@ -204,12 +204,10 @@ impl PreparedHinge {
         let (fa, fb) = pair.frames(a, b);
         let axis = fa * Vec3::X;
         for perpendicular in [fb * Vec3::Y, fb * Vec3::Z] {
-            let error = axis.dot(perpendicular);
-            let target = match stage.bias {
-                Bias::On => RowTarget::spring(error, stage.joint_softness),
-                Bias::Off => RowTarget::speed(0.0),
-            };
-            out.push(Row::angular(perpendicular.cross(axis), target));
+            // C = a·p: spring in the bias pass, `Ċ = 0` in the relax pass.
+            let (error, rule) = (axis.dot(perpendicular), TargetRule::Equality);
+            let target = rule.target(error, stage);
+            out.push(Row::angular(perpendicular.cross(axis), target), error, rule);
         }
     }
 

@@ -1,7 +1,7 @@
 //! The rod: a fixed distance between two anchors (a massless rigid rod with ball ends; Box2D's rigid distance
 //! joint). Stages: *prepare*, *warm start*, *solve* and *relax*.
 
-use crate::direct::Row;
+use crate::direct::{JointRows, Row, TargetRule};
 use crate::part::{AxisPart, RowTarget};
 use crate::solver::Stage;
 use crate::spring::initial_axis;
@@ -88,19 +88,26 @@ impl PreparedRod {
         );
     }
 
-    /// The rod's row for the direct solve of a chain ([`crate::direct`]) at the current pose.
+    /// The rod's row for the direct solve of a chain ([`crate::direct`]) at the current pose, pushed into
+    /// `out` with its position error `C = |d| − length` for the passes that reuse it.
     pub(crate) fn direct_row(
         &mut self,
         pair: &BodyPair,
         a: &SolverBody,
         b: &SolverBody,
         stage: &Stage,
-    ) -> Row {
+        out: &mut JointRows,
+    ) {
         let dist = pair.distance(a, b, self.fallback_axis);
         self.fallback_axis = dist.axis;
-        let target =
-            RowTarget::equality(dist.length - self.length, stage.bias, stage.joint_softness);
-        Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
+        let (c, rule) = (dist.length - self.length, TargetRule::Equality);
+        // RowTarget::equality(C, bias, joint softness)
+        let target = rule.target(c, stage);
+        out.push(
+            Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target),
+            c,
+            rule,
+        );
     }
 
     pub(crate) fn solve(

@@ -2,7 +2,7 @@
 //! nothing; once the anchors would move farther apart than its length an impulse acts on both bodies, like a
 //! collision — a hard constraint. Stages: *prepare*, *warm start*, *solve* and *relax*, *restitution*.
 
-use crate::direct::Row;
+use crate::direct::{JointRows, Row, TargetRule};
 use crate::error::check_in_range;
 use crate::part::{AxisPart, RowTarget};
 use crate::solver::Stage;
@@ -170,21 +170,25 @@ impl PreparedRope {
         self.taut |= state.upper_impulse < 0.0;
     }
 
-    /// The rope's row for the direct solve of a chain ([`crate::direct`]) at the current pose: as
-    /// [`PreparedRope::solve`] builds it, bounded to `λ ≤ 0`.
+    /// The rope's row for the direct solve of a chain ([`crate::direct`]) at the current pose, pushed into
+    /// `out`: as [`PreparedRope::solve`] builds it, bounded to `λ ≤ 0`, with its position error
+    /// `C = |d| − max_length` for the passes that reuse it.
     pub(crate) fn direct_row(
         &mut self,
         pair: &BodyPair,
         a: &SolverBody,
         b: &SolverBody,
         stage: &Stage,
-    ) -> Row {
+        out: &mut JointRows,
+    ) {
         let dist = pair.distance(a, b, self.fallback_axis);
         self.fallback_axis = dist.axis;
-        let c = dist.length - self.rope.max_length;
-        let target = RowTarget::upper_limit(c, stage.bias, stage.joint_softness, stage.inv_h);
-        Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
-            .clamped(f32::NEG_INFINITY, 0.0)
+        let (c, rule) = (dist.length - self.rope.max_length, TargetRule::UpperLimit);
+        // RowTarget::upper_limit(C, bias, joint softness, inv_h)
+        let target = rule.target(c, stage);
+        let row = Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
+            .clamped(f32::NEG_INFINITY, 0.0);
+        out.push(row, c, rule);
     }
 
     /// Records that the rope pulled (for restitution), after a direct solve.

@@ -11,7 +11,9 @@
 //!     integrate positions         (rebound-dynamics)
 //!     solve(Bias::Off)            relax_iterations passes, no position correction (removes the bias velocity)
 //!                                 (joint paths — chains, bridges — are solved as one system in each pass:
-//!                                 crate::direct)
+//!                                 crate::direct; a pass at the pose of the one before it — a solve pass
+//!                                 after a relax pass, the projection — keeps that pass's rows and, if the
+//!                                 same rows are in the system, its factorisation)
 //! project_positions               once: the positions of each joint path, so that its joints end the step closed
 //! apply_restitution               once: ropes that snapped taut
 //! store_impulses                  impulses back into the JointStates; break check
@@ -21,7 +23,7 @@
 //! count, a step allocates nothing.
 
 use crate::coordinate::CoordinateRows;
-use crate::direct::{InvMass, JointRows, Link, MAX_ROWS, activate_violations, solve_path};
+use crate::direct::{InvMass, JointRows, Link, MAX_ROWS, PoseKey, activate_violations, solve_path};
 use crate::fixed::PreparedFixed;
 use crate::hinge::PreparedHinge;
 use crate::prismatic::PreparedPrismatic;
@@ -140,7 +142,9 @@ pub struct JointSolver {
     degree: Vec<u32>,
     incident: Vec<[usize; 2]>,
     visited: Vec<bool>,
-    /// Scratch of the direct solve.
+    /// The links of the direct solve, one per entry of `path_joints` (a path's links are the slice of its
+    /// range), kept from pass to pass: a pass at the pose a link's rows were built at reuses them, and their
+    /// factorisation if the rows in the system are also the same (see [`crate::direct`]).
     links: Vec<Link>,
     solution: Vec<[crate::direct::Real; MAX_ROWS]>,
     /// Scratch of the position projection: the path's bodies before a Newton step, and a link to measure
@@ -306,6 +310,12 @@ impl JointSolver {
         }
         // The paths first: the graph search leaves out the tethers they make redundant.
         self.find_paths(body_count);
+        // One link per path member, none kept from the last step (its rows were built at other poses, for
+        // other bodies and masses).
+        resize_links(&mut self.links, self.path_joints.len());
+        for link in &mut self.links {
+            link.forget();
+        }
         self.list_iterated();
         self.analyse_graph(params);
         skipped
@@ -578,7 +588,12 @@ impl JointSolver {
                 probe,
                 ..
             } = self;
-            let members = &path_joints[range];
+            resize_links(links, path_joints.len());
+            let (Some(members), Some(links)) =
+                (path_joints.get(range.clone()), links.get_mut(range))
+            else {
+                continue;
+            };
             let worst =
                 |joints: &mut [PreparedJoint], solver_bodies: &[SolverBody], probe: &mut Link| {
                     members
@@ -588,13 +603,13 @@ impl JointSolver {
                 };
             for _ in 0..PROJECTION_ITERATIONS {
                 let mut before = 0.0f32;
-                for (k, &index) in members.iter().enumerate() {
-                    let link = link_at(links, k);
-                    let _ = direct_rows(&mut joints[index], solver_bodies, &stage, link);
+                // The first iteration is at the pose of the last relax pass: its rows (retargeted) and, if
+                // the same rows are in the system, its factorisation serve again.
+                for (link, &index) in links.iter_mut().zip(members) {
+                    let _ = link_rows(&mut joints[index], solver_bodies, &stage, link);
                     before = before.max(link.rows.violation());
                     link.make_positional();
                 }
-                links.truncate(members.len());
                 if before <= PROJECTION_TOLERANCE {
                     break;
                 }
@@ -663,6 +678,13 @@ impl JointSolver {
 
     /// One direct pass over path `path` ([`crate::direct`]): the rows of its joints at the current pose, the
     /// exact solve of their coupled system, the soft update of each row.
+    ///
+    /// A link whose bodies are where they were when its rows were built — the bits of their displacements
+    /// and rotations ([`PoseKey`]) unchanged, as from a relax pass to the next substep's solve pass, where
+    /// only velocities change — keeps its rows and recomputes only their targets for this pass's stage; the
+    /// others are built again. The solve keeps each link's factorisation while that link and its neighbours
+    /// have the rows, and the rows in the system, it was made for ([`solve_path`]). Both give the bits a
+    /// rebuild would.
     fn solve_path(&mut self, path: usize, solver_bodies: &mut [SolverBody], stage: &Stage) {
         let Some(range) = self.paths.get(path).cloned() else {
             return;
@@ -674,19 +696,20 @@ impl JointSolver {
             solution,
             ..
         } = self;
-        let members = &path_joints[range];
-        for (k, &index) in members.iter().enumerate() {
+        // `prepare` sized the links to the path members; a solver never prepared has no paths.
+        resize_links(links, path_joints.len());
+        let (Some(members), Some(links)) = (path_joints.get(range.clone()), links.get_mut(range))
+        else {
+            return;
+        };
+        for (link, &index) in links.iter_mut().zip(members) {
             let j = &mut joints[index];
-            let link = link_at(links, k);
             // One load serves the rows and the activation.
-            let bodies = j.pair.load(solver_bodies);
-            link.lambda = rows_at(j, bodies.as_ref(), stage, link);
-            if let Some((mut a, mut b)) = bodies {
+            if let Some((mut a, mut b)) = link_rows(j, solver_bodies, stage, link) {
                 link.activate(&mut a, &mut b);
                 j.pair.store(solver_bodies, a, b);
             }
         }
-        links.truncate(members.len());
         solve_links(joints, members, links, solution, solver_bodies);
         for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
             let j = &mut joints[index];
@@ -711,6 +734,31 @@ impl JointSolver {
                 _ => {}
             }
         }
+    }
+
+    /// Drops the rows and factorisations kept between passes, so that the next pass builds everything again
+    /// (what a pass did before they were kept).
+    #[cfg(test)]
+    fn forget_rows(&mut self) {
+        for link in &mut self.links {
+            link.forget();
+        }
+    }
+
+    /// How many links of the paths have rows built at the bodies' current pose (the next pass reuses them).
+    #[cfg(test)]
+    fn reusable_links(&self, solver_bodies: &[SolverBody]) -> usize {
+        self.path_joints
+            .iter()
+            .zip(&self.links)
+            .filter(|&(&index, link)| {
+                let pose = self.joints[index]
+                    .pair
+                    .load(solver_bodies)
+                    .map(|(a, b)| PoseKey::of(&a, &b));
+                pose.is_some() && link.pose() == pose
+            })
+            .count()
     }
 
     /// Stage *restitution* (once, after the substeps): a rope with restitution `e` that snapped taut during
@@ -857,41 +905,71 @@ fn rows_at(
     let Some((a, b)) = bodies else {
         return [0.0; MAX_ROWS];
     };
+    match &mut j.kind {
+        Prepared::Rope(p) => p.direct_row(&j.pair, a, b, stage, rows),
+        Prepared::Rod(p) => p.direct_row(&j.pair, a, b, stage, rows),
+        Prepared::Ball => ball::direct_rows(&j.pair, a, b, stage, rows),
+        Prepared::Hinge(_) => PreparedHinge::direct_rows(&j.pair, a, b, stage, rows),
+        _ => return [0.0; MAX_ROWS],
+    }
+    state_lambda(j)
+}
+
+/// The rows of joint `j` in `link` for a pass of `stage` at its bodies' current pose, and its accumulated
+/// impulses: the rows already there if they were built at this very pose ([`PoseKey`]: the same bits of
+/// both bodies' displacements and rotations) — only their targets recomputed for `stage`
+/// ([`Link::reuse`]) — else built again ([`rows_at`]). Returns the bodies as loaded (`None`: no rows).
+fn link_rows(
+    j: &mut PreparedJoint,
+    solver_bodies: &[SolverBody],
+    stage: &Stage,
+    link: &mut Link,
+) -> Option<(SolverBody, SolverBody)> {
+    let bodies = j.pair.load(solver_bodies);
+    let pose = bodies.as_ref().map(|(a, b)| PoseKey::of(a, b));
+    if pose.is_some() && link.pose() == pose {
+        link.reuse(stage);
+        link.lambda = state_lambda(j);
+    } else {
+        link.lambda = rows_at(j, bodies.as_ref(), stage, link);
+        link.built_at(pose);
+    }
+    bodies
+}
+
+/// The accumulated impulses of joint `j`'s direct rows, in row order (0 for a joint without direct rows).
+fn state_lambda(j: &PreparedJoint) -> [f32; MAX_ROWS] {
     let s = &j.state;
     let (l, w) = (s.linear_impulse, s.angular_impulse);
-    match &mut j.kind {
-        Prepared::Rope(p) => {
-            rows.push(p.direct_row(&j.pair, a, b, stage));
-            [s.upper_impulse, 0.0, 0.0, 0.0, 0.0]
-        }
-        Prepared::Rod(p) => {
-            rows.push(p.direct_row(&j.pair, a, b, stage));
-            [s.axial_impulse, 0.0, 0.0, 0.0, 0.0]
-        }
-        Prepared::Ball => {
-            ball::direct_rows(&j.pair, a, b, stage, rows);
-            [l.x, l.y, l.z, 0.0, 0.0]
-        }
-        Prepared::Hinge(_) => {
-            PreparedHinge::direct_rows(&j.pair, a, b, stage, rows);
-            [l.x, l.y, l.z, w.x, w.y]
-        }
+    match &j.kind {
+        Prepared::Rope(_) => [s.upper_impulse, 0.0, 0.0, 0.0, 0.0],
+        Prepared::Rod(_) => [s.axial_impulse, 0.0, 0.0, 0.0, 0.0],
+        Prepared::Ball => [l.x, l.y, l.z, 0.0, 0.0],
+        Prepared::Hinge(_) => [l.x, l.y, l.z, w.x, w.y],
         _ => [0.0; MAX_ROWS],
+    }
+}
+
+/// An empty link (no rows, no bodies), to grow a buffer of links with.
+fn empty_link() -> Link {
+    let zero = InvMass {
+        mass: 0.0,
+        inertia: Mat3::ZERO,
+    };
+    Link::new(JointRows::new(zero, zero), [0.0; MAX_ROWS])
+}
+
+/// Grows `links` to at least `len` links (it never shrinks: the buffer keeps the longest it has been, so
+/// that a step allocates nothing once it has).
+fn resize_links(links: &mut Vec<Link>, len: usize) {
+    if links.len() < len {
+        links.resize(len, empty_link());
     }
 }
 
 /// Link `k` of a pass, reused from earlier passes (the buffer grows to the longest path once).
 fn link_at(links: &mut Vec<Link>, k: usize) -> &mut Link {
-    if links.len() <= k {
-        let zero = InvMass {
-            mass: 0.0,
-            inertia: Mat3::ZERO,
-        };
-        links.resize(
-            k + 1,
-            Link::new(JointRows::new(zero, zero), [0.0; MAX_ROWS]),
-        );
-    }
+    resize_links(links, k + 1);
     &mut links[k]
 }
 
@@ -981,5 +1059,136 @@ fn solve_links(
         if !changed {
             break;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #![allow(
+        clippy::unwrap_used,
+        reason = "the scene is built from known-valid inputs; a failure is a test failure"
+    )]
+
+    use super::*;
+    use crate::{BallJoint, HingeJoint, Rope};
+    use rebound_dynamics::integrate::{integrate_positions, integrate_velocities};
+    use rebound_dynamics::{BodyDesc, MassProperties, RigidBody, SolverSettings};
+    use rebound_math::Quat;
+
+    /// Two paths: a deck of hinges, a rope and a ball joint between two fixed bodies (the block sweep, with
+    /// one-row and three-row links padded, and a slack rope whose rigid row makes the softness non-uniform),
+    /// and a chain of eight ropes from a fixed body, some slack (the scalar sweep, with links leaving and
+    /// joining the system). Twenty steps in the world's order; with `rebuild` every pass builds its rows and
+    /// factorisations again. Returns the bodies and the joint states as text (`{:?}` of an `f32` tells any
+    /// two bit patterns but NaNs apart).
+    fn steps(rebuild: bool) -> String {
+        const STEPS: usize = 20;
+        let mut bodies = Vec::new();
+        let mut add = |desc: BodyDesc| {
+            bodies.push(RigidBody::new(&desc).unwrap());
+            bodies.len() - 1
+        };
+        let ball = |x: f32, y: f32, spin: f32| {
+            BodyDesc::dynamic()
+                .with_position(Vec3::new(x, y, 0.0))
+                .with_rotation(Quat::from_rotation_z(0.1 * x))
+                .with_angular_velocity(Vec3::new(0.0, spin, spin))
+                .with_mass_properties(
+                    MassProperties::new(1.0 + x, Vec3::ZERO, Vec3::new(0.2, 0.3, 0.25)).unwrap(),
+                )
+        };
+        let deck: Vec<usize> = [
+            add(BodyDesc::fixed()),
+            add(ball(1.0, 0.0, 0.5)),
+            add(ball(2.0, 0.1, -0.3)),
+            add(ball(2.9, 0.0, 0.2)),
+            add(ball(4.0, -0.1, 0.0)),
+            add(BodyDesc::fixed().with_position(Vec3::new(5.0, 0.0, 0.0))),
+        ]
+        .to_vec();
+        // Ropes alternately stretched and slack, so that links join and leave the system from pass to pass.
+        let lengths = [0.95, 0.3, 0.5, 0.6, 0.45, 0.7, 0.5, 0.4];
+        let mut chain = vec![add(
+            BodyDesc::fixed().with_position(Vec3::new(0.0, 5.0, 0.0))
+        )];
+        for k in 1..=lengths.len() {
+            let wobble = [0.1, -0.2, 0.0, 0.15][k % 4];
+            chain.push(add(ball(0.5 * k as f32, 5.0 + wobble, 0.1 * wobble)));
+        }
+        let hinge = |x: f32| {
+            Joint::new(HingeJoint::new())
+                .with_local_anchors(Vec3::new(x, 0.0, 0.0), Vec3::new(-0.5, 0.0, 0.0))
+                .unwrap()
+                .with_local_axes(Vec3::Z, Vec3::Z)
+                .unwrap()
+        };
+        let mut joints = vec![
+            hinge(0.5),
+            hinge(0.5),
+            Joint::new(Rope::new(1.0).unwrap()),
+            hinge(0.5),
+            Joint::new(BallJoint::new())
+                .with_local_anchors(Vec3::new(0.5, 0.0, 0.0), Vec3::new(-0.5, 0.0, 0.0))
+                .unwrap(),
+        ];
+        joints.extend(lengths.map(|length| Joint::new(Rope::new(length).unwrap())));
+        let pairs: Vec<JointBodies> = deck
+            .windows(2)
+            .chain(chain.windows(2))
+            .map(|w| JointBodies { a: w[0], b: w[1] })
+            .collect();
+        let mut states = vec![JointState::default(); joints.len()];
+        let settings = SolverSettings::default();
+        let mut solver = JointSolver::new();
+        let mut broken = Vec::new();
+        let mut reused = 0;
+        let ctx = StepContext::new(1.0 / 60.0, &settings);
+        for _ in 0..STEPS {
+            let mut solver_bodies: Vec<SolverBody> =
+                bodies.iter().map(SolverBody::from_body).collect();
+            let params: Vec<BodyParams> = bodies.iter().map(BodyParams::from_body).collect();
+            let skipped = solver.prepare(&joints, &states, &pairs, &solver_bodies, &params, &ctx);
+            assert_eq!((skipped, solver.paths.len()), (0, 2));
+            assert_eq!(solver.reusable_links(&solver_bodies), 0, "prepare forgets");
+            for _ in 0..ctx.substep_count {
+                integrate_velocities(&mut solver_bodies, &params, &ctx);
+                solver.apply_forces(&mut solver_bodies, &ctx);
+                solver.warm_start(&mut solver_bodies);
+                reused += solver.reusable_links(&solver_bodies);
+                if rebuild {
+                    solver.forget_rows();
+                }
+                solver.solve(&mut solver_bodies, &ctx, Bias::On);
+                integrate_positions(&mut solver_bodies, &params, &ctx);
+                reused += solver.reusable_links(&solver_bodies);
+                if rebuild {
+                    solver.forget_rows();
+                }
+                solver.solve(&mut solver_bodies, &ctx, Bias::Off);
+            }
+            reused += solver.reusable_links(&solver_bodies);
+            if rebuild {
+                solver.forget_rows();
+            }
+            solver.project_positions(&mut solver_bodies, &ctx);
+            solver.apply_restitution(&mut solver_bodies, &ctx);
+            solver.store_impulses(&mut states, &mut broken);
+            for (body, (state, params)) in bodies.iter_mut().zip(solver_bodies.iter().zip(&params))
+            {
+                assert!(params.write_back(state, body));
+            }
+        }
+        // Every link is reusable in the solve pass of substeps 2 to 4 and in the projection (the relax pass
+        // left the pose), none after the world moved the bodies.
+        assert_eq!(
+            reused,
+            STEPS * ctx.substep_count as usize * solver.path_joints.len()
+        );
+        format!("{bodies:?} {states:?}")
+    }
+
+    #[test]
+    fn passes_that_reuse_rows_and_factorisations_give_the_bits_of_passes_that_rebuild_them() {
+        assert_eq!(steps(false), steps(true));
     }
 }
