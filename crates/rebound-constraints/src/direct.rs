@@ -872,7 +872,12 @@ pub(crate) fn activate_violations(
 ) -> bool {
     let mut any = false;
     for i in 0..links.len() {
-        let left_out = links[i].left_out();
+        // Most links of a rope chain are a one-row link in the system (a taut rope): nothing left out.
+        let link = &links[i];
+        if link.rows.count == 1 && link.active[0] {
+            continue;
+        }
+        let left_out = link.left_out();
         if !left_out.contains(&true) {
             continue;
         }
@@ -950,52 +955,63 @@ pub(crate) fn solve_path(
     load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
     out: &mut Vec<[Real; MAX_ROWS]>,
 ) {
-    out.clear();
+    // One solution per link. The back substitution of either sweep writes every one of them whole, so the
+    // entries kept from the last solve are not cleared first (a 500-link chain's 20 kB per round).
+    out.truncate(links.len());
     out.resize(links.len(), [0.0; MAX_ROWS]);
     // With one softness along the path (a settled or straight chain, a bridge, every relax pass and
     // projection) the soft step splits into `K·x = r` and `y = mass_scale·x + impulse_scale·λ`: the same
     // result, without `K·λ`, and bit for bit that of the per-row form.
-    let uniform = uniform_softness(links);
-    if links.iter().all(|link| link.rows.count <= 1) {
+    let (widest, uniform) = path_shape(links);
+    if widest <= 1 {
         solve_scalar_path(links, load, out, uniform);
     } else {
-        solve_block_path(links, load, out, uniform);
+        solve_block_path(links, load, out, widest, uniform);
     }
 }
 
-/// The softness every active row of the path shares, if they all do.
-fn uniform_softness(links: &[Link]) -> Option<Softness> {
-    let mut common: Option<Softness> = None;
+/// One scan of the path for what `solve_path` decides on: the largest row count of its links, and the
+/// softness every active row shares, if they all do (the first active row's, or rigid without one).
+fn path_shape(links: &[Link]) -> (usize, Option<Softness>) {
+    // A softness by its bits: the same bits make the split form of `solve_path` exactly the per-row one.
+    let bits = |s: Softness| {
+        (u64::from(s.mass_scale.to_bits()) << 32) | u64::from(s.impulse_scale.to_bits())
+    };
+    let mut widest = 0;
+    let mut common: Option<(Softness, u64)> = None;
+    let mut uniform = true;
     for link in links {
+        widest = widest.max(link.rows.count);
+        if !uniform {
+            continue;
+        }
         for (row, &active) in link.rows.rows().iter().zip(&link.active) {
             if !active {
                 continue;
             }
             let s = row.target.softness;
             match common {
-                None => common = Some(s),
-                // The same bits: then the split form of `solve_path` is exactly the per-row one.
-                Some(c)
-                    if c.mass_scale.to_bits() == s.mass_scale.to_bits()
-                        && c.impulse_scale.to_bits() == s.impulse_scale.to_bits() => {}
-                Some(_) => return None,
+                None => common = Some((s, bits(s))),
+                Some((_, c)) if c == bits(s) => {}
+                Some(_) => uniform = false,
             }
         }
     }
-    Some(common.unwrap_or(Softness::RIGID))
+    let uniform = uniform.then(|| common.map_or(Softness::RIGID, |(s, _)| s));
+    (widest, uniform)
 }
 
 /// [`solve_path`] for paths with multi-row joints: the block Thomas algorithm, over blocks of the path's
 /// largest row count (a link with fewer rows is padded with rows that solve to 0; a path of hinges runs the
 /// 5 × 5 sweep, one of ball joints the 3 × 3). With a `uniform` softness the right-hand side is the residual
-/// alone and the soft step is finished in the back substitution.
+/// alone and the soft step is finished in the back substitution. `rows` is the largest row count of the links.
 fn solve_block_path(
     links: &mut [Link],
     load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
+    rows: usize,
     uniform: Option<Softness>,
 ) {
-    let rows = links.iter().map(|link| link.rows.count).max().unwrap_or(0);
     match rows {
         0..=2 => block_sweep::<2>(links, load, out, uniform),
         3 => block_sweep::<3>(links, load, out, uniform),
@@ -1249,8 +1265,7 @@ fn solve_scalar_path(
     let mut next = 0.0;
     for i in (0..links.len()).rev() {
         let x = links[i].y[0] - links[i].v[0][0] * next;
-        out[i][0] = x;
-        out[i] = links[i].finish(out[i], uniform);
+        out[i] = links[i].finish([x, 0.0, 0.0, 0.0, 0.0], uniform);
         next = x;
     }
 }
