@@ -54,14 +54,14 @@
 //!
 //! A step runs `solve` (bias on), the world integrates positions, `relax` (bias off), per substep, then the
 //! projection. Between a relax pass and the next substep's solve pass (and the projection after the last
-//! one) only velocities change, so both passes see the same Jacobians and the same `K`. A [`Link`] therefore
+//! one) only velocities change, so both passes see the same Jacobians and the same `K`. A `Link` therefore
 //! stays with its joint from pass to pass (one per path member, in the solver) and records the pose its rows
-//! were built at ([`PoseKey`]: the bits of both bodies' `delta_position` and `delta_rotation`, all that row
+//! were built at (`PoseKey`: the bits of both bodies' `delta_position` and `delta_rotation`, all that row
 //! building reads of the bodies). At an unchanged pose the pass keeps the rows — Jacobians, turned vectors
 //! and position errors `C` — and recomputes only the targets, which depend on the stage, from the stored
-//! `C` with the functions that built them ([`TargetRule`]); any other pose, and the first pass of a step,
+//! `C` with the functions that built them (`TargetRule`); any other pose, and the first pass of a step,
 //! builds them again. The sweep then keeps each link's factorisation (`B`, `C`, `L`, `D⁻¹`, `W`, `V`) while
-//! it and its neighbours have the rows and the rows in the system ([`FactorKey`]) it was made for — a rope
+//! it and its neighbours have the rows and the rows in the system (`FactorKey`) it was made for — a rope
 //! joining or leaving the system refactorises from the link before it on — and sweeps only the right-hand
 //! side. Everything kept is what the same operations on the same values would give again, so a pass gives
 //! the bits it gave when it rebuilt everything.
