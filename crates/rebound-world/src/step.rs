@@ -682,7 +682,6 @@ impl<B: CollisionBackend> World<B> {
     }
 }
 
-/// Whether a backend's manifold can be used: live, distinct bodies, finite unit normal, finite points.
 /// One step of a forward walk through a list sorted by `key_of`, for keys asked in increasing order: skips the
 /// items below `key` and returns the one equal to it, if any (O(n + m) for two sorted lists, and sequential
 /// reads, where a binary search per key misses the cache at every probe).
@@ -708,6 +707,7 @@ fn lever_arms(
     ]
 }
 
+/// Whether a backend's manifold can be used: live, distinct bodies, finite unit normal, finite points.
 fn is_usable(m: &ContactManifold, bodies: &BodySet) -> bool {
     m.body_a != m.body_b
         && bodies.contains(m.body_a)
