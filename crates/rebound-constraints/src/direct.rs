@@ -181,6 +181,18 @@ struct FactorKey {
     shared: Option<(bool, bool)>,
 }
 
+impl FactorKey {
+    /// The key of `link`'s current rows in the system, for a sweep of blocks `width` wide.
+    #[inline]
+    fn of(link: &Link, width: usize) -> Self {
+        Self {
+            width,
+            active: link.active,
+            shared: link.shared_with_next,
+        }
+    }
+}
+
 impl Side {
     /// `J_side·M⁻¹·other_sideᵀ`: how an impulse on `other` changes this row's `Ċ` through one body, with
     /// `other`'s angular part already turned by the body's inverse inertia (`turned = I⁻¹·other.angular`,
@@ -1042,12 +1054,7 @@ fn block_sweep<const N: usize>(
     uniform: Option<Softness>,
 ) {
     let split = uniform.is_some();
-    let key = |link: &Link| FactorKey {
-        width: N,
-        active: link.active,
-        shared: link.shared_with_next,
-    };
-    let stale = first_stale(links, key);
+    let stale = first_stale(links, N);
     // Forward sweep. `lambda_prev` holds λᵢ₋₁; Cᵢ₋₁, Wᵢ₋₁, Vᵢ₋₁ and yᵢ₋₁ are stored in link i − 1.
     let mut lambda_prev = [0.0; MAX_ROWS];
     for i in 0..links.len() {
@@ -1130,7 +1137,7 @@ fn block_sweep<const N: usize>(
             link.factor = factor;
             link.inv_pivot = inv_pivot;
             link.w = w;
-            link.factored = Some(key(link));
+            link.factored = Some(FactorKey::of(link, N));
         }
         // y = D⁻¹·L⁻¹·rhs
         forward_substitute::<N>(&link.factor, &mut rhs);
@@ -1156,12 +1163,12 @@ fn block_sweep<const N: usize>(
     }
 }
 
-/// The first link of the path whose stored factorisation is not for its current rows and active set (its
-/// [`FactorKey`] differs from `key(link)`), or the number of links if there is none.
-fn first_stale(links: &[Link], key: impl Fn(&Link) -> FactorKey) -> usize {
+/// The first link of the path whose stored factorisation is not for its current rows and active set in a
+/// sweep of blocks `width` wide (its [`FactorKey`] differs), or the number of links if there is none.
+fn first_stale(links: &[Link], width: usize) -> usize {
     links
         .iter()
-        .position(|link| link.factored != Some(key(link)))
+        .position(|link| link.factored != Some(FactorKey::of(link, width)))
         .unwrap_or(links.len())
 }
 
@@ -1185,12 +1192,7 @@ fn solve_scalar_path(
     uniform: Option<Softness>,
 ) {
     let split = uniform.is_some();
-    let key = |link: &Link| FactorKey {
-        width: 1,
-        active: link.active,
-        shared: link.shared_with_next,
-    };
-    let stale = first_stale(links, key);
+    let stale = first_stale(links, 1);
     // Forward sweep: c'ᵢ = cᵢ/sᵢ, r'ᵢ = (r̃ᵢ − cᵢ₋₁·r'ᵢ₋₁)/sᵢ with sᵢ = bᵢ − cᵢ₋₁·c'ᵢ₋₁ and r̃ the soft
     // right-hand side of `solve_path`; bᵢ is the row's regularised `K` (1 for a row not in the system).
     // Link i − 1 holds cᵢ₋₁ (`c_block`), c'ᵢ₋₁ (`v`) and r'ᵢ₋₁ (`y`); `lambda_prev` is λᵢ₋₁.
@@ -1223,7 +1225,7 @@ fn solve_scalar_path(
             link.c_block[0][0] = c;
             link.factor[0][0] = s;
             link.v[0][0] = c_prime;
-            link.factored = Some(key(link));
+            link.factored = Some(FactorKey::of(link, 1));
         }
         let link = &links[i];
         let active = link.rows.count == 1 && link.active[0];
