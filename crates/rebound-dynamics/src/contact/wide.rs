@@ -231,38 +231,31 @@ impl Coloring {
         for members in &mut self.members {
             members.clear();
         }
-        for (index, c) in contacts.iter().enumerate() {
-            if index % CHUNK == 0 && index > 0 {
-                self.flush(
-                    &contacts[index - CHUNK..index],
-                    contacts,
-                    input,
-                    batches,
-                    slots,
-                );
-            }
-            if !is_wide(c) || self.scalar_only {
-                scalar.push(index);
-                continue;
-            }
-            // Fixed and kinematic bodies take no colour: any number of lanes may read them.
-            let moves = |body: usize| params[body].is_dynamic();
-            let used = |body: usize| if moves(body) { self.used[body] } else { 0 };
-            // The first colour neither body is in.
-            let color = (!(used(c.body_a) | used(c.body_b))).trailing_zeros() as usize;
-            if color >= COLORS {
-                scalar.push(index);
-                continue;
-            }
-            for body in [c.body_a, c.body_b] {
-                if moves(body) {
-                    self.used[body] |= 1 << color;
+        for (chunk_index, chunk) in contacts.chunks(CHUNK).enumerate() {
+            for (offset, c) in chunk.iter().enumerate() {
+                let index = chunk_index * CHUNK + offset;
+                if !is_wide(c) || self.scalar_only {
+                    scalar.push(index);
+                    continue;
                 }
+                // Fixed and kinematic bodies take no colour: any number of lanes may read them.
+                let moves = |body: usize| params[body].is_dynamic();
+                let used = |body: usize| if moves(body) { self.used[body] } else { 0 };
+                // The first colour neither body is in.
+                let color = (!(used(c.body_a) | used(c.body_b))).trailing_zeros() as usize;
+                if color >= COLORS {
+                    scalar.push(index);
+                    continue;
+                }
+                for body in [c.body_a, c.body_b] {
+                    if moves(body) {
+                        self.used[body] |= 1 << color;
+                    }
+                }
+                self.members[color].push(index);
             }
-            self.members[color].push(index);
+            self.flush(chunk, contacts, input, batches, slots);
         }
-        let last = contacts.len().saturating_sub(1) / CHUNK * CHUNK;
-        self.flush(&contacts[last..], contacts, input, batches, slots);
     }
 
     /// Ends a chunk: its batches, colour by colour (each colour's manifolds four at a time, in manifold
