@@ -39,7 +39,6 @@
 //! boxes (solved point after point): flipping the reference on rounding-level ties tilted the pyramid out of
 //! its plane, hence [`FACE_TOLERANCE`]; the points stay in polygon order.
 
-use parry3d::query::{ContactManifold as ParryManifold, TrackedContact};
 use parry3d::shape::PackedFeatureId;
 use rebound_math::{Mat3, Quat, Vec3};
 
@@ -56,7 +55,94 @@ const EDGE_TOLERANCE: f32 = 1.0e-3;
 const PARALLEL_SINE: f32 = 1.0e-3;
 
 /// Most vertices a quad can have after clipping against four planes.
-const MAX_CLIPPED: usize = 8;
+pub(crate) const MAX_CLIPPED: usize = 8;
+
+/// A contact point of two convex shapes, in the shapes' own frames (parry's `TrackedContact` without its user
+/// data).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct ShapePoint {
+    /// The point on shape 1, in shape 1's frame (m).
+    pub(crate) local_p1: Vec3,
+    /// The point on shape 2, in shape 2's frame (m).
+    pub(crate) local_p2: Vec3,
+    /// What touches on shape 1.
+    pub(crate) fid1: PackedFeatureId,
+    /// What touches on shape 2.
+    pub(crate) fid2: PackedFeatureId,
+    /// Signed distance along the normal (m): negative when overlapping.
+    pub(crate) dist: f32,
+}
+
+impl ShapePoint {
+    /// A placeholder for unused slots.
+    const UNUSED: Self = Self {
+        local_p1: Vec3::ZERO,
+        local_p2: Vec3::ZERO,
+        fid1: PackedFeatureId::UNKNOWN,
+        fid2: PackedFeatureId::UNKNOWN,
+        dist: 0.0,
+    };
+}
+
+/// The points of a [`ShapeManifold`], without allocation (at most [`MAX_CLIPPED`]; a push beyond is dropped).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ShapePoints {
+    points: [ShapePoint; MAX_CLIPPED],
+    len: usize,
+}
+
+impl Default for ShapePoints {
+    fn default() -> Self {
+        Self {
+            points: [ShapePoint::UNUSED; MAX_CLIPPED],
+            len: 0,
+        }
+    }
+}
+
+impl ShapePoints {
+    /// Appends a point (dropped if full: no generator makes more than [`MAX_CLIPPED`]).
+    pub(crate) fn push(&mut self, point: ShapePoint) {
+        if let Some(slot) = self.points.get_mut(self.len) {
+            *slot = point;
+            self.len += 1;
+        }
+    }
+
+    /// Forgets every point.
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+    }
+}
+
+impl<'a> IntoIterator for &'a ShapePoints {
+    type Item = &'a ShapePoint;
+    type IntoIter = core::slice::Iter<'a, ShapePoint>;
+
+    fn into_iter(self) -> Self::IntoIter {
+        self.iter()
+    }
+}
+
+impl core::ops::Deref for ShapePoints {
+    type Target = [ShapePoint];
+
+    fn deref(&self) -> &[ShapePoint] {
+        &self.points[..self.len]
+    }
+}
+
+/// The contact of two convex shapes in their own frames, as our generators write it for the narrow phase's
+/// seam: the fields of parry's `ContactManifold` a convex pair uses, on the stack instead of a heap buffer.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct ShapeManifold {
+    /// The normal, from shape 1 towards shape 2, in shape 1's frame.
+    pub(crate) local_n1: Vec3,
+    /// The same normal in shape 2's frame, pointing back towards shape 1.
+    pub(crate) local_n2: Vec3,
+    /// The points (none: no contact).
+    pub(crate) points: ShapePoints,
+}
 
 /// What the polygon edge leaving a vertex runs along: an incident edge (its id, 0..12), or the side plane
 /// `sign·x_k ≤ h_k` of the reference face where the polygon was cut (`REFERENCE_PLANE + 2·k + (sign < 0)`).
@@ -123,7 +209,7 @@ pub(crate) fn box_box_manifold(
     rotation: Quat,
     translation: Vec3,
     prediction: f32,
-    out: &mut ParryManifold<(), ()>,
+    out: &mut ShapeManifold,
 ) {
     let r = Mat3::from_quat(rotation);
     let t = translation;
@@ -210,13 +296,13 @@ pub(crate) fn box_box_manifold(
         out.local_n2 = n2;
         out.local_n1 = -(r * n2);
         for &(on_reference, on_incident, separation, [on_b, on_a]) in &points[..count] {
-            out.points.push(TrackedContact::new(
-                r * on_incident + t,
-                on_reference,
-                on_a,
-                on_b,
-                separation,
-            ));
+            out.points.push(ShapePoint {
+                local_p1: r * on_incident + t,
+                local_p2: on_reference,
+                fid1: on_a,
+                fid2: on_b,
+                dist: separation,
+            });
         }
     } else {
         let incident = Incident {
@@ -231,13 +317,13 @@ pub(crate) fn box_box_manifold(
         out.local_n2 = -(r.transpose() * n1);
         let rt = r.transpose();
         for &(on_reference, on_incident, separation, [on_a, on_b]) in &points[..count] {
-            out.points.push(TrackedContact::new(
-                on_reference,
-                rt * (on_incident - t),
-                on_a,
-                on_b,
-                separation,
-            ));
+            out.points.push(ShapePoint {
+                local_p1: on_reference,
+                local_p2: rt * (on_incident - t),
+                fid1: on_a,
+                fid2: on_b,
+                dist: separation,
+            });
         }
     }
 }
@@ -457,7 +543,7 @@ fn edge_contact(
     (i, j): (usize, usize),
     n: Vec3,
     prediction: f32,
-    out: &mut ParryManifold<(), ()>,
+    out: &mut ShapeManifold,
 ) {
     // A's edge farthest along n: its centre takes the sign of n on the two other axes.
     let mut center1 = Vec3::ZERO;
@@ -495,19 +581,21 @@ fn edge_contact(
     }
     out.local_n1 = n;
     out.local_n2 = -(r.transpose() * n);
-    out.points.push(TrackedContact::new(
-        p1,
-        r.transpose() * (p2 - t),
-        edge_feature(edge_id(i, signs1)),
-        edge_feature(edge_id(j, signs2)),
-        separation,
-    ));
+    out.points.push(ShapePoint {
+        local_p1: p1,
+        local_p2: r.transpose() * (p2 - t),
+        fid1: edge_feature(edge_id(i, signs1)),
+        fid2: edge_feature(edge_id(j, signs2)),
+        dist: separation,
+    });
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use parry3d::query::{DefaultQueryDispatcher, PersistentQueryDispatcher};
+    use parry3d::query::{
+        ContactManifold as ParryManifold, DefaultQueryDispatcher, PersistentQueryDispatcher,
+    };
     use parry3d::shape::Cuboid;
     use proptest::prelude::*;
 
@@ -517,8 +605,8 @@ mod tests {
         rotation: Quat,
         translation: Vec3,
         prediction: f32,
-    ) -> ParryManifold<(), ()> {
-        let mut out = ParryManifold::new();
+    ) -> ShapeManifold {
+        let mut out = ShapeManifold::default();
         box_box_manifold(half1, half2, rotation, translation, prediction, &mut out);
         out
     }
@@ -631,7 +719,7 @@ mod tests {
         let half = Vec3::splat(0.5);
         let rotation = Quat::from_rotation_y(0.05);
         let translation = Vec3::new(0.3, 0.995, 0.2);
-        let ids = |m: &ParryManifold<(), ()>, swap: bool| {
+        let ids = |m: &ShapeManifold, swap: bool| {
             let mut ids: Vec<_> = m
                 .points
                 .iter()
@@ -692,10 +780,10 @@ mod tests {
                     &mut theirs,
                 )
                 .map_err(|e| TestCaseError::fail(format!("{e:?}")))?;
-            let deepest = |m: &ParryManifold<(), ()>| {
-                m.points.iter().map(|p| p.dist).fold(f32::INFINITY, f32::min)
-            };
-            let (a, b) = (deepest(&ours), deepest(&theirs));
+            let (a, b) = (
+                ours.points.iter().map(|p| p.dist).fold(f32::INFINITY, f32::min),
+                theirs.points.iter().map(|p| p.dist).fold(f32::INFINITY, f32::min),
+            );
             if a.is_finite() && b.is_finite() {
                 if b < 0.0 {
                     // Overlapping: the same depth (the minimum-overlap axis), up to the face/edge preference.

@@ -1,6 +1,6 @@
 //! The narrow phase (second half of the collide stage): parry3d's persistent contact manifolds for each
 //! candidate pair (two boxes: our own generator, [`crate::box_box`], into the same parry manifold), turned
-//! into the world's plain-data [`ContactManifold`] at one seam, [`to_world_manifold`].
+//! into the world's plain-data [`ContactManifold`] at one seam, [`Seam`].
 //!
 //! # Pair cache
 //!
@@ -35,16 +35,15 @@
 //! [`MAX_MANIFOLD_POINTS`] points, a 32-bit feature id per point and a 64-bit key that is stable for a
 //! collider pair and sub-shape pair.
 
-use crate::box_box::box_box_manifold;
+use crate::box_box::{ShapeManifold, ShapePoint, box_box_manifold};
 use crate::broad_phase::BroadPhase;
 use crate::shape::{from_parry_pose, to_parry_pose};
 use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape};
-use parry3d::query::details::contact_manifold_ball_ball;
 use parry3d::query::{
     ContactManifold as ParryManifold, ContactManifoldsWorkspace, DefaultQueryDispatcher,
     PersistentQueryDispatcher, TrackedContact,
 };
-use parry3d::shape::Ball;
+use parry3d::shape::PackedFeatureId;
 use rebound_dynamics::{CombineRule, RigidBody};
 use rebound_math::{Pose, Vec3};
 use rebound_world::{BodySet, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint};
@@ -93,9 +92,13 @@ pub(crate) struct NarrowPhase {
     /// Last step's pair list while this step's is built (empty between steps, capacity kept), so that the
     /// step allocates no new list.
     previous: Vec<((ColliderHandle, ColliderHandle), PairCache)>,
-    /// The scratch manifold of convex pairs.
+    /// The scratch manifold of convex pairs parry generates.
     convex: ParryManifold<(), ()>,
 }
+
+/// The key extension of a convex pair's manifold: parry's sub-shape ids of a convex pair (both 0), so that a
+/// pair keeps its key whichever generator made its manifold.
+const CONVEX_SUBSHAPES: [u32; 2] = [0, 0];
 
 impl core::fmt::Debug for NarrowPhase {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
@@ -152,22 +155,15 @@ impl NarrowPhase {
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
             if shape1.is_convex() && shape2.is_convex() {
-                // What parry's dispatcher does for two convex shapes, in the scratch manifold. The two
-                // commonest pairs skip its dispatch (two trait-object downcasts per shape and pair): two
-                // balls go straight to parry's ball–ball generator, two boxes to ours (crate::box_box). The
-                // shape kind is read from the collider's description, which built the parry shape.
-                let manifold = &mut self.convex;
-                forget_manifold_history(manifold);
-                let computed = match (&c1.desc.shape, &c2.desc.shape) {
+                // The two commonest pairs skip parry's dispatch (two trait-object downcasts per shape and
+                // pair) and its heap-backed manifold: two balls and two boxes go to our generators
+                // (`ball_ball`, crate::box_box), which write a `ShapeManifold` on the stack. The shape kind is
+                // read from the collider's description, which built the parry shape.
+                let frames = (c1.desc.local_pose, c2.desc.local_pose);
+                let mut ours = ShapeManifold::default();
+                match (&c1.desc.shape, &c2.desc.shape) {
                     (ColliderShape::Ball { radius: r1 }, ColliderShape::Ball { radius: r2 }) => {
-                        contact_manifold_ball_ball(
-                            &pos12,
-                            &Ball::new(*r1),
-                            &Ball::new(*r2),
-                            prediction,
-                            manifold,
-                        );
-                        Ok(())
+                        ball_ball(&pos12, *r1, *r2, prediction, &mut ours);
                     }
                     (
                         ColliderShape::Cuboid { half_extents: h1 },
@@ -179,19 +175,39 @@ impl NarrowPhase {
                             pos12.rotation,
                             pos12.translation,
                             prediction,
-                            manifold,
+                            &mut ours,
                         );
-                        Ok(())
                     }
-                    _ => DefaultQueryDispatcher
-                        .contact_manifold_convex_convex(
+                    _ => {
+                        // What parry's dispatcher does for two convex shapes, in the scratch manifold.
+                        let manifold = &mut self.convex;
+                        forget_manifold_history(manifold);
+                        let computed = DefaultQueryDispatcher.contact_manifold_convex_convex(
                             &pos12, shape1, shape2, None, None, prediction, manifold,
-                        )
-                        .map(|_| ()),
-                };
-                if computed.is_ok() {
-                    out.extend(to_world_manifold(key_base, c1, b1, c2, manifold));
+                        );
+                        if computed.is_ok() {
+                            let key = fnv1a(key_base, &[manifold.subshape1, manifold.subshape2]);
+                            let seam = Seam {
+                                c1,
+                                b1,
+                                c2,
+                                key,
+                                frames,
+                            };
+                            seam.push(manifold.local_n1, &manifold.points, out);
+                        }
+                        continue;
+                    }
                 }
+                let key = fnv1a(key_base, &CONVEX_SUBSHAPES);
+                let seam = Seam {
+                    c1,
+                    b1,
+                    c2,
+                    key,
+                    frames,
+                };
+                seam.push(ours.local_n1, &ours.points, out);
                 continue;
             }
             let mut cache = cached.unwrap_or_default();
@@ -208,12 +224,19 @@ impl NarrowPhase {
                 // A shape pair parry has no algorithm for: no contacts, nothing to cache.
                 continue;
             }
-            out.extend(
-                cache
-                    .manifolds
-                    .iter()
-                    .filter_map(|m| to_world_manifold(key_base, c1, b1, c2, m)),
-            );
+            for m in &cache.manifolds {
+                let seam = Seam {
+                    c1,
+                    b1,
+                    c2,
+                    key: fnv1a(key_base, &[m.subshape1, m.subshape2]),
+                    frames: (
+                        shape_frame(c1, m.subshape_pos1()),
+                        shape_frame(c2, m.subshape_pos2()),
+                    ),
+                };
+                seam.push(m.local_n1, &m.points, out);
+            }
             self.pairs.push(((h1, h2), cache));
         }
     }
@@ -244,8 +267,8 @@ fn fnv1a(mut hash: u64, words: &[u32]) -> u64 {
 /// bits, xor the second. Exact (no two feature pairs collide) while both indices are below 2¹⁴ = 16384,
 /// which covers every primitive and, per sub-shape manifold, every triangle; beyond that ids may collide,
 /// which only costs a warm start.
-fn pack_feature_id(point: &TrackedContact<()>) -> u32 {
-    point.fid1.0.rotate_left(16) ^ point.fid2.0
+fn pack_feature_id((fid1, fid2): (PackedFeatureId, PackedFeatureId)) -> u32 {
+    fid1.0.rotate_left(16) ^ fid2.0
 }
 
 /// The frame of a (sub-)shape in its body's frame: the collider's local pose, then the sub-shape's pose in
@@ -257,74 +280,179 @@ fn shape_frame(collider: &Collider, subshape_pose: Option<&parry3d::math::Pose>)
     }
 }
 
-/// **The seam**: one parry manifold of the collider pair (`c1`, `c2`) as the world's [`ContactManifold`].
+/// A contact point as a generator leaves it, in its shapes' own frames: parry's [`TrackedContact`] or our
+/// [`ShapePoint`].
+pub(crate) trait SeamPoint {
+    /// The point on shape 1, in shape 1's frame (m).
+    fn local_p1(&self) -> Vec3;
+    /// The point on shape 2, in shape 2's frame (m).
+    fn local_p2(&self) -> Vec3;
+    /// Signed distance along the normal (m).
+    fn dist(&self) -> f32;
+    /// What touches on each shape.
+    fn features(&self) -> (PackedFeatureId, PackedFeatureId);
+    /// Whether the point is finite (defensive: the generators' points always are).
+    fn is_usable(&self) -> bool {
+        self.local_p1().is_finite() && self.local_p2().is_finite() && self.dist().is_finite()
+    }
+}
+
+impl SeamPoint for TrackedContact<()> {
+    fn local_p1(&self) -> Vec3 {
+        self.local_p1
+    }
+    fn local_p2(&self) -> Vec3 {
+        self.local_p2
+    }
+    fn dist(&self) -> f32 {
+        self.dist
+    }
+    fn features(&self) -> (PackedFeatureId, PackedFeatureId) {
+        (self.fid1, self.fid2)
+    }
+}
+
+impl SeamPoint for ShapePoint {
+    fn local_p1(&self) -> Vec3 {
+        self.local_p1
+    }
+    fn local_p2(&self) -> Vec3 {
+        self.local_p2
+    }
+    fn dist(&self) -> f32 {
+        self.dist
+    }
+    fn features(&self) -> (PackedFeatureId, PackedFeatureId) {
+        (self.fid1, self.fid2)
+    }
+}
+
+/// **The seam**: where one manifold of the collider pair (`c1`, `c2`), from parry or from our generators,
+/// becomes the world's [`ContactManifold`].
 ///
-/// - body A is `c1`'s body, body B is `c2`'s; the normal is parry's `local_n1` (outward from shape 1,
+/// - body A is `c1`'s body, body B is `c2`'s; the normal is the generator's `local_n1` (outward from shape 1,
 ///   towards shape 2) rotated into world space;
-/// - anchors: parry's `local_p1`/`local_p2` (in each sub-shape's frame) through the sub-shape pose and the
-///   collider's local pose into each body's frame, relative to the body origin;
-/// - separation: parry's signed `dist` (negative when overlapping, positive for speculative points);
+/// - anchors: `local_p1`/`local_p2` (in each shape's or sub-shape's frame) through `frames` (the sub-shape
+///   pose, then the collider's local pose) into each body's frame, relative to the body origin;
+/// - separation: the signed `dist` (negative when overlapping, positive for speculative points);
 /// - feature ids: `fid1`/`fid2` packed into a `u32` ([`pack_feature_id`]);
 /// - key: the collider pair's hash extended with the sub-shape ids, stable from step to step;
 /// - material: friction, restitution and rolling friction combined with each collider's rules;
 /// - more than [`MAX_MANIFOLD_POINTS`] points are reduced to the 4 that keep the deepest point and the
 ///   largest contact area ([`reduce_points`]).
-///
-/// `None` for a manifold without points (or, defensively, without a usable normal or finite points).
-pub(crate) fn to_world_manifold(
-    key_base: u64,
-    c1: &Collider,
-    b1: &RigidBody,
-    c2: &Collider,
-    m: &ParryManifold<(), ()>,
-) -> Option<ContactManifold> {
-    // Most candidate pairs of a pile are within the margin but not touching: nothing to convert.
-    if m.points.is_empty() {
-        return None;
-    }
-    let frame1 = shape_frame(c1, m.subshape_pos1());
-    let frame2 = shape_frame(c2, m.subshape_pos2());
-    let normal = (b1.rotation() * (frame1.rotation * m.local_n1)).try_normalize()?;
-    let (chosen, count) = reduce_points(&m.points);
-    if count == 0 {
-        return None;
-    }
-    let (d1, d2) = (&c1.desc, &c2.desc);
-    let friction = CombineRule::combine(
-        d1.friction,
-        d1.friction_combine_rule,
-        d2.friction,
-        d2.friction_combine_rule,
-    );
-    let restitution = CombineRule::combine(
-        d1.restitution,
-        d1.restitution_combine_rule,
-        d2.restitution,
-        d2.restitution_combine_rule,
-    );
-    let key = fnv1a(key_base, &[m.subshape1, m.subshape2]);
-    let mut manifold = ContactManifold::new(c1.body, c2.body, key, normal, friction, restitution);
-    manifold.rolling_friction = CombineRule::combine(
-        d1.rolling_friction,
-        d1.friction_combine_rule,
-        d2.rolling_friction,
-        d2.friction_combine_rule,
-    );
-    for point in chosen[..count].iter().map(|&i| &m.points[i]) {
-        manifold.push_point(ManifoldPoint {
-            local_anchor_a: frame1.transform_point(point.local_p1),
-            local_anchor_b: frame2.transform_point(point.local_p2),
-            separation: point.dist,
-            feature_id: pack_feature_id(point),
-            ..ManifoldPoint::default()
-        });
-    }
-    Some(manifold)
+pub(crate) struct Seam<'a> {
+    /// Shape 1's collider (on body A).
+    pub(crate) c1: &'a Collider,
+    /// Body A.
+    pub(crate) b1: &'a RigidBody,
+    /// Shape 2's collider (on body B).
+    pub(crate) c2: &'a Collider,
+    /// The manifold's key.
+    pub(crate) key: u64,
+    /// Each shape's frame in its body's frame.
+    pub(crate) frames: (Pose, Pose),
 }
 
-/// Whether parry's point is usable (finite; defensive, parry's points always are).
-fn is_usable(point: &TrackedContact<()>) -> bool {
-    point.local_p1.is_finite() && point.local_p2.is_finite() && point.dist.is_finite()
+impl Seam<'_> {
+    /// Pushes the manifold of normal `local_n1` and `points` onto `out`; nothing for a manifold without
+    /// points (or, defensively, without a usable normal or finite points). The manifold is written in place.
+    pub(crate) fn push<P: SeamPoint>(
+        &self,
+        local_n1: Vec3,
+        points: &[P],
+        out: &mut Vec<ContactManifold>,
+    ) {
+        // Most candidate pairs of a pile are within the margin but not touching: nothing to convert.
+        if points.is_empty() {
+            return;
+        }
+        let (c1, c2) = (self.c1, self.c2);
+        let (frame1, frame2) = self.frames;
+        let Some(normal) = (self.b1.rotation() * (frame1.rotation * local_n1)).try_normalize()
+        else {
+            return;
+        };
+        let (chosen, count) = reduce_points(points);
+        if count == 0 {
+            return;
+        }
+        let (d1, d2) = (&c1.desc, &c2.desc);
+        let friction = CombineRule::combine(
+            d1.friction,
+            d1.friction_combine_rule,
+            d2.friction,
+            d2.friction_combine_rule,
+        );
+        let restitution = CombineRule::combine(
+            d1.restitution,
+            d1.restitution_combine_rule,
+            d2.restitution,
+            d2.restitution_combine_rule,
+        );
+        out.push(ContactManifold::new(
+            c1.body,
+            c2.body,
+            self.key,
+            normal,
+            friction,
+            restitution,
+        ));
+        let Some(manifold) = out.last_mut() else {
+            return;
+        };
+        manifold.rolling_friction = CombineRule::combine(
+            d1.rolling_friction,
+            d1.friction_combine_rule,
+            d2.rolling_friction,
+            d2.friction_combine_rule,
+        );
+        for point in chosen[..count].iter().map(|&i| &points[i]) {
+            manifold.push_point(ManifoldPoint {
+                local_anchor_a: frame1.transform_point(point.local_p1()),
+                local_anchor_b: frame2.transform_point(point.local_p2()),
+                separation: point.dist(),
+                feature_id: pack_feature_id(point.features()),
+                ..ManifoldPoint::default()
+            });
+        }
+    }
+}
+
+/// The contact of two balls of radii `r1` and `r2` (m), ball 2 at `pos12` in ball 1's frame, for gaps up to
+/// `prediction` (m): one point on each ball along the line of centres (the normal is +y for coincident
+/// centres). The formulas of parry's `contact_manifold_ball_ball`, into a [`ShapeManifold`].
+fn ball_ball(
+    pos12: &parry3d::math::Pose,
+    r1: f32,
+    r2: f32,
+    prediction: f32,
+    out: &mut ShapeManifold,
+) {
+    out.points.clear();
+    let center = pos12.translation;
+    let center_distance = center.length();
+    let dist = center_distance - r1 - r2;
+    // Written as parry's `dist < prediction`, so that a NaN distance is no contact.
+    let within = dist < prediction;
+    if !within {
+        return;
+    }
+    let local_n1 = if center_distance != 0.0 {
+        center / center_distance
+    } else {
+        Vec3::Y
+    };
+    let local_n2 = pos12.rotation.inverse() * -local_n1;
+    out.local_n1 = local_n1;
+    out.local_n2 = local_n2;
+    let face = PackedFeatureId::face(0);
+    out.points.push(ShapePoint {
+        local_p1: local_n1 * r1,
+        local_p2: local_n2 * r2,
+        fid1: face,
+        fid2: face,
+        dist,
+    });
 }
 
 /// Indices (and their count) of at most [`MAX_MANIFOLD_POINTS`] usable points that keep the contact patch:
@@ -332,22 +460,22 @@ fn is_usable(point: &TrackedContact<()>) -> bool {
 /// their line, then the point adding the most area to that triangle (Box2D's and Jolt's manifold reduction).
 /// Ties go to the lower index, so the choice is deterministic. Points are compared in shape 1's frame. No
 /// allocation.
-fn reduce_points(points: &[TrackedContact<()>]) -> ([usize; MAX_MANIFOLD_POINTS], usize) {
+fn reduce_points<P: SeamPoint>(points: &[P]) -> ([usize; MAX_MANIFOLD_POINTS], usize) {
     let mut chosen = [0; MAX_MANIFOLD_POINTS];
     let mut count = 0;
-    let usable_count = points.iter().filter(|p| is_usable(p)).count();
+    let usable_count = points.iter().filter(|p| p.is_usable()).count();
     if usable_count <= MAX_MANIFOLD_POINTS {
-        for (i, _) in points.iter().enumerate().filter(|(_, p)| is_usable(p)) {
+        for (i, _) in points.iter().enumerate().filter(|(_, p)| p.is_usable()) {
             chosen[count] = i;
             count += 1;
         }
         return (chosen, count);
     }
-    let p = |i: usize| points[i].local_p1;
+    let p = |i: usize| points[i].local_p1();
     // The usable, not yet chosen point with the highest score (the first one on ties).
     let argmax = |score: &dyn Fn(usize) -> f32, taken: &[usize]| {
         (0..points.len())
-            .filter(|&i| is_usable(&points[i]) && !taken.contains(&i))
+            .filter(|&i| points[i].is_usable() && !taken.contains(&i))
             .fold(None, |best: Option<(usize, f32)>, i| {
                 let s = score(i);
                 match best {
@@ -357,7 +485,7 @@ fn reduce_points(points: &[TrackedContact<()>]) -> ([usize; MAX_MANIFOLD_POINTS]
             })
             .map(|(i, _)| i)
     };
-    let Some(deepest) = argmax(&|i| -points[i].dist, &[]) else {
+    let Some(deepest) = argmax(&|i| -points[i].dist(), &[]) else {
         return (chosen, 0);
     };
     chosen[0] = deepest;
@@ -398,7 +526,6 @@ fn reduce_points(points: &[TrackedContact<()>]) -> ([usize; MAX_MANIFOLD_POINTS]
 #[cfg(test)]
 mod tests {
     use super::*;
-    use parry3d::shape::PackedFeatureId;
 
     fn contact(x: f32, z: f32, dist: f32) -> TrackedContact<()> {
         TrackedContact::new(
@@ -447,7 +574,7 @@ mod tests {
                 PackedFeatureId::vertex(16383),
             ] {
                 let point = TrackedContact::<()>::new(Vec3::ZERO, Vec3::ZERO, f1, f2, 0.0);
-                assert!(seen.insert(pack_feature_id(&point)));
+                assert!(seen.insert(pack_feature_id(point.features())));
             }
         }
     }
