@@ -26,8 +26,8 @@ pub use error::WorldError;
 pub use events::Event;
 pub use handles::{BodyHandle, JointHandle};
 pub use manifold::{
-    CollisionBackend, ContactManifold, LEVER_ARM_RELATIVE_TOLERANCE, LEVER_ARM_TOLERANCE,
-    MAX_MANIFOLD_POINTS, ManifoldPoint, NoCollision,
+    CollisionBackend, ContactBasis, ContactManifold, LEVER_ARM_RELATIVE_TOLERANCE,
+    LEVER_ARM_TOLERANCE, MAX_MANIFOLD_POINTS, ManifoldPoint, NoCollision,
 };
 pub use report::{AdvanceReport, Profile, StepReport, StepSkipped};
 pub use settings::WorldSettings;

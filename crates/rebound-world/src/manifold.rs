@@ -3,7 +3,7 @@
 //! the `rebound` facade implements the trait with parry3d; [`crate::testing`] has a small one for tests.
 
 use crate::{BodyHandle, BodySet, WorldSettings};
-use rebound_math::Vec3;
+use rebound_math::{Quat, Vec3};
 
 /// The most points a manifold carries.
 pub const MAX_MANIFOLD_POINTS: usize = rebound_dynamics::MAX_CONTACT_POINTS;
@@ -89,6 +89,21 @@ impl ManifoldPoint {
     }
 }
 
+/// Where a backend computed a manifold from scratch, so that it may *recycle* it while the bodies barely
+/// move: B's body pose in A's body frame at that moment and the normal in A's body frame. Part of the
+/// manifold (and so of every snapshot): a recycled manifold is a function of the world's state, and a
+/// restored world steps as the one that never stopped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ContactBasis {
+    /// B's body orientation in A's body frame (unit quaternion).
+    pub rotation: Quat,
+    /// B's body origin in A's body frame (m).
+    pub translation: Vec3,
+    /// The contact normal in A's body frame (unit vector, from A to B).
+    pub local_normal: Vec3,
+}
+
 /// Contact between two bodies as the backend reports it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -112,6 +127,10 @@ pub struct ContactManifold {
     pub points: [ManifoldPoint; MAX_MANIFOLD_POINTS],
     /// How many points are in use.
     pub point_count: usize,
+    /// Where the backend computed these points from scratch, if it may recycle them (see [`ContactBasis`]).
+    /// Default `None`: every step computes them again.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub basis: Option<ContactBasis>,
 }
 
 impl ContactManifold {
@@ -135,6 +154,7 @@ impl ContactManifold {
             rolling_friction: 0.0,
             points: [ManifoldPoint::default(); MAX_MANIFOLD_POINTS],
             point_count: 0,
+            basis: None,
         }
     }
 
@@ -173,6 +193,10 @@ pub trait CollisionBackend {
     /// zero: the world matches points to last step's by body pair, key and feature id. The order of `out`
     /// must not depend on hashing or addresses; the world sorts by [`ContactManifold::order_key`] anyway.
     ///
+    /// `previous` holds last step's manifolds, sorted by [`ContactManifold::order_key`]: a backend may
+    /// recycle one whose [`ContactManifold::basis`] it set (the world's state only, so the result stays a
+    /// function of the world's state).
+    ///
     /// `dt` is the step about to be taken (s); a backend adds `|v|·dt` to
     /// [`WorldSettings::speculative_margin`] so fast bodies get their contacts before they arrive.
     fn collide(
@@ -180,6 +204,7 @@ pub trait CollisionBackend {
         bodies: &BodySet,
         settings: &WorldSettings,
         dt: f32,
+        previous: &[ContactManifold],
         out: &mut Vec<ContactManifold>,
     );
 }
@@ -189,7 +214,15 @@ pub trait CollisionBackend {
 pub struct NoCollision;
 
 impl CollisionBackend for NoCollision {
-    fn collide(&mut self, _: &BodySet, _: &WorldSettings, _: f32, _: &mut Vec<ContactManifold>) {}
+    fn collide(
+        &mut self,
+        _: &BodySet,
+        _: &WorldSettings,
+        _: f32,
+        _: &[ContactManifold],
+        _: &mut Vec<ContactManifold>,
+    ) {
+    }
 }
 
 #[cfg(test)]

@@ -189,8 +189,13 @@ impl<B: CollisionBackend> World<B> {
     fn collide(&mut self, dt: f32, report: &mut StepReport) {
         let mut manifolds = core::mem::take(&mut self.scratch.manifolds);
         manifolds.clear();
-        self.backend
-            .collide(&self.state.bodies, &self.state.settings, dt, &mut manifolds);
+        self.backend.collide(
+            &self.state.bodies,
+            &self.state.settings,
+            dt,
+            &self.state.manifolds,
+            &mut manifolds,
+        );
         let bodies = &self.state.bodies;
         let before = manifolds.len();
         manifolds.retain(|m| is_usable(m, bodies));

@@ -114,6 +114,7 @@ impl CollisionBackend for SimpleBackend {
         bodies: &BodySet,
         settings: &WorldSettings,
         dt: f32,
+        _previous: &[ContactManifold],
         out: &mut Vec<ContactManifold>,
     ) {
         // Pairs with at least one awake moving body: O(awake · n), so a sleeping scene costs O(n).

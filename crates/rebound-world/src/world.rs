@@ -168,6 +168,17 @@ impl<B: CollisionBackend> World<B> {
         &mut self.backend
     }
 
+    /// Forgets the [`ContactBasis`](crate::ContactBasis) of every manifold of `body`, so that the backend
+    /// computes its contacts from scratch next step: for a backend whose shapes of `body` changed (a collider
+    /// added, removed or moved on it), which its recycling could not see in the bodies' poses.
+    pub fn forget_contact_bases(&mut self, body: BodyHandle) {
+        for m in &mut self.state.manifolds {
+            if m.body_a == body || m.body_b == body {
+                m.basis = None;
+            }
+        }
+    }
+
     /// Steps taken since the world was made (or since the snapshot it was restored from was taken).
     #[must_use]
     pub fn step_count(&self) -> u64 {

@@ -65,6 +65,7 @@ impl CollisionBackend for ParryBackend {
         bodies: &BodySet,
         settings: &WorldSettings,
         dt: f32,
+        previous: &[ContactManifold],
         out: &mut Vec<ContactManifold>,
     ) {
         self.broad_phase.find_pairs(
@@ -80,6 +81,7 @@ impl CollisionBackend for ParryBackend {
             bodies,
             settings.speculative_margin,
             dt,
+            previous,
             out,
         );
     }

@@ -234,6 +234,8 @@ impl PhysicsWorld {
         if let Some(collider) = backend.colliders.get(handle) {
             backend.broad_phase.insert_leaf(handle, collider, body_pose);
         }
+        // A collider in a freed slot has its predecessor's manifold keys: nothing may be recycled.
+        self.world.forget_contact_bases(body);
         self.set_mass(body, mass);
         let boxes: Vec<Aabb> = self.collider_aabb(handle).into_iter().collect();
         self.wake_bodies_touching(&boxes);
@@ -261,6 +263,7 @@ impl PhysicsWorld {
             .remove(handle)
             .ok_or(Error::StaleCollider(handle))?;
         backend.broad_phase.remove_leaf(handle);
+        self.world.forget_contact_bases(body);
         if let Some(mass) = mass {
             self.set_mass(body, mass);
         }
@@ -391,6 +394,8 @@ impl PhysicsWorld {
         if let (Some(pose), Some(collider)) = (body_pose, backend.colliders.get(handle)) {
             backend.broad_phase.insert_leaf(handle, collider, pose);
         }
+        // A moved collider's contacts cannot be recycled (its body's pose did not change).
+        self.world.forget_contact_bases(body);
         if let Some(mass) = mass {
             self.set_mass(body, mass);
         }
