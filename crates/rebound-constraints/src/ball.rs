@@ -37,7 +37,7 @@ pub(crate) fn warm_start(
     b: &mut SolverBody,
 ) {
     let anchors = pair.anchors(a, b);
-    PointPart::new(pair, anchors.r_a, anchors.r_b).apply(pair, a, b, state.linear_impulse);
+    PointPart::apply_at(pair, anchors.r_a, anchors.r_b, a, b, state.linear_impulse);
 }
 
 pub(crate) fn solve(

@@ -64,7 +64,10 @@
 //! it and its neighbours have the rows and the rows in the system (`FactorKey`) it was made for — a rope
 //! joining or leaving the system refactorises from the link before it on — and sweeps only the right-hand
 //! side. Everything kept is what the same operations on the same values would give again, so a pass gives
-//! the bits it gave when it rebuilt everything.
+//! the bits it gave when it rebuilt everything. Within a pass, an active-set round that changes the system
+//! from some link on sweeps forward again only from the link before it (`Resume`), and a rope's or rod's warm
+//! start at the pose its link's row was built at applies the impulse along that row
+//! (`Link::warm_start_row`).
 
 #![allow(
     clippy::needless_range_loop,
@@ -75,7 +78,7 @@ use crate::part::{RowTarget, block_target};
 use crate::solver::Stage;
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
-use rebound_math::{Mat3, Vec3, Vec4};
+use rebound_math::{Mat3, Mat4, Vec3, Vec4};
 
 /// The most rows one joint gives the direct solve: a hinge's 3 point rows and 2 alignment rows.
 pub(crate) const MAX_ROWS: usize = 5;
@@ -436,6 +439,11 @@ pub(crate) struct Link {
     c_block: Block,
     w: Block,
     inv_pivot: [Real; MAX_ROWS],
+    /// The Jacobians of the first [`LANES`] rows four lanes wide, lane `k` holding row `k`: for `a.linear`,
+    /// `a.angular`, `b.linear` and `b.angular` in turn, their x, y and z components. The block sweep's
+    /// residuals read them ([`Link::residual`]); they are made with the blocks ([`Link::fill_lanes`]),
+    /// which are made again whenever the rows are.
+    lanes: [[Vec4; 3]; 4],
     /// What `factor`, `v`, `w`, `inv_pivot` and the blocks were made for; `None` when they are stale.
     factored: Option<FactorKey>,
     /// The pose the rows were built at ([`PoseKey`]); `None` when the rows are to be built.
@@ -458,6 +466,7 @@ impl Link {
             c_block: [[0.0; MAX_ROWS]; MAX_ROWS],
             w: [[0.0; MAX_ROWS]; MAX_ROWS],
             inv_pivot: [0.0; MAX_ROWS],
+            lanes: [[Vec4::ZERO; 3]; 4],
             factored: None,
             pose: None,
         }
@@ -493,6 +502,15 @@ impl Link {
     /// The pose the rows were built at, as recorded by [`Link::built_at`] (`None`: none, or forgotten).
     pub fn pose(&self) -> Option<PoseKey> {
         self.pose
+    }
+
+    /// Applies the impulse `lambda` along the first row to both bodies: the warm start of a one-row joint (a
+    /// rope, a rod) whose row was built at the bodies' current pose, which is what the joint's own warm start
+    /// applies — `∓axis·(m⁻¹·λ)` and `±I⁻¹·(r × axis)·λ` of the same values — bit for bit.
+    pub fn warm_start_row(&self, a: &mut SolverBody, b: &mut SolverBody, lambda: f32) {
+        if self.rows.count == 1 {
+            self.rows.apply(0, a, b, lambda);
+        }
     }
 
     /// Records that the rows just built (after [`Link::reset`]) are those of the pose `pose`.
@@ -568,15 +586,56 @@ impl Link {
         }
     }
 
-    /// The residual `Ċ + bias` of each active row (0 for the others).
+    /// The residual `Ċ + bias` of each active row (0 for the others), in the block sweep: the first
+    /// [`LANES`] rows four lanes wide from the Jacobians in `lanes` ([`Link::fill_lanes`], current with
+    /// the blocks), each lane the very operations of [`Row::velocity`] — `(j.x·v.x + j.y·v.y) + j.z·v.z` per
+    /// vector, `(a.linear + a.angular) + (b.linear + b.angular)`, then `+ bias` — so the same bits as one row
+    /// at a time; the rows after them one at a time.
     fn residual(&self, a: &SolverBody, b: &SolverBody) -> [Real; MAX_ROWS] {
         let mut r = [0.0; MAX_ROWS];
-        for (i, row) in self.rows.rows().iter().enumerate() {
+        let rows = self.rows.rows();
+        if self.positions {
+            for (i, row) in rows.iter().enumerate() {
+                if self.active[i] {
+                    r[i] = self.row_residual(row, a, b);
+                }
+            }
+            return r;
+        }
+        let dot = |j: &[Vec4; 3], v: Vec3| (j[0] * v.x + j[1] * v.y) + j[2] * v.z;
+        let l = &self.lanes;
+        let velocity = (dot(&l[0], a.linear_velocity) + dot(&l[1], a.angular_velocity))
+            + (dot(&l[2], b.linear_velocity) + dot(&l[3], b.angular_velocity));
+        let bias = Vec4::from_array(core::array::from_fn(|k| {
+            rows.get(k).map_or(0.0, |row| row.target.bias)
+        }));
+        let lanes: [f32; LANES] = (velocity + bias).to_array();
+        for (i, row) in rows.iter().enumerate() {
             if self.active[i] {
-                r[i] = self.row_residual(row, a, b);
+                r[i] = match lanes.get(i) {
+                    Some(&lane) => Real::from(lane),
+                    None => self.row_residual(row, a, b),
+                };
             }
         }
         r
+    }
+
+    /// Writes the Jacobians of the first [`LANES`] rows four lanes wide into `lanes`, as [`Link::residual`]
+    /// reads them (rows past the row count are zero).
+    fn fill_lanes(&mut self) {
+        // One 4 × 4 transpose per vector of a side: columns = rows of the link, rows = x, y, z (and w).
+        let mut sides = [[Vec4::ZERO; LANES]; 4];
+        for (k, row) in self.rows.rows().iter().take(LANES).enumerate() {
+            sides[0][k] = row.a.linear.extend(0.0);
+            sides[1][k] = row.a.angular.extend(0.0);
+            sides[2][k] = row.b.linear.extend(0.0);
+            sides[3][k] = row.b.angular.extend(0.0);
+        }
+        for (out, [c0, c1, c2, c3]) in self.lanes.iter_mut().zip(sides) {
+            let t = Mat4::from_cols(c0, c1, c2, c3).transpose();
+            *out = [t.x_axis, t.y_axis, t.z_axis];
+        }
     }
 
     /// One row's right-hand side: `Ċ + bias`, or `C` (its bias) in a position projection.
@@ -874,15 +933,16 @@ fn crosses_zero(row: &Row, lambda: f32, x: Real) -> bool {
 /// Active-set step for the rows left out: activates every one-sided row (a rope) that is not in the system
 /// but that the solution `solution` of the rows around it would violate — a slack rope whose neighbours would
 /// pull its bodies apart past its length, or a taut rope that was closing before the solve and would no
-/// longer be. Returns whether any row was activated, so that the system is solved again with them. Without
-/// this step a rope left out at the start of a pass is pulled past its length by the solve of its neighbours
-/// (a chain whipping round stretched links by 30 % within a substep).
-pub(crate) fn activate_violations(
+/// longer be. Returns the first link that had a row activated (`None`: none), so that the system is solved
+/// again with them — from the link before it on ([`Resume`]). Without this step a rope left out at the start
+/// of a pass is pulled past its length by the solve of its neighbours (a chain whipping round stretched links
+/// by 30 % within a substep).
+pub(crate) fn activate_violations<'b>(
     links: &mut [Link],
     solution: &[[Real; MAX_ROWS]],
-    load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
-) -> bool {
-    let mut any = false;
+    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
+) -> Option<usize> {
+    let mut first = None;
     for i in 0..links.len() {
         // Most links of a rope chain are a one-row link in the system (a taut rope): nothing left out.
         let link = &links[i];
@@ -910,7 +970,7 @@ pub(crate) fn activate_violations(
             if !link.positions
                 && let Some((a, b)) = load(i)
             {
-                free += row.velocity(&a, &b);
+                free += row.velocity(a, b);
             }
             let violated = if row.upper == 0.0 {
                 free > 0.0
@@ -919,11 +979,11 @@ pub(crate) fn activate_violations(
             };
             if violated {
                 links[i].active[r] = true;
-                any = true;
+                first = first.or(Some(i));
             }
         }
     }
-    any
+    first
 }
 
 /// One nonlinear Gauss–Seidel projection of one joint's rows (Box2D v2's position solver): each row whose
@@ -962,10 +1022,15 @@ pub(crate) fn project_rows(rows: &JointRows, a: &mut SolverBody, b: &mut SolverB
 /// instead is wrong as soon as the softness differs along the path: the leak `impulse_scale·λ` of the soft
 /// rows, which carry the chain's load, lands on a rigid row in between, and a chain whipping round came apart
 /// in a zigzag of links stretched and slackened by several centimetres each.
-pub(crate) fn solve_path(
+///
+/// `resume` carries what the last solve of this pass left (see [`Resume`]): its forward sweep is kept for the
+/// links before the first one an active-set round changed, when the path's shape and softness are still the
+/// ones it was made with.
+pub(crate) fn solve_path<'b>(
     links: &mut [Link],
-    load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
+    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut Vec<[Real; MAX_ROWS]>,
+    resume: &mut Resume,
 ) {
     // One solution per link. The back substitution of either sweep writes every one of them whole, so the
     // entries kept from the last solve are not cleared first (a 500-link chain's 20 kB per round).
@@ -975,20 +1040,52 @@ pub(crate) fn solve_path(
     // projection) the soft step splits into `K·x = r` and `y = mass_scale·x + impulse_scale·λ`: the same
     // result, without `K·λ`, and bit for bit that of the per-row form.
     let (widest, uniform) = path_shape(links);
+    let shape = (widest, uniform.map(softness_bits));
+    let start = match resume.swept {
+        Some(swept) if swept == shape => resume.from.min(links.len()),
+        _ => 0,
+    };
+    resume.swept = Some(shape);
+    resume.from = links.len();
     if widest <= 1 {
-        solve_scalar_path(links, load, out, uniform);
+        solve_scalar_path(links, load, out, uniform, start);
     } else {
-        solve_block_path(links, load, out, widest, uniform);
+        solve_block_path(links, load, out, widest, uniform, start);
     }
+}
+
+/// What the next active-set round's solve of a path can keep of the last one: the forward sweep of the links
+/// before `from`. A round changes the system only at the links whose rows it activated or released (a
+/// released row also changes its bodies' velocities); the forward sweep of link `i` reads links `0..=i + 1`'s
+/// active sets, links `0..=i`'s residuals and, through the shared bodies, the velocities link `i + 1`'s
+/// release changes — so from the link before the first one changed on, the sweep differs, and before it
+/// every stored `y`, `V`, `W`, `D⁻¹`, `L` and block is what the sweep would compute again, bit for bit.
+/// Kept only while the path's widest link and common softness ([`path_shape`]) are those of the last sweep.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct Resume {
+    /// The widest link and the common softness's bits of the last sweep (`None`: no sweep yet this pass).
+    swept: Option<(usize, Option<u64>)>,
+    /// The first link whose forward sweep must run again.
+    from: usize,
+}
+
+impl Resume {
+    /// Records that link `link`'s active set (and, by a release, its bodies' velocities) changed since the
+    /// last sweep.
+    pub fn changed(&mut self, link: usize) {
+        self.from = self.from.min(link.saturating_sub(1));
+    }
+}
+
+/// A softness by its bits: the same bits make the split form of [`solve_path`] exactly the per-row one.
+fn softness_bits(s: Softness) -> u64 {
+    (u64::from(s.mass_scale.to_bits()) << 32) | u64::from(s.impulse_scale.to_bits())
 }
 
 /// One scan of the path for what `solve_path` decides on: the largest row count of its links, and the
 /// softness every active row shares, if they all do (the first active row's, or rigid without one).
 fn path_shape(links: &[Link]) -> (usize, Option<Softness>) {
-    // A softness by its bits: the same bits make the split form of `solve_path` exactly the per-row one.
-    let bits = |s: Softness| {
-        (u64::from(s.mass_scale.to_bits()) << 32) | u64::from(s.impulse_scale.to_bits())
-    };
+    let bits = softness_bits;
     let mut widest = 0;
     let mut common: Option<(Softness, u64)> = None;
     let mut uniform = true;
@@ -1017,18 +1114,19 @@ fn path_shape(links: &[Link]) -> (usize, Option<Softness>) {
 /// largest row count (a link with fewer rows is padded with rows that solve to 0; a path of hinges runs the
 /// 5 × 5 sweep, one of ball joints the 3 × 3). With a `uniform` softness the right-hand side is the residual
 /// alone and the soft step is finished in the back substitution. `rows` is the largest row count of the links.
-fn solve_block_path(
+fn solve_block_path<'b>(
     links: &mut [Link],
-    load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
+    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
     rows: usize,
     uniform: Option<Softness>,
+    start: usize,
 ) {
     match rows {
-        0..=2 => block_sweep::<2>(links, load, out, uniform),
-        3 => block_sweep::<3>(links, load, out, uniform),
-        4 => block_sweep::<4>(links, load, out, uniform),
-        _ => block_sweep::<MAX_ROWS>(links, load, out, uniform),
+        0..=2 => block_sweep::<2>(links, load, out, uniform, start),
+        3 => block_sweep::<3>(links, load, out, uniform, start),
+        4 => block_sweep::<4>(links, load, out, uniform, start),
+        _ => block_sweep::<MAX_ROWS>(links, load, out, uniform, start),
     }
 }
 
@@ -1047,27 +1145,33 @@ fn solve_block_path(
 /// factorised with ([`FactorKey`], [`keeps_factor`]; a pass at an unchanged pose), they are kept and only the
 /// right-hand side is swept (`rhsᵢ`, then `y = D⁻¹·L⁻¹·rhsᵢ`) — the same operations on the same values, so
 /// the same bits.
-fn block_sweep<const N: usize>(
+fn block_sweep<'b, const N: usize>(
     links: &mut [Link],
-    load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
+    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
     uniform: Option<Softness>,
+    start: usize,
 ) {
     let split = uniform.is_some();
-    let stale = first_stale(links, N);
-    // Forward sweep. `lambda_prev` holds λᵢ₋₁; Cᵢ₋₁, Wᵢ₋₁, Vᵢ₋₁ and yᵢ₋₁ are stored in link i − 1.
-    let mut lambda_prev = [0.0; MAX_ROWS];
-    for i in 0..links.len() {
+    let stale = first_stale(links, N, start);
+    // Forward sweep from link `start` on (the links before it are as the last sweep left them, see
+    // [`Resume`]). `lambda_prev` holds λᵢ₋₁; Cᵢ₋₁, Wᵢ₋₁, Vᵢ₋₁ and yᵢ₋₁ are stored in link i − 1.
+    let mut lambda_prev = match start.checked_sub(1).and_then(|p| links.get(p)) {
+        Some(prev) if !split => prev.active_lambda(),
+        _ => [0.0; MAX_ROWS],
+    };
+    for i in start..links.len() {
         let reuse = keeps_factor(i, stale, links.len());
         let (done, rest) = links.split_at_mut(i);
         let Some((link, after)) = rest.split_first_mut() else {
             break;
         };
         let next = after.first();
-        let r = load(i).map_or([0.0; MAX_ROWS], |(a, b)| link.residual(&a, &b));
         if !reuse {
             (link.b_block, link.c_block) = link.blocks::<N>(next);
+            link.fill_lanes();
         }
+        let r = load(i).map_or([0.0; MAX_ROWS], |(a, b)| link.residual(a, b));
         let lambda = if split {
             [0.0; MAX_ROWS]
         } else {
@@ -1164,12 +1268,15 @@ fn block_sweep<const N: usize>(
 }
 
 /// The first link of the path whose stored factorisation is not for its current rows and active set in a
-/// sweep of blocks `width` wide (its [`FactorKey`] differs), or the number of links if there is none.
-fn first_stale(links: &[Link], width: usize) -> usize {
+/// sweep of blocks `width` wide (its [`FactorKey`] differs), or the number of links if there is none; the
+/// links before `start` are not looked at (a resumed sweep: the last sweep left their keys current).
+fn first_stale(links: &[Link], width: usize, start: usize) -> usize {
     links
         .iter()
-        .position(|link| link.factored != Some(FactorKey::of(link, width)))
-        .unwrap_or(links.len())
+        .enumerate()
+        .skip(start)
+        .find(|(_, link)| link.factored != Some(FactorKey::of(link, width)))
+        .map_or(links.len(), |(i, _)| i)
 }
 
 /// Whether link `i` of a path of `len` links keeps its factorisation when link `stale` is the first one
@@ -1185,19 +1292,24 @@ fn keeps_factor(i: usize, stale: usize, len: usize) -> bool {
 /// block machinery. `uniform` as in [`solve_block_path`]. As there, the entries `b`, `c`, `s` and `c'` of a
 /// link are kept from the last pass while it and the links before and after it have the rows and active
 /// sets they were computed for ([`keeps_factor`]).
-fn solve_scalar_path(
+fn solve_scalar_path<'b>(
     links: &mut [Link],
-    load: impl Fn(usize) -> Option<(SolverBody, SolverBody)>,
+    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
     uniform: Option<Softness>,
+    start: usize,
 ) {
     let split = uniform.is_some();
-    let stale = first_stale(links, 1);
+    let stale = first_stale(links, 1, start);
     // Forward sweep: c'ᵢ = cᵢ/sᵢ, r'ᵢ = (r̃ᵢ − cᵢ₋₁·r'ᵢ₋₁)/sᵢ with sᵢ = bᵢ − cᵢ₋₁·c'ᵢ₋₁ and r̃ the soft
     // right-hand side of `solve_path`; bᵢ is the row's regularised `K` (1 for a row not in the system).
     // Link i − 1 holds cᵢ₋₁ (`c_block`), c'ᵢ₋₁ (`v`) and r'ᵢ₋₁ (`y`); `lambda_prev` is λᵢ₋₁.
-    let mut lambda_prev = 0.0;
-    for i in 0..links.len() {
+    // The sweep starts at link `start` (see [`Resume`]).
+    let mut lambda_prev = start
+        .checked_sub(1)
+        .and_then(|p| links.get(p))
+        .map_or(0.0, |prev| prev.active_lambda()[0]);
+    for i in start..links.len() {
         if !keeps_factor(i, stale, links.len()) {
             let link = &links[i];
             let active = link.rows.count == 1 && link.active[0];
@@ -1234,7 +1346,7 @@ fn solve_scalar_path(
         let prev = i.checked_sub(1).and_then(|p| links.get(p));
         let mut r = if active {
             let row = &link.rows.rows[0];
-            let residual = load(i).map_or(0.0, |(a, b)| link.row_residual(row, &a, &b));
+            let residual = load(i).map_or(0.0, |(a, b)| link.row_residual(row, a, b));
             let softness = row.target.softness;
             if split {
                 residual
@@ -1271,6 +1383,9 @@ fn solve_scalar_path(
         next = x;
     }
 }
+
+/// The rows whose residuals the block sweep computes four lanes wide ([`Link::residual`]).
+const LANES: usize = 4;
 
 /// Added to each row's own `K` entry as a fraction of it: a little compliance that keeps the system of a
 /// path with redundant rows (a bridge hung from two anchors constrains more than its bodies' degrees of
@@ -1444,6 +1559,84 @@ mod tests {
         assert!(x[1] == 0.0, "{x:?}");
     }
 
+    /// A path of `widths.len()` links between consecutive bodies with inverse masses `masses` (link `i`'s body
+    /// B is link `i + 1`'s body A), link `i` with `widths[i]` rows — a rope's one row, else a hinge's rows cut to the
+    /// width — every row soft, in the system and carrying an impulse.
+    fn soft_path(widths: &[usize], masses: &[InvMass]) -> Vec<Link> {
+        let soft = RowTarget {
+            bias: 0.05,
+            softness: Softness {
+                bias_rate: 10.0,
+                mass_scale: 0.9,
+                impulse_scale: 0.1,
+            },
+        };
+        widths
+            .iter()
+            .enumerate()
+            .map(|(i, &width)| {
+                let (r_a, r_b) = (Vec3::new(0.5, 0.1, 0.0), Vec3::new(-0.4, 0.0, 0.2));
+                let axis = Vec3::new(1.0, 0.1 * i as f32, 0.0).normalize();
+                let mut rows = if width == 1 {
+                    let mut rows = JointRows::new(masses[i], masses[i + 1]);
+                    let row = Row::linear(axis, r_a, r_b, soft).clamped(f32::NEG_INFINITY, 0.0);
+                    rows.push(row, 0.0, TargetRule::UpperLimit);
+                    rows
+                } else {
+                    hinge_rows(r_a, r_b, axis, masses[i], masses[i + 1])
+                };
+                rows.count = width;
+                for row in &mut rows.rows {
+                    row.target = soft;
+                }
+                let lambda = core::array::from_fn(|k| -0.1 * (1 + i + k) as f32);
+                let mut link = Link::new(rows, lambda);
+                link.active[..width].fill(true);
+                link.shared_with_next = (i + 1 < widths.len()).then_some((true, false));
+                link
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_resumed_sweep_gives_the_bits_of_a_full_one() {
+        // Rope chains (the scalar sweep) and hinge decks (the block sweep): solve, take a row out of the
+        // system at link 3 as an active-set round does, then solve again resuming from link 2 and from
+        // scratch.
+        let masses: [InvMass; 8] = core::array::from_fn(|k| InvMass {
+            mass: 0.5 + 0.25 * k as f32,
+            inertia: Mat3::from_diagonal(Vec3::new(2.0 + k as f32, 1.0, 0.5)),
+        });
+        let bodies: [SolverBody; 8] = core::array::from_fn(|k| SolverBody {
+            linear_velocity: Vec3::new(0.3 * k as f32, -1.0, 0.5),
+            angular_velocity: Vec3::new(0.2, 0.1 * k as f32, -0.4),
+            ..SolverBody::STATIC
+        });
+        let load = |i: usize| Some((&bodies[i], &bodies[i + 1]));
+        for width in [1, MAX_ROWS] {
+            let mut resumed = soft_path(&[width; 7], &masses);
+            let mut full = resumed.clone();
+            let (mut out_resumed, mut out_full) = (Vec::new(), Vec::new());
+            let mut resume = Resume::default();
+            solve_path(&mut resumed, load, &mut out_resumed, &mut resume);
+            solve_path(&mut full, load, &mut out_full, &mut Resume::default());
+            for links in [&mut resumed, &mut full] {
+                links[3].active[0] = false;
+                links[3].lambda[0] = 0.0;
+            }
+            resume.changed(3);
+            solve_path(&mut resumed, load, &mut out_resumed, &mut resume);
+            solve_path(&mut full, load, &mut out_full, &mut Resume::default());
+            let bits = |out: &[[Real; MAX_ROWS]]| {
+                out.iter()
+                    .flat_map(|x| x.map(Real::to_bits))
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(bits(&out_resumed), bits(&out_full), "width {width}");
+            assert!(out_full.iter().any(|x| x[0] != 0.0), "width {width}");
+        }
+    }
+
     /// A hinge's five rows between bodies with anchors `r_a`, `r_b` and hinge axis `axis`.
     fn hinge_rows(r_a: Vec3, r_b: Vec3, axis: Vec3, mass_a: InvMass, mass_b: InvMass) -> JointRows {
         let mut rows = JointRows::new(mass_a, mass_b);
@@ -1505,7 +1698,12 @@ mod tests {
         });
         links[1].active[1] = false;
         let mut out = Vec::new();
-        solve_path(&mut links, |i| Some((bodies[i], bodies[i + 1])), &mut out);
+        solve_path(
+            &mut links,
+            |i| Some((&bodies[i], &bodies[i + 1])),
+            &mut out,
+            &mut Resume::default(),
+        );
 
         // The dense system over the active rows: K = J·M⁻¹·Jᵀ (diagonal regularised), r = Ċ.
         let mut index = Vec::new();

@@ -183,7 +183,10 @@ impl PreparedHinge {
         let (fa, fb) = pair.frames(a, b);
         let axis = fa * Vec3::X;
         AnglePart::new(pair, axis).apply(a, b, CoordinateRows::accumulated(state));
-        AlignPart::new(pair, axis, [fb * Vec3::Y, fb * Vec3::Z]).apply(
+        AlignPart::apply_about(
+            pair,
+            axis,
+            [fb * Vec3::Y, fb * Vec3::Z],
             a,
             b,
             state.angular_impulse.truncate(),

@@ -102,6 +102,23 @@ impl BodyPair {
         Some((*bodies.get(self.index_a)?, *bodies.get(self.index_b)?))
     }
 
+    /// The two solver bodies in place, or `None` when an index is out of range.
+    #[inline]
+    #[must_use]
+    pub fn bodies<'a>(&self, bodies: &'a [SolverBody]) -> Option<(&'a SolverBody, &'a SolverBody)> {
+        Some((bodies.get(self.index_a)?, bodies.get(self.index_b)?))
+    }
+
+    /// The two solver bodies in place for changing, or `None` when an index is out of range or both are the
+    /// same body. A pass that changes only velocities reads and writes them where they are instead of copying
+    /// both bodies out and back ([`BodyPair::load`], [`BodyPair::store`]): the same operations on the same
+    /// values.
+    #[inline]
+    #[must_use]
+    pub fn bodies_mut<'a>(&self, bodies: &'a mut [SolverBody]) -> Option<[&'a mut SolverBody; 2]> {
+        bodies.get_disjoint_mut([self.index_a, self.index_b]).ok()
+    }
+
     /// Writes the two solver bodies back (indices checked as in [`BodyPair::load`]).
     #[inline]
     pub fn store(&self, bodies: &mut [SolverBody], a: SolverBody, b: SolverBody) {

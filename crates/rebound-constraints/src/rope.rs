@@ -6,7 +6,6 @@ use crate::direct::{JointRows, Row, TargetRule};
 use crate::error::check_in_range;
 use crate::part::{AxisPart, RowTarget};
 use crate::solver::Stage;
-use crate::spring::initial_axis;
 use crate::{BodyPair, ConstraintError, JointState};
 use rebound_dynamics::{SolverBody, StepContext};
 use rebound_math::Vec3;
@@ -103,7 +102,8 @@ impl Rope {
         let part = AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b);
         PreparedRope {
             rope: *self,
-            fallback_axis: initial_axis(pair, a, b),
+            // `initial_axis(pair, a, b)` is this distance's axis: the same call, made once.
+            fallback_axis: dist.axis,
             separating_speed: part.velocity(a, b),
             taut: false,
         }

@@ -23,7 +23,9 @@
 //! count, a step allocates nothing.
 
 use crate::coordinate::CoordinateRows;
-use crate::direct::{InvMass, JointRows, Link, MAX_ROWS, PoseKey, activate_violations, solve_path};
+use crate::direct::{
+    InvMass, JointRows, Link, MAX_ROWS, PoseKey, Resume, activate_violations, solve_path,
+};
 use crate::fixed::PreparedFixed;
 use crate::hinge::PreparedHinge;
 use crate::prismatic::PreparedPrismatic;
@@ -116,6 +118,8 @@ struct PreparedJoint {
     /// The path solved directly ([`crate::direct`]) that the joint's equality rows belong to, as an index
     /// into the solver's `paths`; `None` for a joint solved by Gauss–Seidel alone.
     path: Option<usize>,
+    /// The joint's link in the solver's `links` (its index in `path_joints`) when it is on a path.
+    link: Option<usize>,
 }
 
 /// The joint solver. Holds the prepared joints between stages and reuses its buffer from step to step.
@@ -306,6 +310,7 @@ impl JointSolver {
                 break_torque: joint.break_torque(),
                 kind,
                 path: None,
+                link: None,
             });
         }
         // The paths first: the graph search leaves out the tethers they make redundant.
@@ -401,8 +406,9 @@ impl JointSolver {
             self.paths.push(first..self.path_joints.len());
         }
         for (path, range) in self.paths.iter().enumerate() {
-            for &index in &self.path_joints[range.clone()] {
+            for (link, &index) in range.clone().zip(&self.path_joints[range.clone()]) {
                 self.joints[index].path = Some(path);
+                self.joints[index].link = Some(link);
             }
         }
     }
@@ -428,7 +434,12 @@ impl JointSolver {
         }
         self.edges.clear();
         self.edges.extend(self.joints.iter().map(|j| Edge {
-            pair: j.pair,
+            index_a: j.pair.index_a,
+            index_b: j.pair.index_b,
+            inv_mass_a: j.pair.inv_mass_a,
+            inv_mass_b: j.pair.inv_mass_b,
+            anchor_a: j.pair.anchor_a,
+            anchor_b: j.pair.anchor_b,
             length: j.kind.bounded_length(),
             path: j.path,
         }));
@@ -469,23 +480,36 @@ impl JointSolver {
     /// the current directions.
     pub fn warm_start(&self, solver_bodies: &mut [SolverBody]) {
         for j in &self.joints {
-            let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
+            // The bodies in place: a warm start changes velocities only (`prepare` never keeps a joint whose
+            // two bodies are one).
+            let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
                 continue;
             };
             let (pair, state) = (&j.pair, &j.state);
-            match &j.kind {
-                Prepared::Spring(p) => p.warm_start(pair, state, &mut a, &mut b),
-                Prepared::Rope(p) => p.warm_start(pair, state, &mut a, &mut b),
-                Prepared::Rod(p) => p.warm_start(pair, state, &mut a, &mut b),
-                Prepared::Ball => ball::warm_start(pair, state, &mut a, &mut b),
-                Prepared::Hinge(p) => p.warm_start(pair, state, &mut a, &mut b),
-                Prepared::Fixed(_) => PreparedFixed::warm_start(pair, state, &mut a, &mut b),
-                Prepared::Prismatic(_) => {
-                    PreparedPrismatic::warm_start(pair, state, &mut a, &mut b);
-                }
-                Prepared::Wheel(_) => PreparedWheel::warm_start(pair, state, &mut a, &mut b),
+            // A rope or rod on a path whose link has its row built at this pose (the pose of the last relax
+            // pass: every substep but the first) applies the impulse along that row: the Jacobian and the
+            // turned vectors the warm start would compute again, so the same bits without the distance.
+            let built = match j.kind {
+                Prepared::Rope(_) | Prepared::Rod(_) => j
+                    .link
+                    .and_then(|k| self.links.get(k))
+                    .filter(|link| link.pose() == Some(PoseKey::of(a, b))),
+                _ => None,
+            };
+            if let Some(link) = built {
+                link.warm_start_row(a, b, state_lambda(j)[0]);
+                continue;
             }
-            j.pair.store(solver_bodies, a, b);
+            match &j.kind {
+                Prepared::Spring(p) => p.warm_start(pair, state, a, b),
+                Prepared::Rope(p) => p.warm_start(pair, state, a, b),
+                Prepared::Rod(p) => p.warm_start(pair, state, a, b),
+                Prepared::Ball => ball::warm_start(pair, state, a, b),
+                Prepared::Hinge(p) => p.warm_start(pair, state, a, b),
+                Prepared::Fixed(_) => PreparedFixed::warm_start(pair, state, a, b),
+                Prepared::Prismatic(_) => PreparedPrismatic::warm_start(pair, state, a, b),
+                Prepared::Wheel(_) => PreparedWheel::warm_start(pair, state, a, b),
+            }
         }
         for t in &self.tethers {
             let Some((mut a, mut b)) = t.pair.load(solver_bodies) else {
@@ -523,24 +547,24 @@ impl JointSolver {
                 if bias == Bias::Off && matches!(j.kind, Prepared::Spring(_)) {
                     continue;
                 }
-                let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
+                // The bodies in place (a pass changes velocities only).
+                let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
                     continue;
                 };
                 let (pair, state) = (&j.pair, &mut j.state);
                 match &mut j.kind {
-                    Prepared::Spring(p) => p.solve(pair, state, &mut a, &mut b, &stage),
-                    Prepared::Rope(p) => p.solve(pair, state, &mut a, &mut b, &stage),
-                    Prepared::Rod(p) => p.solve(pair, state, &mut a, &mut b, &stage),
-                    Prepared::Ball => ball::solve(pair, state, &mut a, &mut b, &stage),
+                    Prepared::Spring(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Rope(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Rod(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Ball => ball::solve(pair, state, a, b, &stage),
                     Prepared::Hinge(p) if j.path.is_some() => {
-                        p.solve_coordinate(pair, state, &mut a, &mut b, &stage);
+                        p.solve_coordinate(pair, state, a, b, &stage);
                     }
-                    Prepared::Hinge(p) => p.solve(pair, state, &mut a, &mut b, &stage),
-                    Prepared::Fixed(p) => p.solve(pair, state, &mut a, &mut b, &stage),
-                    Prepared::Prismatic(p) => p.solve(pair, state, &mut a, &mut b, &stage),
-                    Prepared::Wheel(p) => p.solve(pair, state, &mut a, &mut b, &stage),
+                    Prepared::Hinge(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Fixed(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Prismatic(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Wheel(p) => p.solve(pair, state, a, b, &stage),
                 }
-                j.pair.store(solver_bodies, a, b);
             }
             for path in 0..self.paths.len() {
                 self.solve_path(path, solver_bodies, &stage);
@@ -601,15 +625,21 @@ impl JointSolver {
                         .map(|&index| violation(&mut joints[index], solver_bodies, &stage, probe))
                         .fold(0.0f32, f32::max)
                 };
+            // The worst error at the bodies' current pose, once measured: the Newton loop always ends at a
+            // pose it measured (the one it stopped at, the last step it accepted, or the one it restored), so
+            // the sweeps below need not build every joint's rows again to know it.
+            let mut known = None;
             for _ in 0..PROJECTION_ITERATIONS {
                 let mut before = 0.0f32;
                 // The first iteration is at the pose of the last relax pass: its rows (retargeted) and, if
                 // the same rows are in the system, its factorisation serve again.
                 for (link, &index) in links.iter_mut().zip(members) {
-                    let _ = link_rows(&mut joints[index], solver_bodies, &stage, link);
+                    let bodies = joints[index].pair.bodies(solver_bodies);
+                    link_rows(&mut joints[index], bodies, &stage, link);
                     before = before.max(link.rows.violation());
                     link.make_positional();
                 }
+                known = Some(before);
                 if before <= PROJECTION_TOLERANCE {
                     break;
                 }
@@ -623,13 +653,13 @@ impl JointSolver {
                 let mut accepted = false;
                 for _ in 0..3 {
                     for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
-                        let pair = &joints[index].pair;
-                        if let Some((mut a, mut b)) = pair.load(solver_bodies) {
-                            link.apply_solution(&x.map(|v| v * scale), &mut a, &mut b);
-                            pair.store(solver_bodies, a, b);
+                        if let Some([a, b]) = joints[index].pair.bodies_mut(solver_bodies) {
+                            link.apply_solution(&x.map(|v| v * scale), a, b);
                         }
                     }
-                    if worst(joints, solver_bodies, link_at(probe, 0)) <= before {
+                    let after = worst(joints, solver_bodies, link_at(probe, 0));
+                    if after <= before {
+                        known = Some(after);
                         accepted = true;
                         break;
                     }
@@ -643,7 +673,10 @@ impl JointSolver {
             // Nonlinear Gauss–Seidel sweeps, alternating direction, take back what the linearisation missed —
             // kept only where they do not make the path's worst error larger.
             let probe = link_at(probe, 0);
-            let before = worst(joints, solver_bodies, probe);
+            let before = match known {
+                Some(before) => before,
+                None => worst(joints, solver_bodies, probe),
+            };
             if before <= PROJECTION_TOLERANCE {
                 continue;
             }
@@ -657,9 +690,8 @@ impl JointSolver {
                     }];
                     let j = &mut joints[index];
                     let _ = direct_rows(j, solver_bodies, &stage, probe);
-                    if let Some((mut a, mut b)) = j.pair.load(solver_bodies) {
-                        crate::direct::project_rows(&probe.rows, &mut a, &mut b);
-                        j.pair.store(solver_bodies, a, b);
+                    if let Some([a, b]) = j.pair.bodies_mut(solver_bodies) {
+                        crate::direct::project_rows(&probe.rows, a, b);
                     }
                 }
                 if (sweep + 1) % PROJECTION_SWEEP_CHECK == 0 || sweep + 1 == PROJECTION_SWEEPS {
@@ -704,20 +736,22 @@ impl JointSolver {
         };
         for (link, &index) in links.iter_mut().zip(members) {
             let j = &mut joints[index];
-            // One load serves the rows and the activation.
-            if let Some((mut a, mut b)) = link_rows(j, solver_bodies, stage, link) {
-                link.activate(&mut a, &mut b);
-                j.pair.store(solver_bodies, a, b);
+            // The bodies in place serve the rows and the activation.
+            match j.pair.bodies_mut(solver_bodies) {
+                Some([a, b]) => {
+                    link_rows(j, Some((&*a, &*b)), stage, link);
+                    link.activate(a, b);
+                }
+                None => link_rows(j, None, stage, link),
             }
         }
         solve_links(joints, members, links, solution, solver_bodies);
         for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
             let j = &mut joints[index];
-            let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
+            let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
                 continue;
             };
-            link.apply_solution(x, &mut a, &mut b);
-            j.pair.store(solver_bodies, a, b);
+            link.apply_solution(x, a, b);
             let (lambda, s) = (link.lambda, &mut j.state);
             match &mut j.kind {
                 Prepared::Rope(p) => {
@@ -882,14 +916,14 @@ fn direct_rows(
     stage: &Stage,
     link: &mut Link,
 ) -> [f32; MAX_ROWS] {
-    let bodies = j.pair.load(solver_bodies);
-    rows_at(j, bodies.as_ref(), stage, link)
+    let bodies = j.pair.bodies(solver_bodies);
+    rows_at(j, bodies, stage, link)
 }
 
 /// [`direct_rows`] with the joint's bodies already loaded (`None`: no rows).
 fn rows_at(
     j: &mut PreparedJoint,
-    bodies: Option<&(SolverBody, SolverBody)>,
+    bodies: Option<(&SolverBody, &SolverBody)>,
     stage: &Stage,
     link: &mut Link,
 ) -> [f32; MAX_ROWS] {
@@ -918,23 +952,21 @@ fn rows_at(
 /// The rows of joint `j` in `link` for a pass of `stage` at its bodies' current pose, and its accumulated
 /// impulses: the rows already there if they were built at this very pose ([`PoseKey`]: the same bits of
 /// both bodies' displacements and rotations) — only their targets recomputed for `stage`
-/// ([`Link::reuse`]) — else built again ([`rows_at`]). Returns the bodies as loaded (`None`: no rows).
+/// ([`Link::reuse`]) — else built again ([`rows_at`]). `bodies` are the joint's bodies (`None`: no rows).
 fn link_rows(
     j: &mut PreparedJoint,
-    solver_bodies: &[SolverBody],
+    bodies: Option<(&SolverBody, &SolverBody)>,
     stage: &Stage,
     link: &mut Link,
-) -> Option<(SolverBody, SolverBody)> {
-    let bodies = j.pair.load(solver_bodies);
-    let pose = bodies.as_ref().map(|(a, b)| PoseKey::of(a, b));
+) {
+    let pose = bodies.map(|(a, b)| PoseKey::of(a, b));
     if pose.is_some() && link.pose() == pose {
         link.reuse(stage);
         link.lambda = state_lambda(j);
     } else {
-        link.lambda = rows_at(j, bodies.as_ref(), stage, link);
+        link.lambda = rows_at(j, bodies, stage, link);
         link.built_at(pose);
     }
-    bodies
 }
 
 /// The accumulated impulses of joint `j`'s direct rows, in row order (0 for a joint without direct rows).
@@ -1032,27 +1064,38 @@ fn solve_links(
     }
     // Active set: a rope the solution would make push is released, a rope left out that the solution would
     // stretch is added, and the system solved again; the last round's solution is the one applied.
+    // A round after the first sweeps again only from the link before the first one it changed ([`Resume`]).
+    let mut resume = Resume::default();
     for round in 0..ACTIVE_SET_ROUNDS {
         solve_path(
             links,
-            |slot| joints[members[slot]].pair.load(solver_bodies),
+            |slot| joints[members[slot]].pair.bodies(solver_bodies),
             solution,
+            &mut resume,
         );
         if round + 1 == ACTIVE_SET_ROUNDS {
             break;
         }
-        let mut changed = activate_violations(links, solution, |slot| {
-            joints[members[slot]].pair.load(solver_bodies)
+        let activated = activate_violations(links, solution, |slot| {
+            joints[members[slot]].pair.bodies(solver_bodies)
         });
-        for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
+        let mut changed = activated.is_some();
+        if let Some(slot) = activated {
+            resume.changed(slot);
+        }
+        for (slot, ((link, x), &index)) in links
+            .iter_mut()
+            .zip(solution.iter())
+            .zip(members)
+            .enumerate()
+        {
             if !link.would_deactivate(x) {
                 continue;
             }
-            let pair = &joints[index].pair;
-            if let Some((mut a, mut b)) = pair.load(solver_bodies)
-                && link.deactivate_violations(x, &mut a, &mut b)
+            if let Some([a, b]) = joints[index].pair.bodies_mut(solver_bodies)
+                && link.deactivate_violations(x, a, b)
             {
-                pair.store(solver_bodies, a, b);
+                resume.changed(slot);
                 changed = true;
             }
         }
@@ -1153,11 +1196,14 @@ mod tests {
             for _ in 0..ctx.substep_count {
                 integrate_velocities(&mut solver_bodies, &params, &ctx);
                 solver.apply_forces(&mut solver_bodies, &ctx);
-                solver.warm_start(&mut solver_bodies);
+                // Counted before the warm start, which changes velocities only; forgotten before it, so
+                // that the rebuilding run warm-starts its ropes from their own rows, the other from the
+                // links' rows.
                 reused += solver.reusable_links(&solver_bodies);
                 if rebuild {
                     solver.forget_rows();
                 }
+                solver.warm_start(&mut solver_bodies);
                 solver.solve(&mut solver_bodies, &ctx, Bias::On);
                 integrate_positions(&mut solver_bodies, &params, &ctx);
                 reused += solver.reusable_links(&solver_bodies);

@@ -44,8 +44,20 @@ use rebound_math::{Mat3, Vec3};
 /// One joint as the graph search sees it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Edge {
-    /// The joint's prepared pair (indices, inverse masses, anchors).
-    pub pair: BodyPair,
+    // Only what the search reads of the joint's `BodyPair`: copying whole pairs (two inertia matrices, two
+    // bases, …) for every joint and step was most of the search's memory traffic.
+    /// The joint's body A (index into the solver bodies).
+    pub index_a: usize,
+    /// The joint's body B.
+    pub index_b: usize,
+    /// Body A's inverse mass (1/kg): 0 makes it a root of the search.
+    pub inv_mass_a: f32,
+    /// Body B's inverse mass (1/kg).
+    pub inv_mass_b: f32,
+    /// The joint's anchor on body A (m, from its centre of mass, world axes at the start of the step).
+    pub anchor_a: Vec3,
+    /// The joint's anchor on body B.
+    pub anchor_b: Vec3,
     /// The distance the joint allows between its anchors (m): a rope's or rod's length, 0 for a point
     /// joint; `None` for joints that do not bound the distance (springs, prismatic, wheel).
     pub length: Option<f32>,
@@ -102,8 +114,8 @@ impl JointGraph {
         self.start.clear();
         self.start.resize(body_count + 1, 0);
         for e in joints {
-            self.start[e.pair.index_a + 1] += 1;
-            self.start[e.pair.index_b + 1] += 1;
+            self.start[e.index_a + 1] += 1;
+            self.start[e.index_b + 1] += 1;
         }
         for i in 0..body_count {
             self.start[i + 1] += self.start[i];
@@ -114,7 +126,7 @@ impl JointGraph {
         self.queue.clear();
         self.queue.extend_from_slice(&self.start[..body_count]);
         for (j, e) in joints.iter().enumerate() {
-            let (a, b) = (e.pair.index_a, e.pair.index_b);
+            let (a, b) = (e.index_a, e.index_b);
             self.edges[self.queue[a]] = (j, b, true);
             self.queue[a] += 1;
             self.edges[self.queue[b]] = (j, a, false);
@@ -124,10 +136,7 @@ impl JointGraph {
         self.nodes.resize(body_count, UNREACHED);
         self.queue.clear();
         for e in joints {
-            for (index, inv_mass) in [
-                (e.pair.index_a, e.pair.inv_mass_a),
-                (e.pair.index_b, e.pair.inv_mass_b),
-            ] {
+            for (index, inv_mass) in [(e.index_a, e.inv_mass_a), (e.index_b, e.inv_mass_b)] {
                 if inv_mass == 0.0 && self.nodes[index].depth != 0 {
                     self.nodes[index] = Node {
                         depth: 0,
@@ -149,9 +158,9 @@ impl JointGraph {
                 }
                 let e = &joints[j];
                 let (here, there) = if body_is_a {
-                    (e.pair.anchor_a, e.pair.anchor_b)
+                    (e.anchor_a, e.anchor_b)
                 } else {
-                    (e.pair.anchor_b, e.pair.anchor_a)
+                    (e.anchor_b, e.anchor_a)
                 };
                 let mut next = Node {
                     depth: node.depth.saturating_add(1),
@@ -267,19 +276,12 @@ mod tests {
     fn rope(a: usize, b: usize, path: Option<usize>) -> Edge {
         let inv_mass = |i: usize| if i == 0 { 0.0 } else { 1.0 };
         Edge {
-            pair: BodyPair {
-                index_a: a,
-                index_b: b,
-                inv_mass_a: inv_mass(a),
-                inv_mass_b: inv_mass(b),
-                inv_inertia_a: Mat3::ZERO,
-                inv_inertia_b: Mat3::ZERO,
-                anchor_a: Vec3::ZERO,
-                anchor_b: Vec3::ZERO,
-                basis_a: rebound_math::Quat::IDENTITY,
-                basis_b: rebound_math::Quat::IDENTITY,
-                delta_center: Vec3::ZERO,
-            },
+            index_a: a,
+            index_b: b,
+            inv_mass_a: inv_mass(a),
+            inv_mass_b: inv_mass(b),
+            anchor_a: Vec3::ZERO,
+            anchor_b: Vec3::ZERO,
             length: Some(1.0),
             path,
         }

@@ -165,7 +165,10 @@ impl PreparedWheel {
         g.row(pair, 1).apply(pair, a, b, suspension);
         let axle = g.axes[0];
         AnglePart::new(pair, axle).apply(a, b, state.motor_impulse);
-        AlignPart::new(pair, axle, [g.frame_b * Vec3::Y, g.frame_b * Vec3::Z]).apply(
+        AlignPart::apply_about(
+            pair,
+            axle,
+            [g.frame_b * Vec3::Y, g.frame_b * Vec3::Z],
             a,
             b,
             state.angular_impulse.truncate(),

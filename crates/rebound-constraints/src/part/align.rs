@@ -79,6 +79,30 @@ impl AlignPart {
         b.angular_velocity += self.w_b[0] * impulse.x + self.w_b[1] * impulse.y;
     }
 
+    /// [`AlignPart::new`] followed by [`AlignPart::apply`], without the effective mass and the error, which a
+    /// warm start does not use: the same velocity changes, bit for bit.
+    #[inline]
+    pub fn apply_about(
+        pair: &BodyPair,
+        axis_a: Vec3,
+        perpendicular_b: [Vec3; 2],
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        impulse: Vec2,
+    ) {
+        if impulse == Vec2::ZERO {
+            return;
+        }
+        let u = [
+            perpendicular_b[0].cross(axis_a),
+            perpendicular_b[1].cross(axis_a),
+        ];
+        let w_a = [pair.inv_inertia_a * u[0], pair.inv_inertia_a * u[1]];
+        let w_b = [pair.inv_inertia_b * u[0], pair.inv_inertia_b * u[1]];
+        a.angular_velocity -= w_a[0] * impulse.x + w_a[1] * impulse.y;
+        b.angular_velocity += w_b[0] * impulse.x + w_b[1] * impulse.y;
+    }
+
     /// One iteration toward `C = 0` (soft in the bias pass, velocity only in the relax pass); returns the
     /// applied increment.
     #[inline]

@@ -48,13 +48,27 @@ impl PointPart {
     /// Applies the impulse `impulse` (N·s, world): `+` at B's anchor, `−` at A's.
     #[inline]
     pub fn apply(&self, pair: &BodyPair, a: &mut SolverBody, b: &mut SolverBody, impulse: Vec3) {
+        Self::apply_at(pair, self.r_a, self.r_b, a, b, impulse);
+    }
+
+    /// [`PointPart::apply`] for lever arms `r_a`, `r_b` without building the block: a warm start applies an
+    /// impulse and needs no effective mass (its 3 × 3 inverse was most of a bridge's warm start).
+    #[inline]
+    pub fn apply_at(
+        pair: &BodyPair,
+        r_a: Vec3,
+        r_b: Vec3,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        impulse: Vec3,
+    ) {
         if impulse == Vec3::ZERO {
             return;
         }
         a.linear_velocity -= impulse * pair.inv_mass_a;
-        a.angular_velocity -= pair.inv_inertia_a * self.r_a.cross(impulse);
+        a.angular_velocity -= pair.inv_inertia_a * r_a.cross(impulse);
         b.linear_velocity += impulse * pair.inv_mass_b;
-        b.angular_velocity += pair.inv_inertia_b * self.r_b.cross(impulse);
+        b.angular_velocity += pair.inv_inertia_b * r_b.cross(impulse);
     }
 
     /// One iteration toward `Ċ + bias = 0` with the given softness; returns the applied increment (N·s).
