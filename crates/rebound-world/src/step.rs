@@ -235,8 +235,14 @@ impl<B: CollisionBackend> World<B> {
             );
             let count = manifold.point_count;
             let old_points = old.map_or(&[][..], ContactManifold::points);
+            // The centres of mass once per manifold, not once per point.
+            let centers = [body_a.center_of_mass(), body_b.center_of_mass()];
             for point in &mut manifold.points[..count] {
-                let near = point.refresh_lever_arms(lever_arms(body_a, body_b, point), old_points);
+                let fresh = [
+                    body_a.pose().transform_point(point.local_anchor_a) - centers[0],
+                    body_b.pose().transform_point(point.local_anchor_b) - centers[1],
+                ];
+                let near = point.refresh_lever_arms(fresh, old_points);
                 let previous = old_points
                     .iter()
                     .find(|p| p.feature_id == point.feature_id)
