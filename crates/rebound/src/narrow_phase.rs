@@ -159,13 +159,20 @@ impl NarrowPhase {
             let (Some(b1), Some(b2)) = (bodies.get(c1.body), bodies.get(c2.body)) else {
                 continue;
             };
-            let pose1 = to_parry_pose(c1.world_pose(b1.pose()));
-            let pose2 = to_parry_pose(c2.world_pose(b2.pose()));
-            let pos12 = pose1.inv_mul(&pose2);
             let closing = (b1.linear_velocity() - b2.linear_velocity()).length()
                 + broad_phase.rotation_reach(h1)
                 + broad_phase.rotation_reach(h2);
             let prediction = (speculative_margin + closing * dt).min(MAX_PREDICTION);
+            if let (ColliderShape::Ball { radius: r1 }, ColliderShape::Ball { radius: r2 }) =
+                (&c1.desc.shape, &c2.desc.shape)
+                && balls_clearly_apart(c1, b1, *r1, c2, b2, *r2, prediction)
+            {
+                // Most candidate pairs of a pile are apart: no poses to compose, nothing to convert.
+                continue;
+            }
+            let pose1 = to_parry_pose(c1.world_pose(b1.pose()));
+            let pose2 = to_parry_pose(c2.world_pose(b2.pose()));
+            let pos12 = pose1.inv_mul(&pose2);
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
             if shape1.is_convex() && shape2.is_convex() {
@@ -548,6 +555,30 @@ impl Seam<'_> {
             ),
         )
     }
+}
+
+/// How much farther apart (m) than the prediction distance two balls' surfaces must be, measured in world
+/// space, for [`balls_clearly_apart`] to skip the pair: far more than the rounding that separates the
+/// world-space distance from the one `ball_ball` measures in ball 1's frame, so the skip never drops a
+/// contact `ball_ball` would report.
+const BALL_SKIP_MARGIN: f32 = 1.0e-3;
+
+/// Whether two balls (radii `r1`, `r2`, m) on colliders `c1`, `c2` of bodies `b1`, `b2` are farther apart than
+/// `prediction` plus [`BALL_SKIP_MARGIN`]: their centres' world distance, without composing the poses that
+/// [`ball_ball`] needs. Most candidate pairs of a pile of balls are apart.
+fn balls_clearly_apart(
+    c1: &Collider,
+    b1: &RigidBody,
+    r1: f32,
+    c2: &Collider,
+    b2: &RigidBody,
+    r2: f32,
+    prediction: f32,
+) -> bool {
+    let center1 = b1.pose().transform_point(c1.desc.local_pose.position);
+    let center2 = b2.pose().transform_point(c2.desc.local_pose.position);
+    let reach = r1 + r2 + prediction + BALL_SKIP_MARGIN;
+    center1.distance_squared(center2) > reach * reach
 }
 
 /// The contact of two balls of radii `r1` and `r2` (m), ball 2 at `pos12` in ball 1's frame, for gaps up to
