@@ -731,9 +731,17 @@ fn is_usable(m: &ContactManifold, bodies: &BodySet) -> bool {
         && m.restitution >= 0.0
         && m.rolling_friction.is_finite()
         && m.rolling_friction >= 0.0
-        && m.points().iter().all(|p| {
-            p.separation.is_finite() && p.local_anchor_a.is_finite() && p.local_anchor_b.is_finite()
-        })
+        && points_are_finite(m.points())
+}
+
+/// Whether every anchor and separation of `points` is finite, without a branch per number: `x·0` is `±0` for
+/// a finite `x` and NaN for an infinite or NaN one, so the sum of the products is zero exactly when every
+/// number is finite (a pile's step checks ~10,000 points).
+fn points_are_finite(points: &[crate::ManifoldPoint]) -> bool {
+    let zero_if_finite = points.iter().fold(Vec3::ZERO, |sum, p| {
+        sum + p.local_anchor_a * 0.0 + p.local_anchor_b * 0.0 + Vec3::splat(p.separation * 0.0)
+    });
+    zero_if_finite == Vec3::ZERO
 }
 
 /// If exactly one of two bodies is awake and moving and the other asleep, the sleeper must wake.

@@ -243,3 +243,89 @@ fn step_never_fails_and_reports_a_bad_dt() {
     assert_eq!(world.state_digest(), digest, "nothing moved");
     assert!(world.step(1.0 / 60.0).skipped.is_none());
 }
+
+/// A backend that reports the manifolds it is given, whatever they hold.
+struct Faulty(Vec<rebound_world::ContactManifold>);
+
+impl rebound_world::CollisionBackend for Faulty {
+    fn collide(
+        &mut self,
+        _: &rebound_world::BodySet,
+        _: &WorldSettings,
+        _: f32,
+        _: &[rebound_world::ContactManifold],
+        out: &mut Vec<rebound_world::ContactManifold>,
+    ) {
+        out.extend_from_slice(&self.0);
+    }
+}
+
+#[test]
+fn a_backends_non_finite_or_malformed_manifolds_are_rejected_and_change_nothing() {
+    use rebound_world::{ContactManifold, ManifoldPoint};
+    let settings = WorldSettings {
+        gravity: Vec3::ZERO,
+        ..WorldSettings::default()
+    };
+    let mut world = World::with_backend(settings, Faulty(Vec::new())).unwrap();
+    let ground = world.insert_body(&BodyDesc::fixed()).unwrap();
+    let ball = world
+        .insert_body(
+            &BodyDesc::dynamic()
+                .with_position(Vec3::new(0.0, 1.0, 0.0))
+                .with_mass_properties(MassProperties::ball(1000.0, 0.5).unwrap()),
+        )
+        .unwrap();
+    // A point 1 cm deep, pushing the ball up if the manifold were used.
+    let good_point = ManifoldPoint {
+        local_anchor_a: Vec3::new(0.0, 0.5, 0.0),
+        local_anchor_b: Vec3::new(0.0, -0.5, 0.0),
+        separation: -0.01,
+        ..ManifoldPoint::default()
+    };
+    let manifold = |point: ManifoldPoint, normal: Vec3| {
+        let mut m = ContactManifold::new(ground, ball, 0, normal, 0.5, 0.0);
+        m.push_point(good_point);
+        m.push_point(point);
+        m
+    };
+    let mut bad = Vec::new();
+    for value in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        let mut p = good_point;
+        p.separation = value;
+        bad.push(manifold(p, Vec3::Y));
+        for axis in 0..3 {
+            let mut p = good_point;
+            p.local_anchor_a[axis] = value;
+            bad.push(manifold(p, Vec3::Y));
+            let mut p = good_point;
+            p.local_anchor_b[axis] = value;
+            bad.push(manifold(p, Vec3::Y));
+        }
+        bad.push(manifold(good_point, Vec3::new(value, 1.0, 0.0)));
+    }
+    // Not a unit normal; a body against itself.
+    bad.push(manifold(good_point, Vec3::new(0.0, 2.0, 0.0)));
+    let mut own = manifold(good_point, Vec3::Y);
+    own.body_a = ball;
+    bad.push(own);
+    let count = bad.len();
+    world.backend_mut().0 = bad;
+    let report = world.step(1.0 / 60.0);
+    assert_eq!(report.rejected_contact_count, count);
+    assert_eq!(report.contact_count, 0);
+    let body = world.body(ball).unwrap();
+    assert_eq!(
+        body.linear_velocity(),
+        Vec3::ZERO,
+        "no rejected manifold pushed"
+    );
+    assert_eq!(body.position(), Vec3::new(0.0, 1.0, 0.0));
+    // The same manifold with finite numbers is used: it pushes the ball out (up).
+    world.backend_mut().0 = vec![manifold(good_point, Vec3::Y)];
+    let report = world.step(1.0 / 60.0);
+    assert_eq!(report.rejected_contact_count, 0);
+    assert_eq!(report.contact_count, 1);
+    let y = world.body(ball).unwrap().position().y;
+    assert!(y > 1.0, "{y}");
+}
