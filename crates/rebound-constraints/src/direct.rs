@@ -47,8 +47,10 @@
 //!
 //! The same machinery projects positions after the substeps (`JointSolver::project_positions`): with the
 //! rows' biases set to their position errors `C`, the solve of `K·x = C` moves the bodies by `−M⁻¹·Jᵀ·x`
-//! (`project_rows` is the one-joint Gauss–Seidel version used after it). Derivations and measurements are
-//! in `docs/physics.md`, "Chains solved directly".
+//! (`project_rows` is the one-joint Gauss–Seidel version used after it). Where that step kinks a pulled,
+//! curved chain, it is solved again with each rope and rod stiffened against turning by two compliant rows
+//! across it (`Link::stiffen`: the geometric stiffness, which makes a rope chain a path of 3-row links for
+//! the block sweep). Derivations and measurements are in `docs/physics.md`, "Chains solved directly".
 //!
 //! # Rows and factorisations kept between passes
 //!
@@ -425,6 +427,10 @@ pub(crate) struct Link {
     /// Whether this is a position projection: the rows' biases hold their position errors `C`, the solve is
     /// `K·x = C` and the result moves the bodies instead of changing their velocities.
     positions: bool,
+    /// Each row's compliance in a position projection (1/kg, added to its diagonal of `K`): that of the rows
+    /// that stiffen a pulled rope or rod against turning ([`Link::stiffen`]), 0 for every other row. Set by
+    /// [`Link::make_positional`] and read only while `positions` holds.
+    compliance: [Real; MAX_ROWS],
     /// Scratch of the Thomas sweep (see [`solve_block_path`]): the strictly lower part of the unit lower
     /// triangular `L` of `Sᵢ = L·D·Lᵀ`, then `V = D⁻¹·L⁻¹·Cᵢ` and `y = D⁻¹·L⁻¹·r̃ᵢ`. For a one-row link (the
     /// scalar sweep) `L` is 1 and `V`, `y` are the single entries `c' = c/s`, `r' = r̃/s`.
@@ -459,6 +465,7 @@ impl Link {
             active: [false; MAX_ROWS],
             shared_with_next: None,
             positions: false,
+            compliance: [0.0; MAX_ROWS],
             factor: [[0.0; MAX_ROWS]; MAX_ROWS],
             v: [[0.0; MAX_ROWS]; MAX_ROWS],
             y: [0.0; MAX_ROWS],
@@ -528,11 +535,14 @@ impl Link {
 
     /// Turns a link whose rows' biases are their position errors into a link of the position projection, in
     /// place (the rows stay reusable: [`Link::reuse`] recomputes the targets and starts a velocity pass).
-    /// Equality rows take part; a rope only if it is stretched (`C > 0`). A slack rope gets the target "no
-    /// longer than now" and joins through the active-set rounds ([`activate_violations`]) if moving its
-    /// neighbours would lengthen it: it may then pull, but the linear step never spends its slack (which a
-    /// curved chain's linearisation would overshoot).
-    pub fn make_positional(&mut self) {
+    /// Equality rows take part; a rope only if it is stretched or within `taut` (m) of its length (`C >
+    /// −taut`). A slack rope gets the target "no longer than now"; one further from its length joins through
+    /// the active-set rounds ([`activate_violations`]) if moving its neighbours would lengthen it: it may then
+    /// pull, but the linear step never spends its slack (which a curved chain's linearisation would
+    /// overshoot). Ropes at their length join at once because the rounds add only the ropes next to those in
+    /// the system: along a straight run of ropes at their length (a falling chain) they crept a few links per
+    /// round, and the step stretched the first rope left out by as much as it closed elsewhere.
+    pub fn make_positional(&mut self, taut: f32) {
         let mut active = [false; MAX_ROWS];
         for (row, active) in self
             .rows
@@ -543,9 +553,9 @@ impl Link {
         {
             let c = row.target.bias;
             *active = if row.upper == 0.0 {
-                c > 0.0
+                c > -taut
             } else if row.lower == 0.0 {
-                c < 0.0
+                c < taut
             } else {
                 true
             };
@@ -556,6 +566,41 @@ impl Link {
         self.lambda = [0.0; MAX_ROWS];
         self.positions = true;
         self.active = active;
+        self.compliance = [0.0; MAX_ROWS];
+    }
+
+    /// Stiffens a projection link of one pulled rope or rod row against turning, with `stiffness` (kg): two
+    /// linear rows across its axis, between the bodies' centres, with target 0 and compliance `1/stiffness`.
+    /// Solved with them, the projection minimises `½·ΔᵀMΔ + ½·stiffness·|Δ⊥|²` (`Δ⊥` the bodies' relative
+    /// displacement across the link) instead of `½·ΔᵀMΔ`, subject to the linearised rows: with `stiffness =
+    /// |p|/L` (`p` the link's position impulse, `L` its length) that is the Newton step of the projection
+    /// with the Hessian of the link's length, `(I − u·uᵀ)/L`, weighted by its multiplier (the geometric
+    /// stiffness), which the plain step leaves out. Returns whether the rows were added (a link of one row
+    /// and a positive, finite stiffness only). The rows and factorisation are dropped for the next pass.
+    pub fn stiffen(&mut self, stiffness: f32) -> bool {
+        if !self.positions || self.rows.count != 1 || !(stiffness > 0.0 && stiffness.is_finite()) {
+            return false;
+        }
+        let row = self.rows.rows[0];
+        let (across, other) = row.b.linear.any_orthonormal_pair();
+        let target = RowTarget {
+            bias: 0.0,
+            softness: row.target.softness,
+        };
+        for axis in [across, other] {
+            self.rows.push(
+                Row::linear(axis, Vec3::ZERO, Vec3::ZERO, target),
+                0.0,
+                TargetRule::Equality,
+            );
+        }
+        for k in 1..self.rows.count {
+            self.active[k] = true;
+            self.lambda[k] = 0.0;
+            self.compliance[k] = 1.0 / Real::from(stiffness);
+        }
+        self.forget();
+        true
     }
 
     /// Step 1 of a pass: decides which rows take part and releases the others' impulses. A row bounded at 0
@@ -759,6 +804,9 @@ impl Link {
                 );
                 if i == j {
                     b[i][i] = k * (1.0 + REGULARIZATION);
+                    if self.positions {
+                        b[i][i] += self.compliance[i];
+                    }
                 } else {
                     b[i][j] = k;
                     b[j][i] = k;

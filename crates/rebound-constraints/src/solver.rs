@@ -24,7 +24,7 @@
 
 use crate::coordinate::CoordinateRows;
 use crate::direct::{
-    InvMass, JointRows, Link, MAX_ROWS, PoseKey, Resume, activate_violations, solve_path,
+    InvMass, JointRows, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations, solve_path,
 };
 use crate::fixed::PreparedFixed;
 use crate::hinge::PreparedHinge;
@@ -67,6 +67,22 @@ const PROJECTION_SWEEPS: usize = 16;
 
 /// How many sweeps run between two measurements of the path's worst error.
 const PROJECTION_SWEEP_CHECK: usize = 4;
+
+/// How much stiffer than their geometric stiffness `|p|/L` the projection makes pulled ropes and rods against
+/// turning when a plain Newton step is rejected ([`Link::stiffen`]). The exact Newton step weighs the
+/// Hessian of each link's length by the multiplier of the step it takes, which is larger than the plain step's
+/// `p` it is estimated from (about 3× at the SCENES.md chain's whip), and a stiffer metric errs on the safe
+/// side: in the limit the links only change length, which for a chain hanging from an anchor is exact. Worst
+/// link of that chain over 38 starts with one ball 10 µm off: ×1 0.04–0.56 %, ×3 0.04–0.13 %, ×10 and ×30
+/// 0.040–0.041 %.
+const PROJECTION_STIFFENING: f32 = 10.0;
+
+/// The fraction of the worst error a full Newton step of the projection must get a path with ropes or rods
+/// down to for it to be kept as it is. Near the solution Newton's error shrinks quadratically; a step that
+/// does not even quarter it is one whose linearisation is poor (links turning within the step), and the
+/// stiffened step ([`PROJECTION_STIFFENING`]) is tried instead. With "kept if no worse", steps that gained a
+/// few per cent used up the iterations at the SCENES.md chain's whip (0.19 → 0.19 → 0.18 cm).
+const PROJECTION_NEWTON_GAIN: f32 = 0.25;
 
 /// How many times a direct path solve may drop rows that would push, add rows it would violate, and solve
 /// again.
@@ -150,7 +166,7 @@ pub struct JointSolver {
     /// range), kept from pass to pass: a pass at the pose a link's rows were built at reuses them, and their
     /// factorisation if the rows in the system are also the same (see [`crate::direct`]).
     links: Vec<Link>,
-    solution: Vec<[crate::direct::Real; MAX_ROWS]>,
+    solution: Vec<[Real; MAX_ROWS]>,
     /// Scratch of the position projection: the path's bodies before a Newton step, and a link to measure
     /// errors with.
     saved: Vec<(usize, SolverBody)>,
@@ -620,15 +636,21 @@ impl JointSolver {
             };
             let worst =
                 |joints: &mut [PreparedJoint], solver_bodies: &[SolverBody], probe: &mut Link| {
-                    members
-                        .iter()
-                        .map(|&index| violation(&mut joints[index], solver_bodies, &stage, probe))
-                        .fold(0.0f32, f32::max)
+                    path_worst(joints, members, solver_bodies, &stage, probe)
                 };
             // The worst error at the bodies' current pose, once measured: the Newton loop always ends at a
             // pose it measured (the one it stopped at, the last step it accepted, or the one it restored), so
             // the sweeps below need not build every joint's rows again to know it.
             let mut known = None;
+            // Only a path with ropes or rods can be stiffened: the others keep any full step that helps.
+            let gain = if members
+                .iter()
+                .any(|&index| matches!(joints[index].kind, Prepared::Rope(_) | Prepared::Rod(_)))
+            {
+                PROJECTION_NEWTON_GAIN
+            } else {
+                1.0
+            };
             for _ in 0..PROJECTION_ITERATIONS {
                 let mut before = 0.0f32;
                 // The first iteration is at the pose of the last relax pass: its rows (retargeted) and, if
@@ -637,37 +659,71 @@ impl JointSolver {
                     let bodies = joints[index].pair.bodies(solver_bodies);
                     link_rows(&mut joints[index], bodies, &stage, link);
                     before = before.max(link.rows.violation());
-                    link.make_positional();
+                    link.make_positional(PROJECTION_TOLERANCE);
                 }
                 known = Some(before);
                 if before <= PROJECTION_TOLERANCE {
                     break;
                 }
                 solve_links(joints, members, links, solution, solver_bodies);
-                // A Newton step can overshoot where the linearisation is poor (a light body between two
-                // nearly aligned links is moved far sideways): if the step makes the worst error larger,
-                // undo it and take half of it instead (then a quarter). If even that fails, the next
-                // iteration would start from the same pose: stop.
                 save_bodies(joints, members, solver_bodies, saved);
-                let mut scale = 1.0;
-                let mut accepted = false;
-                for _ in 0..3 {
-                    for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
-                        if let Some([a, b]) = joints[index].pair.bodies_mut(solver_bodies) {
-                            link.apply_solution(&x.map(|v| v * scale), a, b);
-                        }
-                    }
-                    let after = worst(joints, solver_bodies, link_at(probe, 0));
-                    if after <= before {
-                        known = Some(after);
-                        accepted = true;
-                        break;
-                    }
-                    restore_bodies(saved, solver_bodies);
-                    scale *= 0.5;
+                let probe = link_at(probe, 0);
+                // A Newton step can overshoot where the linearisation is poor: a light body between two
+                // nearly aligned, pulled links is moved far sideways (by about `p·θ/m` for a position
+                // impulse `p` through links turned by `θ`), which lengthens both links by the square of
+                // that (at the SCENES.md chain's whip a step meant to close 0.36 cm moved bodies 10 cm and
+                // left 7.4 cm). If the full step does not get the worst error down to `gain` of it, the
+                // path's ropes and rods are stiffened against turning (`stiffen`) and the step solved again,
+                // kept if it makes things no worse; if that fails too, or nothing can be stiffened, half of
+                // the last step is tried, then a quarter. If even that fails, the next iteration would start
+                // from the same pose: stop.
+                let mut after = try_step(
+                    joints,
+                    members,
+                    links,
+                    solution,
+                    solver_bodies,
+                    saved,
+                    probe,
+                    &stage,
+                    before * gain,
+                    1.0,
+                    1,
+                );
+                if after.is_none() && stiffen(joints, members, links, solution) {
+                    solve_links(joints, members, links, solution, solver_bodies);
+                    after = try_step(
+                        joints,
+                        members,
+                        links,
+                        solution,
+                        solver_bodies,
+                        saved,
+                        probe,
+                        &stage,
+                        before,
+                        1.0,
+                        1,
+                    );
                 }
-                if !accepted {
-                    break;
+                if after.is_none() {
+                    after = try_step(
+                        joints,
+                        members,
+                        links,
+                        solution,
+                        solver_bodies,
+                        saved,
+                        probe,
+                        &stage,
+                        before,
+                        0.5,
+                        2,
+                    );
+                }
+                match after {
+                    Some(after) => known = Some(after),
+                    None => break,
                 }
             }
             // Nonlinear Gauss–Seidel sweeps, alternating direction, take back what the linearisation missed —
@@ -1017,6 +1073,80 @@ fn violation(
     scratch.rows.violation()
 }
 
+/// The worst position error of the path's joints at the bodies' current pose.
+fn path_worst(
+    joints: &mut [PreparedJoint],
+    members: &[usize],
+    solver_bodies: &[SolverBody],
+    stage: &Stage,
+    probe: &mut Link,
+) -> f32 {
+    members
+        .iter()
+        .map(|&index| violation(&mut joints[index], solver_bodies, stage, probe))
+        .fold(0.0f32, f32::max)
+}
+
+/// Applies `first` times the projection step `solution` to the path's bodies (saved in `saved`), then half of
+/// that, and so on (up to `sizes` sizes), until the path's worst error is no larger than `before`; returns the
+/// worst error of the step kept, or `None` with the bodies restored if no size was better.
+fn try_step(
+    joints: &mut [PreparedJoint],
+    members: &[usize],
+    links: &mut [Link],
+    solution: &[[Real; MAX_ROWS]],
+    solver_bodies: &mut [SolverBody],
+    saved: &[(usize, SolverBody)],
+    probe: &mut Link,
+    stage: &Stage,
+    before: f32,
+    first: Real,
+    sizes: usize,
+) -> Option<f32> {
+    let mut scale = first;
+    for _ in 0..sizes {
+        for ((link, x), &index) in links.iter_mut().zip(solution).zip(members) {
+            if let Some([a, b]) = joints[index].pair.bodies_mut(solver_bodies) {
+                link.apply_solution(&x.map(|v| v * scale), a, b);
+            }
+        }
+        let after = path_worst(joints, members, solver_bodies, stage, probe);
+        if after <= before {
+            return Some(after);
+        }
+        restore_bodies(saved, solver_bodies);
+        scale *= 0.5;
+    }
+    None
+}
+
+/// Stiffens the path's pulled rope and rod links against turning for another Newton step of the projection
+/// ([`Link::stiffen`]), each with [`PROJECTION_STIFFENING`] times the geometric stiffness `|p|/L` of its
+/// position impulse `p` in `solution` (the rejected plain step) and its length `L`. Returns whether any link
+/// was stiffened (none on a path without ropes and rods, or whose ropes all are slack).
+fn stiffen(
+    joints: &[PreparedJoint],
+    members: &[usize],
+    links: &mut [Link],
+    solution: &[[Real; MAX_ROWS]],
+) -> bool {
+    let mut any = false;
+    for ((link, x), &index) in links.iter_mut().zip(solution).zip(members) {
+        let length = match &joints[index].kind {
+            Prepared::Rope(p) => p.max_length(),
+            Prepared::Rod(p) => p.length(),
+            _ => continue,
+        };
+        if !link.active[0] {
+            continue;
+        }
+        let row = &link.rows.rows[0];
+        let p = (-(x[0] as f32)).max(row.lower).min(row.upper).abs();
+        any |= link.stiffen(PROJECTION_STIFFENING * p / length);
+    }
+    any
+}
+
 /// Saves the bodies of the path's joints, so that a projection step that makes things worse can be undone.
 fn save_bodies(
     joints: &[PreparedJoint],
@@ -1050,7 +1180,7 @@ fn solve_links(
     joints: &[PreparedJoint],
     members: &[usize],
     links: &mut [Link],
-    solution: &mut Vec<[crate::direct::Real; MAX_ROWS]>,
+    solution: &mut Vec<[Real; MAX_ROWS]>,
     solver_bodies: &mut [SolverBody],
 ) {
     for (slot, pair) in members.windows(2).enumerate() {
