@@ -1,6 +1,7 @@
-//! The narrow phase (second half of the collide stage): parry3d's persistent contact manifolds for each
-//! candidate pair (two boxes: our own generator, [`crate::box_box`], into the same parry manifold), turned
-//! into the world's plain-data [`ContactManifold`] at one seam, [`Seam`].
+//! The narrow phase (second half of the collide stage): the contact manifold of each candidate pair — our
+//! own generators for two balls and two boxes ([`crate::box_box`], into a stack [`ShapeManifold`]), parry3d's
+//! persistent manifolds for everything else — turned into the world's plain-data [`ContactManifold`] at one
+//! seam, [`Seam`]; box pairs that barely moved recycle last step's (see "Contact recycling").
 //!
 //! # Pair cache
 //!
