@@ -313,7 +313,7 @@ fn fnv1a(mut hash: u64, words: &[u32]) -> u64 {
 /// bits, xor the second. Exact (no two feature pairs collide) while both indices are below 2¹⁴ = 16384,
 /// which covers every primitive and, per sub-shape manifold, every triangle; beyond that ids may collide,
 /// which only costs a warm start.
-fn pack_feature_id((fid1, fid2): (PackedFeatureId, PackedFeatureId)) -> u32 {
+fn pack_feature_id(fid1: PackedFeatureId, fid2: PackedFeatureId) -> u32 {
     fid1.0.rotate_left(16) ^ fid2.0
 }
 
@@ -327,50 +327,34 @@ fn shape_frame(collider: &Collider, subshape_pose: Option<&parry3d::math::Pose>)
 }
 
 /// A contact point as a generator leaves it, in its shapes' own frames: parry's [`TrackedContact`] or our
-/// [`ShapePoint`].
+/// [`ShapePoint`], read as a [`ShapePoint`].
 pub(crate) trait SeamPoint {
-    /// The point on shape 1, in shape 1's frame (m).
-    fn local_p1(&self) -> Vec3;
-    /// The point on shape 2, in shape 2's frame (m).
-    fn local_p2(&self) -> Vec3;
-    /// Signed distance along the normal (m).
-    fn dist(&self) -> f32;
-    /// What touches on each shape.
-    fn features(&self) -> (PackedFeatureId, PackedFeatureId);
-    /// Whether the point is finite (defensive: the generators' points always are).
-    fn is_usable(&self) -> bool {
-        self.local_p1().is_finite() && self.local_p2().is_finite() && self.dist().is_finite()
-    }
+    /// The point's geometry and features.
+    fn shape_point(&self) -> ShapePoint;
 }
 
 impl SeamPoint for TrackedContact<()> {
-    fn local_p1(&self) -> Vec3 {
-        self.local_p1
-    }
-    fn local_p2(&self) -> Vec3 {
-        self.local_p2
-    }
-    fn dist(&self) -> f32 {
-        self.dist
-    }
-    fn features(&self) -> (PackedFeatureId, PackedFeatureId) {
-        (self.fid1, self.fid2)
+    fn shape_point(&self) -> ShapePoint {
+        ShapePoint {
+            local_p1: self.local_p1,
+            local_p2: self.local_p2,
+            fid1: self.fid1,
+            fid2: self.fid2,
+            dist: self.dist,
+        }
     }
 }
 
 impl SeamPoint for ShapePoint {
-    fn local_p1(&self) -> Vec3 {
-        self.local_p1
+    fn shape_point(&self) -> ShapePoint {
+        *self
     }
-    fn local_p2(&self) -> Vec3 {
-        self.local_p2
-    }
-    fn dist(&self) -> f32 {
-        self.dist
-    }
-    fn features(&self) -> (PackedFeatureId, PackedFeatureId) {
-        (self.fid1, self.fid2)
-    }
+}
+
+/// Whether a point is finite (defensive: the generators' points always are).
+fn is_usable(point: &impl SeamPoint) -> bool {
+    let p = point.shape_point();
+    p.local_p1.is_finite() && p.local_p2.is_finite() && p.dist.is_finite()
 }
 
 /// **The seam**: where one manifold of the collider pair (`c1`, `c2`), from parry or from our generators,
@@ -435,12 +419,12 @@ impl Seam<'_> {
             return;
         };
         manifold.rolling_friction = rolling_friction;
-        for point in chosen[..count].iter().map(|&i| &points[i]) {
+        for point in chosen[..count].iter().map(|&i| points[i].shape_point()) {
             manifold.push_point(ManifoldPoint {
-                local_anchor_a: frame1.transform_point(point.local_p1()),
-                local_anchor_b: frame2.transform_point(point.local_p2()),
-                separation: point.dist(),
-                feature_id: pack_feature_id(point.features()),
+                local_anchor_a: frame1.transform_point(point.local_p1),
+                local_anchor_b: frame2.transform_point(point.local_p2),
+                separation: point.dist,
+                feature_id: pack_feature_id(point.fid1, point.fid2),
                 ..ManifoldPoint::default()
             });
         }
@@ -627,19 +611,19 @@ fn ball_ball(
 fn reduce_points<P: SeamPoint>(points: &[P]) -> ([usize; MAX_MANIFOLD_POINTS], usize) {
     let mut chosen = [0; MAX_MANIFOLD_POINTS];
     let mut count = 0;
-    let usable_count = points.iter().filter(|p| p.is_usable()).count();
+    let usable_count = points.iter().filter(|p| is_usable(*p)).count();
     if usable_count <= MAX_MANIFOLD_POINTS {
-        for (i, _) in points.iter().enumerate().filter(|(_, p)| p.is_usable()) {
+        for (i, _) in points.iter().enumerate().filter(|(_, p)| is_usable(*p)) {
             chosen[count] = i;
             count += 1;
         }
         return (chosen, count);
     }
-    let p = |i: usize| points[i].local_p1();
+    let p = |i: usize| points[i].shape_point().local_p1;
     // The usable, not yet chosen point with the highest score (the first one on ties).
     let argmax = |score: &dyn Fn(usize) -> f32, taken: &[usize]| {
         (0..points.len())
-            .filter(|&i| points[i].is_usable() && !taken.contains(&i))
+            .filter(|&i| is_usable(&points[i]) && !taken.contains(&i))
             .fold(None, |best: Option<(usize, f32)>, i| {
                 let s = score(i);
                 match best {
@@ -649,7 +633,7 @@ fn reduce_points<P: SeamPoint>(points: &[P]) -> ([usize; MAX_MANIFOLD_POINTS], u
             })
             .map(|(i, _)| i)
     };
-    let Some(deepest) = argmax(&|i| -points[i].dist(), &[]) else {
+    let Some(deepest) = argmax(&|i| -points[i].shape_point().dist, &[]) else {
         return (chosen, 0);
     };
     chosen[0] = deepest;
@@ -738,7 +722,7 @@ mod tests {
                 PackedFeatureId::vertex(16383),
             ] {
                 let point = TrackedContact::<()>::new(Vec3::ZERO, Vec3::ZERO, f1, f2, 0.0);
-                assert!(seen.insert(pack_feature_id(point.features())));
+                assert!(seen.insert(pack_feature_id(point.fid1, point.fid2)));
             }
         }
     }
