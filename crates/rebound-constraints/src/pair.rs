@@ -13,7 +13,7 @@
 //! ```
 
 use rebound_dynamics::{BodyParams, SolverBody};
-use rebound_math::{Mat3, Quat, Vec3};
+use rebound_math::{Mat3, Quat, Vec3, rotate};
 
 /// Below this separation (m) a distance direction is taken from the last valid one instead of `d/|d|`.
 pub const MIN_AXIS_LENGTH: f32 = 1e-6;
@@ -79,7 +79,8 @@ impl BodyPair {
         local_anchors: (Vec3, Vec3),
         local_bases: (Quat, Quat),
     ) -> Self {
-        let anchor = |p: &BodyParams, local: Vec3| p.rotation * (local - p.local_center_of_mass);
+        let anchor =
+            |p: &BodyParams, local: Vec3| rotate(p.rotation, local - p.local_center_of_mass);
         Self {
             index_a,
             index_b,
@@ -134,8 +135,8 @@ impl BodyPair {
     #[inline]
     #[must_use]
     pub fn anchors(&self, a: &SolverBody, b: &SolverBody) -> Anchors {
-        let r_a = a.delta_rotation * self.anchor_a;
-        let r_b = b.delta_rotation * self.anchor_b;
+        let r_a = rotate(a.delta_rotation, self.anchor_a);
+        let r_b = rotate(b.delta_rotation, self.anchor_b);
         let d = self.delta_center + (b.delta_position - a.delta_position) + (r_b - r_a);
         Anchors { r_a, r_b, d }
     }

@@ -32,7 +32,7 @@
 //! faster than the threshold and carried an impulse.
 
 use crate::{BodyParams, Softness, SolverBody, StepContext};
-use rebound_math::{Mat3, Vec2, Vec3};
+use rebound_math::{Mat3, Vec2, Vec3, rotate_inverse};
 
 mod wide;
 
@@ -375,8 +375,8 @@ impl ContactSolver {
             let normal = c.normal;
             let points = &mut self.points[c.first_point..c.first_point + c.point_count];
             let shift = normal.dot(b.delta_position - a.delta_position);
-            let turn_a = a.delta_rotation.conjugate() * normal - normal;
-            let turn_b = b.delta_rotation.conjugate() * normal - normal;
+            let turn_a = rotate_inverse(a.delta_rotation, normal) - normal;
+            let turn_b = rotate_inverse(b.delta_rotation, normal) - normal;
             for p in points.iter_mut() {
                 let s = p.separation + shift + turn_b.dot(p.anchor_b) - turn_a.dot(p.anchor_a);
                 let vn = normal.dot(b.linear_velocity - a.linear_velocity)

@@ -31,7 +31,7 @@
 
 use crate::{BodyParams, Motion, SolverBody, StepContext};
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
-use rebound_math::{Mat3, Quat, Vec3};
+use rebound_math::{Mat3, Quat, Vec3, rotate, rotate_inverse};
 
 /// Stage *integrate velocities* of one substep: gravity, applied forces and torques, damping and the
 /// gyroscopic term. Explicit-Euler bodies also advance their positions here, with the velocity from before
@@ -112,11 +112,14 @@ pub fn solve_gyroscopic(
     local_inv_inertia: &Mat3,
     h: f32,
 ) -> Vec3 {
-    let momentum = rotation * (*local_inertia * (rotation.conjugate() * angular_velocity));
+    let momentum = rotate(
+        rotation,
+        *local_inertia * rotate_inverse(rotation, angular_velocity),
+    );
     let mut omega = angular_velocity;
     for _ in 0..GYROSCOPIC_ITERATIONS {
         let next = integrate_rotation(rotation, omega, h, RotationIntegrator::FirstOrder);
-        omega = next * (*local_inv_inertia * (next.conjugate() * momentum));
+        omega = rotate(next, *local_inv_inertia * rotate_inverse(next, momentum));
     }
     omega
 }

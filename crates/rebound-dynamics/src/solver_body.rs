@@ -8,7 +8,7 @@
 //! coordinates (Box2D v3's `b2BodyState`).
 
 use crate::{BodyType, Integrator, RigidBody};
-use rebound_math::{Mat3, Pose, Quat, Vec3, inertia};
+use rebound_math::{Mat3, Pose, Quat, Vec3, inertia, rotate};
 
 /// The hot state of one body in the solver: 64 bytes, one cache line (`Quat` is 16-byte aligned; the three
 /// `Vec3`s take 36 bytes and 12 pad).
@@ -165,7 +165,7 @@ impl BodyParams {
         }
         let rotation = (state.delta_rotation * self.rotation).normalize();
         let center = self.center_of_mass + state.delta_position;
-        let position = center - rotation * self.local_center_of_mass;
+        let position = center - rotate(rotation, self.local_center_of_mass);
         body.set_solver_state(
             Pose::new(position, rotation),
             state.linear_velocity,

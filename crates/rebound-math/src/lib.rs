@@ -18,7 +18,7 @@ pub use glam::{Affine3A, EulerRot, Mat2, Mat3, Mat4, Quat, Vec2, Vec3, Vec4};
 pub use error::MathError;
 pub use euler::EulerAngles;
 pub use pose::Pose;
-pub use quat::RotationIntegrator;
+pub use quat::{RotationIntegrator, rotate, rotate_inverse};
 pub use transform::Transform;
 pub use validity::UNIT_LENGTH_TOLERANCE;
 

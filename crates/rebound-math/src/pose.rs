@@ -3,7 +3,7 @@
 //! Used by every step stage that reads or writes body placement (integrate positions, anchors in prepare).
 
 use crate::validity::{check_finite_vec3, check_rotation};
-use crate::{MathError, Quat, Transform, Vec3};
+use crate::{MathError, Quat, Transform, Vec3, rotate, rotate_inverse};
 
 /// A rigid transform: `p' = rotation·p + position`. Also called an isometry.
 ///
@@ -60,28 +60,28 @@ impl Pose {
     #[inline]
     #[must_use]
     pub fn transform_point(&self, point: Vec3) -> Vec3 {
-        self.rotation * point + self.position
+        rotate(self.rotation, point) + self.position
     }
 
     /// Rotates a direction from this frame to the parent frame.
     #[inline]
     #[must_use]
     pub fn transform_vector(&self, vector: Vec3) -> Vec3 {
-        self.rotation * vector
+        rotate(self.rotation, vector)
     }
 
     /// Maps a point from the parent frame into this frame.
     #[inline]
     #[must_use]
     pub fn inverse_transform_point(&self, point: Vec3) -> Vec3 {
-        self.rotation.conjugate() * (point - self.position)
+        rotate_inverse(self.rotation, point - self.position)
     }
 
     /// Rotates a direction from the parent frame into this frame.
     #[inline]
     #[must_use]
     pub fn inverse_transform_vector(&self, vector: Vec3) -> Vec3 {
-        self.rotation.conjugate() * vector
+        rotate_inverse(self.rotation, vector)
     }
 
     /// The inverse pose: `inverse().transform_point(transform_point(p)) = p`.
@@ -89,7 +89,7 @@ impl Pose {
     #[must_use]
     pub fn inverse(&self) -> Self {
         let rotation = self.rotation.conjugate();
-        Self::new(-(rotation * self.position), rotation)
+        Self::new(-rotate(rotation, self.position), rotation)
     }
 
     /// `self ∘ other`: `other` first, then `self`.

@@ -105,6 +105,34 @@ pub fn course_mul(q: Quat, p: Quat) -> Quat {
     ])
 }
 
+/// Rotates `v` by the unit quaternion `q`: `q·v·q*`, computed as `v + w·t + u × t` with `t = 2 u × v`
+/// (`u` the vector part of `q`, `w` its scalar part). The same rotation as glam's `q * v` (tested to 1e-5).
+///
+/// **Use this, not `q * v`, on the step's paths.** glam's SIMD `Quat * Vec3` widens the vector to four lanes
+/// and only reads three back, so the optimiser is free to fill the fourth lane with whatever sits next to the
+/// vector in memory — a struct's padding, a neighbouring integer. Those bits are often a subnormal float, and a
+/// multiply that meets one takes a microcode assist of a hundred cycles or more. In the pyramid scene the two
+/// pose compositions of every contact pair spent two thirds of the collide phase in such assists (the
+/// collide phase ran 1.6× faster with subnormals flushed to zero). This scalar form touches only the three
+/// components, so no lane is undefined; it also costs fewer instructions than the SIMD form.
+#[inline]
+#[must_use]
+pub fn rotate(q: Quat, v: Vec3) -> Vec3 {
+    let u = Vec3::new(q.x, q.y, q.z);
+    let t = 2.0 * u.cross(v);
+    v + q.w * t + u.cross(t)
+}
+
+/// Rotates `v` by the inverse of the unit quaternion `q` (`q*·v·q`) — [`rotate`] by the conjugate, without
+/// building it.
+#[inline]
+#[must_use]
+pub fn rotate_inverse(q: Quat, v: Vec3) -> Vec3 {
+    let u = Vec3::new(-q.x, -q.y, -q.z);
+    let t = 2.0 * u.cross(v);
+    v + q.w * t + u.cross(t)
+}
+
 /// The rotation matrix of the unit quaternion `q` in glam's column-vector convention: `v' = R·v`.
 ///
 /// Same as [`Mat3::from_quat`]. See [`course_to_mat3`] for the course's (transposed) form.
@@ -275,6 +303,15 @@ mod tests {
     }
 
     proptest! {
+        #[test]
+        fn scalar_rotation_equals_glams(q in unit_quat(), v in vec3(10.0)) {
+            let tol = EPS * (1.0 + v.length());
+            prop_assert!(rotate(q, v).abs_diff_eq(q * v, tol));
+            prop_assert!(rotate_inverse(q, v).abs_diff_eq(q.conjugate() * v, tol));
+            prop_assert!(rotate_inverse(q, rotate(q, v)).abs_diff_eq(v, tol));
+            prop_assert!((rotate(q, v).length() - v.length()).abs() <= tol);
+        }
+
         #[test]
         fn course_product_equals_glams(q in unit_quat(), p in unit_quat()) {
             prop_assert!(course_mul(q, p).abs_diff_eq(q * p, EPS));

@@ -57,7 +57,7 @@ use parry3d::query::{
 };
 use parry3d::shape::PackedFeatureId;
 use rebound_dynamics::{CombineRule, RigidBody};
-use rebound_math::{Pose, Vec3};
+use rebound_math::{Pose, Vec3, rotate, rotate_inverse};
 use rebound_world::{
     BodyHandle, BodySet, ContactBasis, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint,
 };
@@ -171,9 +171,12 @@ impl NarrowPhase {
                 // Most candidate pairs of a pile are apart: no poses to compose, nothing to convert.
                 continue;
             }
-            let pose1 = to_parry_pose(c1.world_pose(b1.pose()));
-            let pose2 = to_parry_pose(c2.world_pose(b2.pose()));
-            let pos12 = pose1.inv_mul(&pose2);
+            // Composed with our scalar rotations, not parry's `Pose::inv_mul` (see `rebound_math::rotate`).
+            let pos12 = to_parry_pose(
+                c1.world_pose(b1.pose())
+                    .inverse()
+                    .mul_pose(&c2.world_pose(b2.pose())),
+            );
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
             if shape1.is_convex() && shape2.is_convex() {
@@ -219,7 +222,7 @@ impl NarrowPhase {
                             manifold.basis = Some(ContactBasis {
                                 rotation: relative.rotation,
                                 translation: relative.position,
-                                local_normal: b1.rotation().inverse() * manifold.normal,
+                                local_normal: rotate_inverse(b1.rotation(), manifold.normal),
                             });
                         }
                         continue;
@@ -398,7 +401,8 @@ impl Seam<'_> {
         }
         let (c1, c2) = (self.c1, self.c2);
         let (frame1, frame2) = self.frames;
-        let Some(normal) = (self.b1.rotation() * (frame1.rotation * local_n1)).try_normalize()
+        let Some(normal) =
+            rotate(self.b1.rotation(), frame1.transform_vector(local_n1)).try_normalize()
         else {
             return;
         };
@@ -489,7 +493,7 @@ impl Seam<'_> {
             old.body_a,
             old.body_b,
             old.key,
-            self.b1.rotation() * n,
+            rotate(self.b1.rotation(), n),
             0.0,
             0.0,
         );
@@ -590,7 +594,7 @@ fn ball_ball(
     } else {
         Vec3::Y
     };
-    let local_n2 = pos12.rotation.inverse() * -local_n1;
+    let local_n2 = rotate_inverse(pos12.rotation, -local_n1);
     out.local_n1 = local_n1;
     out.local_n2 = local_n2;
     let face = PackedFeatureId::face(0);
