@@ -446,12 +446,16 @@ impl Batch {
             // Clamp to the friction circle (glam's `clamp_length_max`, lane by lane).
             let limit = self.friction * p.normal_impulse;
             let length_squared = x * x + y * y;
-            let scale = Vec4::select(
-                length_squared.cmpgt(limit * limit),
-                limit / length_squared.sqrt(),
-                one,
-            );
-            let (x, y) = (x * scale, y * scale);
+            let slipping = length_squared.cmpgt(limit * limit);
+            // Most points of a resting pile stick: the square root and division (a long dependency chain)
+            // only when some lane slips. Multiplying by the kept lanes' 1 changes no bit, so this is the
+            // unbranched clamp's result.
+            let (x, y) = if slipping.any() {
+                let scale = Vec4::select(slipping, limit / length_squared.sqrt(), one);
+                (x * scale, y * scale)
+            } else {
+                (x, y)
+            };
             let (ax, ay) = (x - p.tangent_impulse[0], y - p.tangent_impulse[1]);
             p.tangent_impulse = [x, y];
             let linear = t0.scale(ax).add(&t1.scale(ay));
