@@ -148,6 +148,7 @@ impl NarrowPhase {
         core::mem::swap(&mut self.pairs, &mut self.previous);
         self.pairs.clear();
         let mut old = self.previous.drain(..).peekable();
+        let mut cursor = 0;
         for &(h1, h2) in &broad_phase.pairs {
             // Both lists are sorted: drop the old pairs before this one, reuse this one's cache if present.
             while old.next_if(|(key, _)| *key < (h1, h2)).is_some() {}
@@ -203,7 +204,8 @@ impl NarrowPhase {
                             frames,
                         };
                         let relative = b1.pose().inverse().mul_pose(&b2.pose());
-                        if let Some(old) = recyclable(previous, (c1.body, c2.body, key), &relative)
+                        if let Some(old) =
+                            recyclable(previous, &mut cursor, (c1.body, c2.body, key), &relative)
                         {
                             seam.recycle(old, &relative, prediction, out);
                             continue;
@@ -453,15 +455,16 @@ const RECYCLE_HALF_ANGLE_SINE: f32 = 4.363_3e-3;
 /// separations are measured again, until the bodies have moved far enough from where the points were computed
 /// for the patch to differ. The basis is in the world's manifold, so the choice depends on the world's state
 /// only and a restored snapshot recycles exactly as the world that never stopped.
+///
+/// `cursor` is where the last search ended: pairs come in nearly the order of `previous`, so the search
+/// gallops forward from it ([`find_from`]) instead of bisecting all of `previous` for every pair.
 fn recyclable<'a>(
     previous: &'a [ContactManifold],
+    cursor: &mut usize,
     order_key: (BodyHandle, BodyHandle, u64),
     relative: &Pose,
 ) -> Option<&'a ContactManifold> {
-    let index = previous
-        .binary_search_by_key(&order_key, ContactManifold::order_key)
-        .ok()?;
-    let old = previous.get(index)?;
+    let old = previous.get(find_from(previous, cursor, order_key)?)?;
     let basis = old.basis?;
     let moved = relative.position.distance_squared(basis.translation);
     let turn = (basis.rotation.conjugate() * relative.rotation)
@@ -470,6 +473,64 @@ fn recyclable<'a>(
     (moved < RECYCLE_DISTANCE * RECYCLE_DISTANCE
         && turn < RECYCLE_HALF_ANGLE_SINE * RECYCLE_HALF_ANGLE_SINE)
         .then_some(old)
+}
+
+/// The index of the manifold of `order_key` in `previous` (sorted by order key), searched from `*cursor`:
+/// forward in steps of 1, 2, 4, … until passed, then by bisection within the last step; from the start if
+/// the key lies before the cursor. `*cursor` is left where the key is or would be. The same answer as one
+/// bisection of the whole slice, found in O(log d) reads for a key `d` places past the cursor — a pile's pairs
+/// come in nearly manifold order, so `d` is small and the reads stay in cache.
+fn find_from(
+    previous: &[ContactManifold],
+    cursor: &mut usize,
+    order_key: (BodyHandle, BodyHandle, u64),
+) -> Option<usize> {
+    let start = (*cursor).min(previous.len());
+    let ahead = previous
+        .get(start)
+        .is_some_and(|m| m.order_key() < order_key);
+    let found = if ahead {
+        // previous[start] < key: gallop until an element ≥ key (or the end), then bisect the bracket.
+        let mut low = start + 1;
+        let mut step = 1;
+        while previous
+            .get(low + step - 1)
+            .is_some_and(|m| m.order_key() < order_key)
+        {
+            low += step;
+            step *= 2;
+        }
+        let high = (low + step).min(previous.len());
+        previous[low..high]
+            .binary_search_by_key(&order_key, ContactManifold::order_key)
+            .map(|i| low + i)
+            .map_err(|i| low + i)
+    } else {
+        previous[..start]
+            .binary_search_by_key(&order_key, ContactManifold::order_key)
+            .or_else(|i| {
+                // Not before the cursor: it is at the cursor or absent.
+                if i == start
+                    && previous
+                        .get(start)
+                        .is_some_and(|m| m.order_key() == order_key)
+                {
+                    Ok(start)
+                } else {
+                    Err(i)
+                }
+            })
+    };
+    match found {
+        Ok(index) => {
+            *cursor = index + 1;
+            Some(index)
+        }
+        Err(index) => {
+            *cursor = index;
+            None
+        }
+    }
 }
 
 impl Seam<'_> {
@@ -687,6 +748,37 @@ mod tests {
             PackedFeatureId::UNKNOWN,
             dist,
         )
+    }
+
+    proptest::proptest! {
+        /// The galloping search finds what one bisection of the whole slice finds, from any cursor, and leaves
+        /// the cursor just past a found key or at an absent key's insertion point.
+        #[test]
+        fn galloping_search_matches_bisection(
+            keys in proptest::collection::btree_set((0u32..40, 0u32..40, 0u64..3), 0..60),
+            probes in proptest::collection::vec(((0u32..42, 0u32..42, 0u64..4), 0usize..70), 1..20),
+        ) {
+            let previous: Vec<ContactManifold> = keys
+                .iter()
+                .map(|&(a, b, key)| {
+                    ContactManifold::new(
+                        BodyHandle::from_raw_parts(a, 0),
+                        BodyHandle::from_raw_parts(b, 0),
+                        key,
+                        Vec3::Y,
+                        0.5,
+                        0.0,
+                    )
+                })
+                .collect();
+            for ((a, b, key), mut cursor) in probes {
+                let order_key = (BodyHandle::from_raw_parts(a, 0), BodyHandle::from_raw_parts(b, 0), key);
+                let bisected = previous.binary_search_by_key(&order_key, ContactManifold::order_key);
+                let found = find_from(&previous, &mut cursor, order_key);
+                proptest::prop_assert_eq!(found, bisected.ok());
+                proptest::prop_assert_eq!(cursor, bisected.map_or_else(|i| i, |i| i + 1));
+            }
+        }
     }
 
     #[test]
