@@ -505,21 +505,16 @@ fn find_from(
             .binary_search_by_key(&order_key, ContactManifold::order_key)
             .map(|i| low + i)
             .map_err(|i| low + i)
+    } else if previous
+        .get(start)
+        .is_some_and(|m| m.order_key() == order_key)
+    {
+        Ok(start)
+    } else if start == 0 || previous[start - 1].order_key() < order_key {
+        // Between the cursor's neighbours: absent.
+        Err(start)
     } else {
-        previous[..start]
-            .binary_search_by_key(&order_key, ContactManifold::order_key)
-            .or_else(|i| {
-                // Not before the cursor: it is at the cursor or absent.
-                if i == start
-                    && previous
-                        .get(start)
-                        .is_some_and(|m| m.order_key() == order_key)
-                {
-                    Ok(start)
-                } else {
-                    Err(i)
-                }
-            })
+        previous[..start].binary_search_by_key(&order_key, ContactManifold::order_key)
     };
     match found {
         Ok(index) => {
