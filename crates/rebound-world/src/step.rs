@@ -354,8 +354,15 @@ impl<B: CollisionBackend> World<B> {
                 continue;
             }
             let m = &s.manifolds[source];
-            let mut contact = Contact::new(ia, ib, m.normal, m.friction, m.restitution)
-                .with_rolling_friction(m.rolling_friction);
+            // Written in place in the list (a contact is 232 bytes; building it on the stack and pushing it
+            // copied each one once more).
+            s.contacts.push(
+                Contact::new(ia, ib, m.normal, m.friction, m.restitution)
+                    .with_rolling_friction(m.rolling_friction),
+            );
+            let Some(contact) = s.contacts.last_mut() else {
+                continue;
+            };
             for p in m.points() {
                 // The collide stage gave every point its lever arms; the bodies are looked up only if not.
                 let [anchor_a, anchor_b] = match p.solver_lever_arms {
@@ -364,6 +371,7 @@ impl<B: CollisionBackend> World<B> {
                         let bodies = &self.state.bodies;
                         let (Some(a), Some(b)) = (bodies.get(handle_a), bodies.get(handle_b))
                         else {
+                            s.contacts.pop();
                             continue 'manifolds;
                         };
                         lever_arms(a, b, p)
@@ -379,7 +387,6 @@ impl<B: CollisionBackend> World<B> {
                 });
             }
             report.contact_point_count += contact.point_count;
-            s.contacts.push(contact);
             s.contact_sources.push(source);
         }
         report.contact_count = s.contacts.len();
