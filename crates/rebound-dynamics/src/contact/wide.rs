@@ -513,16 +513,23 @@ impl Batch {
     /// The velocities of the lanes' bodies (`v_a`, `ω_a`, `v_b`, `ω_b`); empty lanes read zero.
     #[inline(always)]
     fn gather(&self, bodies: &[SolverBody]) -> (Vec3x4, Vec3x4, Vec3x4, Vec3x4) {
+        // Lane by lane with constant indices, not into an array filled by a loop: that array lived on the
+        // stack, written in 8 + 4-byte pieces and read back at once as 16-byte lanes, which stalls every
+        // load (no store-to-load forwarding across two stores).
         let velocity = |index: &[usize; LANES], angular: bool| {
-            let mut v = [Vec3::ZERO; LANES];
-            for (v, &i) in v.iter_mut().zip(index).take(self.lanes) {
-                *v = if angular {
-                    bodies[i].angular_velocity
+            let lane = |k: usize| {
+                if k < self.lanes {
+                    let body = &bodies[index[k]];
+                    if angular {
+                        body.angular_velocity
+                    } else {
+                        body.linear_velocity
+                    }
                 } else {
-                    bodies[i].linear_velocity
-                };
-            }
-            Vec3x4::from_lanes(v)
+                    Vec3::ZERO
+                }
+            };
+            Vec3x4::from_lanes([lane(0), lane(1), lane(2), lane(3)])
         };
         (
             velocity(&self.body_a, false),
