@@ -53,6 +53,19 @@ pub(crate) fn solve(
     part.solve(pair, a, b, target, &mut state.linear_impulse);
 }
 
+/// The position errors `C` of [`direct_rows`]' rows (the components of `d`) and their target rules, in row
+/// order, computed as it computes them but without building the rows: what the position projection measures a
+/// path's worst error from after every step it tries.
+pub(crate) fn direct_errors(
+    pair: &BodyPair,
+    a: &SolverBody,
+    b: &SolverBody,
+) -> [(f32, TargetRule); 3] {
+    let d = pair.anchors(a, b).d;
+    let rule = TargetRule::Block;
+    [(d.x, rule), (d.y, rule), (d.z, rule)]
+}
+
 /// The three point rows (world axes) for the direct solve of a chain ([`crate::direct`]) at the current pose:
 /// as [`solve`] builds its block.
 pub(crate) fn direct_rows(

@@ -300,6 +300,14 @@ impl Row {
     }
 }
 
+/// `J·M⁻¹·Jᵀ` of `row` with itself for bodies of inverse masses `mass_a`, `mass_b`, with `turned` its
+/// `[I_a⁻¹·J_a,angular, I_b⁻¹·J_b,angular]` ([`JointRows::turned`]).
+#[inline]
+fn row_self_coupling(row: &Row, turned: [Vec3; 2], mass_a: &InvMass, mass_b: &InvMass) -> f32 {
+    let [ta, tb] = turned;
+    row.a.coupling_turned(mass_a, &row.a, ta) + row.b.coupling_turned(mass_b, &row.b, tb)
+}
+
 /// The rows one joint contributes to a pass, with its bodies' inverse masses.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct JointRows {
@@ -309,6 +317,10 @@ pub(crate) struct JointRows {
     turned: [[Vec3; 2]; MAX_ROWS],
     /// Each row's position error `C` (m or rad) and how its target follows from it (see [`TargetRule`]).
     errors: [(f32, TargetRule); MAX_ROWS],
+    /// `J·M⁻¹·Jᵀ` of each row bounded at 0 (a rope, a limit), computed once when the row is pushed: the
+    /// activation of every pass at the pose reads it ([`Link::activate`]); `None` for the other rows, whose
+    /// value is computed where it is needed ([`JointRows::self_coupling`]).
+    bounded_couplings: [Option<f32>; MAX_ROWS],
     pub count: usize,
     pub mass_a: InvMass,
     pub mass_b: InvMass,
@@ -321,6 +333,7 @@ impl JointRows {
             rows: [Row::angular(Vec3::ZERO, RowTarget::speed(0.0)); MAX_ROWS],
             turned: [[Vec3::ZERO; 2]; MAX_ROWS],
             errors: [(0.0, TargetRule::Equality); MAX_ROWS],
+            bounded_couplings: [None; MAX_ROWS],
             count: 0,
             mass_a,
             mass_b,
@@ -329,12 +342,15 @@ impl JointRows {
 
     /// Adds a row (ignored past [`MAX_ROWS`]) whose target is `rule`'s for the position error `c` (the
     /// row's target must be `rule.target(c, stage)` of the pass's stage), and turns its angular parts by the
-    /// inverse inertias.
+    /// inverse inertias (and, for a row bounded at 0, computes its `J·M⁻¹·Jᵀ` once). Inlined so that the
+    /// row is written where it goes rather than built and copied (every row of every rebuilt link).
+    #[inline]
     pub fn push(&mut self, row: Row, c: f32, rule: TargetRule) {
-        if let (Some(slot), Some(turned), Some(error)) = (
+        if let (Some(slot), Some(turned), Some(error), Some(coupling)) = (
             self.rows.get_mut(self.count),
             self.turned.get_mut(self.count),
             self.errors.get_mut(self.count),
+            self.bounded_couplings.get_mut(self.count),
         ) {
             *slot = row;
             *error = (c, rule);
@@ -342,6 +358,8 @@ impl JointRows {
                 self.mass_a.inertia * row.a.angular,
                 self.mass_b.inertia * row.b.angular,
             ];
+            *coupling = (row.upper == 0.0 || row.lower == 0.0)
+                .then(|| row_self_coupling(&row, *turned, &self.mass_a, &self.mass_b));
             self.count += 1;
         }
     }
@@ -360,15 +378,19 @@ impl JointRows {
         self.turned.get(k).copied().unwrap_or([Vec3::ZERO; 2])
     }
 
-    /// `J·M⁻¹·Jᵀ` of row `k` with itself (0 past the rows pushed).
+    /// `J·M⁻¹·Jᵀ` of row `k` with itself (0 past the rows pushed): the value computed when a row bounded at 0
+    /// was pushed, the same bits as computing it again.
     #[inline]
     fn self_coupling(&self, k: usize) -> f32 {
+        if k < self.count
+            && let Some(&Some(coupling)) = self.bounded_couplings.get(k)
+        {
+            return coupling;
+        }
         let Some(row) = self.rows.get(k) else {
             return 0.0;
         };
-        let [ta, tb] = self.turned(k);
-        row.a.coupling_turned(&self.mass_a, &row.a, ta)
-            + row.b.coupling_turned(&self.mass_b, &row.b, tb)
+        row_self_coupling(row, self.turned(k), &self.mass_a, &self.mass_b)
     }
 
     /// Applies the impulse `lambda` along row `k` to both bodies.
@@ -413,6 +435,16 @@ impl JointRows {
             })
             .fold(0.0, f32::max)
     }
+}
+
+/// [`JointRows::violation`] of rows that are all equalities (no bound at 0: a ball joint's, a hinge's), from
+/// their position errors and target rules alone: the largest `|bias|` of the targets `rule.target(C, stage)`
+/// the rows would be built with, in row order — the same bits, without building the rows.
+pub(crate) fn equality_violation(errors: &[(f32, TargetRule)], stage: &Stage) -> f32 {
+    errors
+        .iter()
+        .map(|&(c, rule)| rule.target(c, stage).bias.abs())
+        .fold(0.0, f32::max)
 }
 
 /// One link of a path as the direct solve sees it: the joint's rows, which of its bodies it shares with the
@@ -506,9 +538,11 @@ impl Link {
         self.factored = None;
     }
 
-    /// The pose the rows were built at, as recorded by [`Link::built_at`] (`None`: none, or forgotten).
-    pub fn pose(&self) -> Option<PoseKey> {
-        self.pose
+    /// Whether the rows were built at the pose `pose`, as recorded by [`Link::built_at`] (never when none
+    /// was, or it was forgotten). Compares in place: the key is 56 bytes, checked for every link of every pass.
+    #[inline]
+    pub fn is_built_at(&self, pose: &PoseKey) -> bool {
+        self.pose.as_ref() == Some(pose)
     }
 
     /// Applies the impulse `lambda` along the first row to both bodies: the warm start of a one-row joint (a
@@ -525,9 +559,10 @@ impl Link {
         self.pose = pose;
     }
 
-    /// Starts a pass of `stage` at the pose the rows were built at (the caller has checked [`Link::pose`]):
-    /// the Jacobians, turned vectors and position errors stay, the targets are recomputed from the errors,
-    /// and the factorisation stays for [`solve_path`] to reuse if the same rows end up in the system.
+    /// Starts a pass of `stage` at the pose the rows were built at (the caller has checked
+    /// [`Link::is_built_at`]): the Jacobians, turned vectors and position errors stay, the targets are
+    /// recomputed from the errors, and the factorisation stays for [`solve_path`] to reuse if the same rows
+    /// end up in the system.
     pub fn reuse(&mut self, stage: &Stage) {
         self.restart();
         self.rows.retarget(stage);
@@ -761,21 +796,23 @@ impl Link {
         live
     }
 
-    /// The diagonal block `B` of this link (`J·M⁻¹·Jᵀ` of its rows over both bodies, each diagonal entry
-    /// regularised) and its coupling block `C` with `next` through their shared body, over the first `N`
-    /// rows. A row not in the system — inactive, or past the link's row count — has a zero row and column
-    /// in both, which the factorisation ([`ldl_factor`]) solves to 0.
+    /// Makes the diagonal block `B` of this link (`J·M⁻¹·Jᵀ` of its rows over both bodies, each diagonal
+    /// entry regularised) and its coupling block `C` with `next` through their shared body, over the first
+    /// `N` rows, in `b_block` and `c_block`. A row not in the system — inactive, or past the link's row count
+    /// — has a zero row and column in both, which the factorisation ([`ldl_factor`]) solves to 0.
     ///
     /// `B` is symmetric: its upper triangle is computed and mirrored. Each row's `I⁻¹·J_angular`, turned once
     /// when the row was pushed ([`JointRows::turned`]), serves both blocks: with `sᵢ` this link's side of row
     /// `i` on the shared body and `sⱼ` the next link's, `Cᵢⱼ = sⱼ·M⁻¹·sᵢᵀ = m⁻¹·(sⱼ.linear·sᵢ.linear) +
     /// sⱼ.angular·(I⁻¹·sᵢ.angular)`, so the next link's rows are not turned again here. The entries are
     /// summed in f32 (the precision of the rows), four lanes at a time, and the blocks kept in f64.
-    fn blocks<const N: usize>(&self, next: Option<&Link>) -> (Block, Block) {
-        let mut b = [[0.0; MAX_ROWS]; MAX_ROWS];
-        let mut c = [[0.0; MAX_ROWS]; MAX_ROWS];
-        let (ma, mb, rows) = (&self.rows.mass_a, &self.rows.mass_b, &self.rows.rows);
+    fn fill_blocks<const N: usize>(&mut self, next: Option<&Link>) {
         let live = self.live_rows();
+        // Written in place: the blocks are 200 bytes each, made for every link a pass factorises.
+        self.b_block = [[0.0; MAX_ROWS]; MAX_ROWS];
+        self.c_block = [[0.0; MAX_ROWS]; MAX_ROWS];
+        let (b, c) = (&mut self.b_block, &mut self.c_block);
+        let (ma, mb, rows) = (&self.rows.mass_a, &self.rows.mass_b, &self.rows.rows);
         // Each row's Jacobian `[J_a,linear, J_a,angular, J_b,linear, J_b,angular]` and `M⁻¹·Jᵀ` in the same
         // order, as 4-lane vectors (w = 0): an entry is then four lane products summed once.
         let lanes = |v: Vec3| v.extend(0.0);
@@ -814,7 +851,7 @@ impl Link {
             }
         }
         let (Some(next), Some((this_b, next_b))) = (next, self.shared_with_next) else {
-            return (b, c);
+            return;
         };
         // Cᵢⱼ = sⱼ·(M⁻¹·sᵢᵀ) through the shared body (`s` = `[linear, angular]` of a row's side on it).
         let shared = if this_b { 2 } else { 0 };
@@ -839,7 +876,6 @@ impl Link {
                 }
             }
         }
-        (b, c)
     }
 
     /// Active-set step: deactivates (and releases) every active row whose update from `x` would cross a bound
@@ -933,7 +969,7 @@ impl Link {
         if self.rows.count != 1 || next.rows.count != 1 || !self.active[0] || !next.active[0] {
             return 0.0;
         }
-        // As in `Link::blocks`: this link's side turned, the next link's side dotted with it.
+        // As in `Link::fill_blocks`: this link's side turned, the next link's side dotted with it.
         let (ri, rj) = (&self.rows.rows[0], &next.rows.rows[0]);
         let [ta, tb] = self.rows.turned(0);
         let (si, mass, turned) = if this_b {
@@ -1216,7 +1252,7 @@ fn block_sweep<'b, const N: usize>(
         };
         let next = after.first();
         if !reuse {
-            (link.b_block, link.c_block) = link.blocks::<N>(next);
+            link.fill_blocks::<N>(next);
             link.fill_lanes();
         }
         let r = load(i).map_or([0.0; MAX_ROWS], |(a, b)| link.residual(a, b));
@@ -1278,17 +1314,15 @@ fn block_sweep<'b, const N: usize>(
                     }
                 }
             }
-            let (factor, inv_pivot) = ldl_factor::<N>(&s);
-            let mut w = link.c_block;
-            forward_substitute_block::<N>(&factor, &mut w);
+            // In place: each of these is a 200-byte block.
+            ldl_factor::<N>(&s, &mut link.factor, &mut link.inv_pivot);
+            link.w = link.c_block;
+            forward_substitute_block::<N>(&link.factor, &mut link.w);
             for row in 0..N {
                 for col in 0..N {
-                    link.v[row][col] = w[row][col] * inv_pivot[row];
+                    link.v[row][col] = link.w[row][col] * link.inv_pivot[row];
                 }
             }
-            link.factor = factor;
-            link.inv_pivot = inv_pivot;
-            link.w = w;
             link.factored = Some(FactorKey::of(link, N));
         }
         // y = D⁻¹·L⁻¹·rhs
@@ -1444,25 +1478,27 @@ const REGULARIZATION: Real = 1e-6;
 const RELATIVE_PIVOT: Real = 1e-5;
 
 /// The factorisation `S = L·D·Lᵀ` of the symmetric positive semi-definite top-left `N × N` of `s` (only its
-/// upper triangle, row ≤ column, is read): returns the strictly lower part of the unit lower triangular `L`
-/// and the reciprocal pivots `D⁻¹`. No pivoting: `S` is a Schur complement of `K = J·M⁻¹·Jᵀ`, whose pivots
-/// are positive. A pivot at or below [`RELATIVE_PIVOT`] × the largest diagonal entry — a row no body can move
-/// along, a row of zeros (not in the system), or a row redundant with the rows before it (a bridge hung from
-/// two anchors constrains more than its bodies' degrees of freedom) — gets a reciprocal of 0 and a zero column
-/// of `L`: that unknown solves to 0 and its equation is dropped, never a NaN or a huge impulse.
+/// upper triangle, row ≤ column, is read): writes the strictly lower part of the unit lower triangular `L`
+/// into `l` and the reciprocal pivots `D⁻¹` into `inv_pivots` (whatever they held before; in place, so that
+/// the sweep factorises into the link's own storage without copying 200-byte blocks). No pivoting: `S` is a
+/// Schur complement of `K = J·M⁻¹·Jᵀ`, whose pivots are positive. A pivot at or below [`RELATIVE_PIVOT`] ×
+/// the largest diagonal entry — a row no body can move along, a row of zeros (not in the system), or a row
+/// redundant with the rows before it (a bridge hung from two anchors constrains more than its bodies' degrees
+/// of freedom) — gets a reciprocal of 0 and a zero column of `L`: that unknown solves to 0 and its equation is
+/// dropped, never a NaN or a huge impulse.
 ///
 /// ```text
 /// dⱼ = Sⱼⱼ − Σₖ<ⱼ Lⱼₖ²·dₖ,        Lᵢⱼ = (Sⱼᵢ − Σₖ<ⱼ Lᵢₖ·Lⱼₖ·dₖ) / dⱼ,   i > j
 /// ```
-fn ldl_factor<const N: usize>(s: &Block) -> (Block, [Real; MAX_ROWS]) {
+fn ldl_factor<const N: usize>(s: &Block, l: &mut Block, inv_pivots: &mut [Real; MAX_ROWS]) {
     let mut scale: Real = 0.0;
     for k in 0..N {
         scale = scale.max(s[k][k]);
     }
     let tiny = (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE);
-    let mut l = [[0.0; MAX_ROWS]; MAX_ROWS];
+    *l = [[0.0; MAX_ROWS]; MAX_ROWS];
     let mut pivots = [0.0; MAX_ROWS];
-    let mut inv_pivots = [0.0; MAX_ROWS];
+    *inv_pivots = [0.0; MAX_ROWS];
     for j in 0..N {
         // lj_d[k] = Lⱼₖ·dₖ, shared by the pivot and the column below it.
         let mut lj_d = [0.0; MAX_ROWS];
@@ -1485,7 +1521,6 @@ fn ldl_factor<const N: usize>(s: &Block) -> (Block, [Real; MAX_ROWS]) {
             }
         }
     }
-    (l, inv_pivots)
 }
 
 /// `L⁻¹` applied in place to the columns of the top-left `N × N` of `w` (forward substitution with the unit
@@ -1528,7 +1563,8 @@ mod tests {
 
     /// Solves `s·x = b` with the block path's factorisation: `x = L⁻ᵀ·D⁻¹·L⁻¹·b`.
     fn ldl_solve<const N: usize>(s: &Block, b: [Real; MAX_ROWS]) -> [Real; MAX_ROWS] {
-        let (l, inv_pivots) = ldl_factor::<N>(s);
+        let (mut l, mut inv_pivots) = ([[0.0; MAX_ROWS]; MAX_ROWS], [0.0; MAX_ROWS]);
+        ldl_factor::<N>(s, &mut l, &mut inv_pivots);
         let mut x = b;
         forward_substitute::<N>(&l, &mut x);
         for (x, inv) in x.iter_mut().zip(&inv_pivots) {

@@ -204,14 +204,27 @@ impl PreparedHinge {
         out: &mut JointRows,
     ) {
         ball::direct_rows(pair, a, b, stage, out);
-        let (fa, fb) = pair.frames(a, b);
-        let axis = fa * Vec3::X;
-        for perpendicular in [fb * Vec3::Y, fb * Vec3::Z] {
+        let (axis, perpendiculars) = alignment_axes(pair, a, b);
+        for perpendicular in perpendiculars {
             // C = a·p: spring in the bias pass, `Ċ = 0` in the relax pass.
             let (error, rule) = (axis.dot(perpendicular), TargetRule::Equality);
             let target = rule.target(error, stage);
             out.push(Row::angular(perpendicular.cross(axis), target), error, rule);
         }
+    }
+
+    /// The position errors `C` of [`PreparedHinge::direct_rows`]' rows and their target rules, in row order,
+    /// computed as it computes them but without building the rows: what the position projection measures a
+    /// path's worst error from after every step it tries.
+    pub(crate) fn direct_errors(
+        pair: &BodyPair,
+        a: &SolverBody,
+        b: &SolverBody,
+    ) -> [(f32, TargetRule); 5] {
+        let [x, y, z] = ball::direct_errors(pair, a, b);
+        let (axis, [p, q]) = alignment_axes(pair, a, b);
+        let rule = TargetRule::Equality;
+        [x, y, z, (axis.dot(p), rule), (axis.dot(q), rule)]
     }
 
     /// The limit, motor and spring rows alone (when the rest is solved directly).
@@ -254,6 +267,15 @@ impl PreparedHinge {
         state.angular_impulse = lambda.extend(0.0);
         ball::solve(pair, state, a, b, stage);
     }
+}
+
+/// The hinge axis of A's joint frame and the two axes of B's joint frame it is kept perpendicular to, at the
+/// current pose: what the alignment rows are built from ([`PreparedHinge::direct_rows`]) and their errors
+/// measured from ([`PreparedHinge::direct_errors`]), with the same operations.
+#[inline]
+fn alignment_axes(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> (Vec3, [Vec3; 2]) {
+    let (fa, fb) = pair.frames(a, b);
+    (fa * Vec3::X, [fb * Vec3::Y, fb * Vec3::Z])
 }
 
 #[cfg(test)]

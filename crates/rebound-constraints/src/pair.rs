@@ -142,8 +142,9 @@ impl BodyPair {
     }
 
     /// The current anchors, the unit direction A → B and the distance. When the anchors are closer than
-    /// [`MIN_AXIS_LENGTH`] the direction is `fallback_axis` (no NaN for coinciding anchors).
-    #[inline]
+    /// [`MIN_AXIS_LENGTH`] the direction is `fallback_axis` (no NaN for coinciding anchors). Always inlined:
+    /// ropes and rods measure it for every rebuilt row, and a call returns the 40-byte result through memory.
+    #[inline(always)]
     #[must_use]
     pub fn distance(&self, a: &SolverBody, b: &SolverBody, fallback_axis: Vec3) -> Distance {
         let anchors = self.anchors(a, b);

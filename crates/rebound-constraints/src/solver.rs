@@ -24,7 +24,8 @@
 
 use crate::coordinate::CoordinateRows;
 use crate::direct::{
-    InvMass, JointRows, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations, solve_path,
+    InvMass, JointRows, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations,
+    equality_violation, solve_path,
 };
 use crate::fixed::PreparedFixed;
 use crate::hinge::PreparedHinge;
@@ -509,7 +510,7 @@ impl JointSolver {
                 Prepared::Rope(_) | Prepared::Rod(_) => j
                     .link
                     .and_then(|k| self.links.get(k))
-                    .filter(|link| link.pose() == Some(PoseKey::of(a, b))),
+                    .filter(|link| link.is_built_at(&PoseKey::of(a, b))),
                 _ => None,
             };
             if let Some(link) = built {
@@ -846,7 +847,7 @@ impl JointSolver {
                     .pair
                     .load(solver_bodies)
                     .map(|(a, b)| PoseKey::of(&a, &b));
-                pose.is_some() && link.pose() == pose
+                pose.is_some_and(|pose| link.is_built_at(&pose))
             })
             .count()
     }
@@ -1016,7 +1017,7 @@ fn link_rows(
     link: &mut Link,
 ) {
     let pose = bodies.map(|(a, b)| PoseKey::of(a, b));
-    if pose.is_some() && link.pose() == pose {
+    if pose.as_ref().is_some_and(|pose| link.is_built_at(pose)) {
         link.reuse(stage);
         link.lambda = state_lambda(j);
     } else {
@@ -1062,13 +1063,25 @@ fn link_at(links: &mut Vec<Link>, k: usize) -> &mut Link {
 }
 
 /// The worst position error of joint `j`'s rows at the bodies' current pose (see `JointRows::violation`),
-/// built in `scratch`.
+/// built in `scratch` — or, for a ball joint or hinge, whose rows are all equalities, measured from the rows'
+/// errors alone ([`equality_violation`]): the same value without building the Jacobians.
 fn violation(
     j: &mut PreparedJoint,
     solver_bodies: &[SolverBody],
     stage: &Stage,
     scratch: &mut Link,
 ) -> f32 {
+    if let Some((a, b)) = j.pair.bodies(solver_bodies) {
+        match j.kind {
+            Prepared::Ball => {
+                return equality_violation(&ball::direct_errors(&j.pair, a, b), stage);
+            }
+            Prepared::Hinge(_) => {
+                return equality_violation(&PreparedHinge::direct_errors(&j.pair, a, b), stage);
+            }
+            _ => {}
+        }
+    }
     let _ = direct_rows(j, solver_bodies, stage, scratch);
     scratch.rows.violation()
 }
