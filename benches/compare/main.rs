@@ -10,8 +10,10 @@
 //! (`benches/peers/target/release/peers --scene S --steps N --json`), alternating which engine goes first
 //! scene by scene, because the shared machine's speed drifts for minutes at a time. Both engines time only
 //! their step call and report the median ms/step over steps 60..N; the table shows, per scene, the median
-//! over the rounds of those medians, the ratio Rebound/rapier, both engines' quality metrics side by side,
-//! and where Rebound's step spends its time (`StepReport::profile`).
+//! over the rounds of those medians, the ratio Rebound/rapier, each round's own ratio and their median (the
+//! steadier figure when the machine's speed moves between rounds: each round's two runs are back to back),
+//! both engines' quality metrics side by side, and where Rebound's step spends its time
+//! (`StepReport::profile`).
 //!
 //! `--scaling` runs Rebound alone on growing scenes instead: balls with 1,024, 4,096 and 16,384 balls and
 //! pyramids of base 20, 40 and 80, and fits the cost-growth exponent (the slope of log ms against log n).
@@ -432,6 +434,7 @@ fn scene_json(result: &SceneResult, steps: usize, rounds: usize, rapier_engine: 
         "steps": steps,
         "rounds": rounds,
         "ratio": result.rebound_ms() / result.rapier_ms(),
+        "median_round_ratio": median(&result.round_ratios()),
         "rebound": {
             "engine": rebound_engine(),
             "bodies": result.rebound.last().map_or(0, |r| r.bodies),
@@ -474,9 +477,9 @@ fn comparison_table(
     );
     let _ = writeln!(
         out,
-        "| scene | bodies / joints | Rebound ms/step | rapier ms/step | ratio Rebound/rapier | ratio per round |"
+        "| scene | bodies / joints | Rebound ms/step | rapier ms/step | ratio Rebound/rapier | ratio per round | median round ratio |"
     );
-    let _ = writeln!(out, "|---|---|---|---|---|---|");
+    let _ = writeln!(out, "|---|---|---|---|---|---|---|");
     for result in results {
         let (bodies, joints) = result
             .rebound
@@ -498,12 +501,13 @@ fn comparison_table(
             .collect();
         let _ = writeln!(
             out,
-            "| {} | {counts} | {:.3} | {:.3} | {:.2} | {} |",
+            "| {} | {counts} | {:.3} | {:.3} | {:.2} | {} | {:.2} |",
             result.name,
             result.rebound_ms(),
             result.rapier_ms(),
             result.rebound_ms() / result.rapier_ms(),
-            per_round.join(" ")
+            per_round.join(" "),
+            median(&result.round_ratios())
         );
     }
 
