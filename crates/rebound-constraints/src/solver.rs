@@ -678,49 +678,22 @@ impl JointSolver {
                 // kept if it makes things no worse; if that fails too, or nothing can be stiffened, half of
                 // the last step is tried, then a quarter. If even that fails, the next iteration would start
                 // from the same pose: stop.
-                let mut after = try_step(
-                    joints,
+                let mut step = NewtonStep {
+                    joints: &mut *joints,
                     members,
-                    links,
-                    solution,
-                    solver_bodies,
+                    links: &mut *links,
+                    solution: &mut *solution,
+                    solver_bodies: &mut *solver_bodies,
                     saved,
                     probe,
-                    &stage,
-                    before * gain,
-                    1.0,
-                    1,
-                );
-                if after.is_none() && stiffen(joints, members, links, solution) {
-                    solve_links(joints, members, links, solution, solver_bodies);
-                    after = try_step(
-                        joints,
-                        members,
-                        links,
-                        solution,
-                        solver_bodies,
-                        saved,
-                        probe,
-                        &stage,
-                        before,
-                        1.0,
-                        1,
-                    );
+                    stage: &stage,
+                };
+                let mut after = step.try_scaled(before * gain, 1.0, 1);
+                if after.is_none() && step.stiffen_and_solve() {
+                    after = step.try_scaled(before, 1.0, 1);
                 }
                 if after.is_none() {
-                    after = try_step(
-                        joints,
-                        members,
-                        links,
-                        solution,
-                        solver_bodies,
-                        saved,
-                        probe,
-                        &stage,
-                        before,
-                        0.5,
-                        2,
-                    );
+                    after = step.try_scaled(before, 0.5, 2);
                 }
                 match after {
                     Some(after) => known = Some(after),
@@ -1100,37 +1073,63 @@ fn path_worst(
         .fold(0.0f32, f32::max)
 }
 
-/// Applies `first` times the projection step `solution` to the path's bodies (saved in `saved`), then half of
-/// that, and so on (up to `sizes` sizes), until the path's worst error is no larger than `before`; returns the
-/// worst error of the step kept, or `None` with the bodies restored if no size was better.
-fn try_step(
-    joints: &mut [PreparedJoint],
-    members: &[usize],
-    links: &mut [Link],
-    solution: &[[Real; MAX_ROWS]],
-    solver_bodies: &mut [SolverBody],
-    saved: &[(usize, SolverBody)],
-    probe: &mut Link,
-    stage: &Stage,
-    before: f32,
-    first: Real,
-    sizes: usize,
-) -> Option<f32> {
-    let mut scale = first;
-    for _ in 0..sizes {
-        for ((link, x), &index) in links.iter_mut().zip(solution).zip(members) {
-            if let Some([a, b]) = joints[index].pair.bodies_mut(solver_bodies) {
-                link.apply_solution(&x.map(|v| v * scale), a, b);
+/// What a Newton step of the position projection reads and moves: one path's joints, links and solved step
+/// `solution`, the solver bodies and their saved pose, the probe link and the projection's stage.
+struct NewtonStep<'a> {
+    joints: &'a mut [PreparedJoint],
+    members: &'a [usize],
+    links: &'a mut [Link],
+    solution: &'a mut Vec<[Real; MAX_ROWS]>,
+    solver_bodies: &'a mut [SolverBody],
+    saved: &'a [(usize, SolverBody)],
+    probe: &'a mut Link,
+    stage: &'a Stage,
+}
+
+impl NewtonStep<'_> {
+    /// Applies `first` times the step `solution` to the path's bodies (saved in `saved`), then half of that,
+    /// and so on (up to `sizes` sizes), until the path's worst error is no larger than `target`; returns the
+    /// worst error of the step kept, or `None` with the bodies restored if no size was good enough.
+    fn try_scaled(&mut self, target: f32, first: Real, sizes: usize) -> Option<f32> {
+        let mut scale = first;
+        for _ in 0..sizes {
+            for ((link, x), &index) in self.links.iter_mut().zip(&*self.solution).zip(self.members)
+            {
+                if let Some([a, b]) = self.joints[index].pair.bodies_mut(self.solver_bodies) {
+                    link.apply_solution(&x.map(|v| v * scale), a, b);
+                }
             }
+            let after = path_worst(
+                self.joints,
+                self.members,
+                self.solver_bodies,
+                self.stage,
+                self.probe,
+            );
+            if after <= target {
+                return Some(after);
+            }
+            restore_bodies(self.saved, self.solver_bodies);
+            scale *= 0.5;
         }
-        let after = path_worst(joints, members, solver_bodies, stage, probe);
-        if after <= before {
-            return Some(after);
-        }
-        restore_bodies(saved, solver_bodies);
-        scale *= 0.5;
+        None
     }
-    None
+
+    /// Stiffens the path's pulled ropes and rods ([`stiffen`]) and, if any was, solves the step again; whether
+    /// it was.
+    fn stiffen_and_solve(&mut self) -> bool {
+        let stiffened = stiffen(self.joints, self.members, self.links, self.solution);
+        if stiffened {
+            solve_links(
+                self.joints,
+                self.members,
+                self.links,
+                self.solution,
+                self.solver_bodies,
+            );
+        }
+        stiffened
+    }
 }
 
 /// Stiffens the path's pulled rope and rod links against turning for another Newton step of the projection
