@@ -186,6 +186,13 @@ impl NarrowPhase {
                 // (`ball_ball`, crate::box_box), which write a `ShapeManifold` on the stack. The shape kind is
                 // read from the collider's description, which built the parry shape.
                 let frames = (c1.desc.local_pose, c2.desc.local_pose);
+                let seam = |key| Seam {
+                    c1,
+                    b1,
+                    c2,
+                    key,
+                    frames,
+                };
                 let mut ours = ShapeManifold::default();
                 match (&c1.desc.shape, &c2.desc.shape) {
                     (ColliderShape::Ball { radius: r1 }, ColliderShape::Ball { radius: r2 }) => {
@@ -196,13 +203,7 @@ impl NarrowPhase {
                         ColliderShape::Cuboid { half_extents: e2 },
                     ) => {
                         let key = fnv1a(key_base, &CONVEX_SUBSHAPES);
-                        let seam = Seam {
-                            c1,
-                            b1,
-                            c2,
-                            key,
-                            frames,
-                        };
+                        let seam = seam(key);
                         let relative = b1.pose().inverse().mul_pose(&b2.pose());
                         if let Some(old) =
                             recyclable(previous, &mut cursor, (c1.body, c2.body, key), &relative)
@@ -238,27 +239,12 @@ impl NarrowPhase {
                         );
                         if computed.is_ok() {
                             let key = fnv1a(key_base, &[manifold.subshape1, manifold.subshape2]);
-                            let seam = Seam {
-                                c1,
-                                b1,
-                                c2,
-                                key,
-                                frames,
-                            };
-                            seam.push(manifold.local_n1, &manifold.points, out);
+                            seam(key).push(manifold.local_n1, &manifold.points, out);
                         }
                         continue;
                     }
                 }
-                let key = fnv1a(key_base, &CONVEX_SUBSHAPES);
-                let seam = Seam {
-                    c1,
-                    b1,
-                    c2,
-                    key,
-                    frames,
-                };
-                seam.push(ours.local_n1, &ours.points, out);
+                seam(fnv1a(key_base, &CONVEX_SUBSHAPES)).push(ours.local_n1, &ours.points, out);
                 continue;
             }
             let mut cache = cached.unwrap_or_default();
