@@ -88,8 +88,10 @@ impl Pose {
     #[inline]
     #[must_use]
     pub fn inverse(&self) -> Self {
-        let rotation = self.rotation.conjugate();
-        Self::new(-rotate(rotation, self.position), rotation)
+        Self::new(
+            -rotate_inverse(self.rotation, self.position),
+            self.rotation.conjugate(),
+        )
     }
 
     /// `self ∘ other`: `other` first, then `self`.

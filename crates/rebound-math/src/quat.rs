@@ -114,7 +114,7 @@ pub fn course_mul(q: Quat, p: Quat) -> Quat {
 /// multiply that meets one takes a microcode assist of a hundred cycles or more. In the pyramid scene the two
 /// pose compositions of every contact pair spent two thirds of the collide phase in such assists (the
 /// collide phase ran 1.6× faster with subnormals flushed to zero). This scalar form touches only the three
-/// components, so no lane is undefined; it also costs fewer instructions than the SIMD form.
+/// components, so no lane is undefined (about as many instructions as the SIMD form).
 #[inline]
 #[must_use]
 pub fn rotate(q: Quat, v: Vec3) -> Vec3 {

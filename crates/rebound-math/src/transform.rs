@@ -15,7 +15,7 @@
 //! would tilt normals off the surface (a test shows it).
 
 use crate::validity::{check_finite_vec3, check_rotation};
-use crate::{Mat3, Mat4, MathError, Quat, Vec3};
+use crate::{Mat3, Mat4, MathError, Quat, Vec3, rotate, rotate_inverse};
 
 /// How far from uniform a scale may be (relative) and still compose or invert as a transform.
 const UNIFORM_SCALE_TOLERANCE: f32 = 1e-6;
@@ -133,14 +133,14 @@ impl Transform {
     #[inline]
     #[must_use]
     pub fn transform_point(&self, point: Vec3) -> Vec3 {
-        self.rotation * (self.scale * point) + self.translation
+        rotate(self.rotation, self.scale * point) + self.translation
     }
 
     /// Maps a model-space direction or displacement to world space: `R·(S·v)` (no translation, `w = 0`).
     #[inline]
     #[must_use]
     pub fn transform_vector(&self, vector: Vec3) -> Vec3 {
-        self.rotation * (self.scale * vector)
+        rotate(self.rotation, self.scale * vector)
     }
 
     /// Maps a model-space surface normal to a **unit** world-space normal: `normalise(R·(S⁻¹·n))`.
@@ -149,21 +149,21 @@ impl Transform {
     #[inline]
     #[must_use]
     pub fn transform_normal(&self, normal: Vec3) -> Vec3 {
-        (self.rotation * (normal / self.scale)).normalize_or_zero()
+        rotate(self.rotation, normal / self.scale).normalize_or_zero()
     }
 
     /// Maps a world-space point back to model space: `S⁻¹·(Rᵀ·(p − t))`.
     #[inline]
     #[must_use]
     pub fn inverse_transform_point(&self, point: Vec3) -> Vec3 {
-        (self.rotation.conjugate() * (point - self.translation)) / self.scale
+        rotate_inverse(self.rotation, point - self.translation) / self.scale
     }
 
     /// Maps a world-space direction back to model space: `S⁻¹·(Rᵀ·v)`.
     #[inline]
     #[must_use]
     pub fn inverse_transform_vector(&self, vector: Vec3) -> Vec3 {
-        (self.rotation.conjugate() * vector) / self.scale
+        rotate_inverse(self.rotation, vector) / self.scale
     }
 
     /// Maps a world-space normal back to a **unit** model-space normal: `normalise(S·(Rᵀ·n))`, the normal
@@ -171,7 +171,7 @@ impl Transform {
     #[inline]
     #[must_use]
     pub fn inverse_transform_normal(&self, normal: Vec3) -> Vec3 {
-        (self.scale * (self.rotation.conjugate() * normal)).normalize_or_zero()
+        (self.scale * rotate_inverse(self.rotation, normal)).normalize_or_zero()
     }
 
     /// The transform `self ∘ child`: first `child`, then `self` (like matrix product `M_self·M_child`).
@@ -218,7 +218,7 @@ impl Transform {
         }
         let scale = self.scale.recip();
         Ok(Self {
-            translation: -(inverse_rotation * self.translation) * scale,
+            translation: -rotate_inverse(self.rotation, self.translation) * scale,
             rotation: inverse_rotation,
             scale,
         })
