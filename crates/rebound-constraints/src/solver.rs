@@ -13,7 +13,9 @@
 //!                                 (joint paths — chains, bridges — are solved as one system in each pass:
 //!                                 crate::direct; a pass at the pose of the one before it — a solve pass
 //!                                 after a relax pass, the projection — keeps that pass's rows and, if the
-//!                                 same rows are in the system, its factorisation)
+//!                                 same rows are in the system, its factorisation; a hinge whose bodies
+//!                                 turned less than 0.01 rad since its rows were built this step keeps
+//!                                 them and its factorisation, with its errors carried to the pose)
 //! project_positions               once: the positions of each joint path, so that its joints end the step closed
 //! apply_restitution               once: ropes that snapped taut
 //! store_impulses                  impulses back into the JointStates; break check
@@ -24,7 +26,7 @@
 
 use crate::coordinate::CoordinateRows;
 use crate::direct::{
-    InvMass, JointRows, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations,
+    CARRY_ANGLE, InvMass, JointRows, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations,
     equality_violation, solve_path,
 };
 use crate::fixed::PreparedFixed;
@@ -176,6 +178,9 @@ pub struct JointSolver {
     joint_softness: Softness,
     /// The substep length of the prepared step (s).
     h: f32,
+    /// How far (rad) the bodies of a hinge on a path may turn before a velocity pass builds its rows again
+    /// instead of carrying them ([`Link::carry`]); 0 builds them at every new pose.
+    carry_angle: f32,
 }
 
 impl Default for JointSolver {
@@ -198,6 +203,7 @@ impl Default for JointSolver {
             probe: Vec::new(),
             joint_softness: Softness::RIGID,
             h: 0.0,
+            carry_angle: CARRY_ANGLE,
         }
     }
 }
@@ -658,7 +664,7 @@ impl JointSolver {
                 // the same rows are in the system, its factorisation serve again.
                 for (link, &index) in links.iter_mut().zip(members) {
                     let bodies = joints[index].pair.bodies(solver_bodies);
-                    link_rows(&mut joints[index], bodies, &stage, link);
+                    link_rows(&mut joints[index], bodies, &stage, link, 0.0);
                     before = before.max(link.rows.violation());
                     link.make_positional(PROJECTION_TOLERANCE);
                 }
@@ -756,6 +762,7 @@ impl JointSolver {
             path_joints,
             links,
             solution,
+            carry_angle,
             ..
         } = self;
         // `prepare` sized the links to the path members; a solver never prepared has no paths.
@@ -769,10 +776,10 @@ impl JointSolver {
             // The bodies in place serve the rows and the activation.
             match j.pair.bodies_mut(solver_bodies) {
                 Some([a, b]) => {
-                    link_rows(j, Some((&*a, &*b)), stage, link);
+                    link_rows(j, Some((&*a, &*b)), stage, link, *carry_angle);
                     link.activate(a, b);
                 }
-                None => link_rows(j, None, stage, link),
+                None => link_rows(j, None, stage, link, *carry_angle),
             }
         }
         solve_links(joints, members, links, solution, solver_bodies);
@@ -982,16 +989,24 @@ fn rows_at(
 /// The rows of joint `j` in `link` for a pass of `stage` at its bodies' current pose, and its accumulated
 /// impulses: the rows already there if they were built at this very pose ([`PoseKey`]: the same bits of
 /// both bodies' displacements and rotations) — only their targets recomputed for `stage`
-/// ([`Link::reuse`]) — else built again ([`rows_at`]). `bodies` are the joint's bodies (`None`: no rows).
+/// ([`Link::reuse`]); a hinge's rows built earlier in the step if neither body has turned by more than
+/// `carry_angle` (rad) since — their errors carried to this pose ([`Link::carry`]); else built again
+/// ([`rows_at`]). `bodies` are the joint's bodies (`None`: no rows). The position projection passes
+/// `carry_angle` = 0: its Newton steps need the Jacobians of the pose.
 fn link_rows(
     j: &mut PreparedJoint,
     bodies: Option<(&SolverBody, &SolverBody)>,
     stage: &Stage,
     link: &mut Link,
+    carry_angle: f32,
 ) {
     let pose = bodies.map(|(a, b)| PoseKey::of(a, b));
     if pose.as_ref().is_some_and(|pose| link.is_built_at(pose)) {
         link.reuse(stage);
+        link.lambda = state_lambda(j);
+    } else if matches!(j.kind, Prepared::Hinge(_))
+        && bodies.is_some_and(|(a, b)| link.carry(a, b, stage, carry_angle))
+    {
         link.lambda = state_lambda(j);
     } else {
         link.lambda = rows_at(j, bodies, stage, link);
@@ -1264,8 +1279,9 @@ mod tests {
     /// one-row and three-row links padded, and a slack rope whose rigid row makes the softness non-uniform),
     /// and a chain of eight ropes from a fixed body, some slack (the scalar sweep, with links leaving and
     /// joining the system). Twenty steps in the world's order; with `rebuild` every pass builds its rows and
-    /// factorisations again. Returns the bodies and the joint states as text (`{:?}` of an `f32` tells any
-    /// two bit patterns but NaNs apart).
+    /// factorisations again. Hinges are never carried (`carry_angle` 0): this is about rows and
+    /// factorisations kept at an unchanged pose. Returns the bodies and the joint states as text (`{:?}` of an
+    /// `f32` tells any two bit patterns but NaNs apart).
     fn steps(rebuild: bool) -> String {
         const STEPS: usize = 20;
         let mut bodies = Vec::new();
@@ -1325,6 +1341,7 @@ mod tests {
         let mut states = vec![JointState::default(); joints.len()];
         let settings = SolverSettings::default();
         let mut solver = JointSolver::new();
+        solver.carry_angle = 0.0;
         let mut broken = Vec::new();
         let mut reused = 0;
         let ctx = StepContext::new(1.0 / 60.0, &settings);
@@ -1378,5 +1395,110 @@ mod tests {
     #[test]
     fn passes_that_reuse_rows_and_factorisations_give_the_bits_of_passes_that_rebuild_them() {
         assert_eq!(steps(false), steps(true));
+    }
+
+    /// A hinge between two dynamic bodies, prepared, with its rows built in `link` at the bodies' pose; the
+    /// stage makes every row's bias its position error (as the projection's does).
+    fn built_hinge() -> (JointSolver, Vec<SolverBody>, Link, Stage) {
+        let desc = |x: f32, angle: f32| {
+            BodyDesc::dynamic()
+                .with_position(Vec3::new(x, 0.2 * x, 0.0))
+                .with_rotation(Quat::from_rotation_z(angle))
+                .with_mass_properties(
+                    MassProperties::new(1.5, Vec3::ZERO, Vec3::new(0.2, 0.3, 0.25)).unwrap(),
+                )
+        };
+        let bodies = [desc(0.0, 0.1), desc(1.0, -0.2)].map(|d| RigidBody::new(&d).unwrap());
+        let solver_bodies: Vec<SolverBody> = bodies.iter().map(SolverBody::from_body).collect();
+        let params: Vec<BodyParams> = bodies.iter().map(BodyParams::from_body).collect();
+        let joint = Joint::new(HingeJoint::new())
+            .with_local_anchors(Vec3::new(0.5, 0.1, 0.0), Vec3::new(-0.5, 0.0, 0.1))
+            .unwrap()
+            .with_local_axes(Vec3::Z, Vec3::new(0.1, 0.0, 1.0).normalize())
+            .unwrap();
+        let settings = SolverSettings::default();
+        let ctx = StepContext::new(1.0 / 60.0, &settings);
+        let mut solver = JointSolver::new();
+        let states = [JointState::default()];
+        let pairs = [JointBodies { a: 0, b: 1 }];
+        assert_eq!(
+            solver.prepare(&[joint], &states, &pairs, &solver_bodies, &params, &ctx),
+            0
+        );
+        let stage = Stage {
+            bias: Bias::On,
+            h: ctx.h,
+            inv_h: 1.0,
+            joint_softness: Softness {
+                bias_rate: 1.0,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+            },
+        };
+        let mut link = empty_link();
+        let j = &mut solver.joints[0];
+        let (a, b) = (&solver_bodies[0], &solver_bodies[1]);
+        let _ = rows_at(j, Some((a, b)), &stage, &mut link);
+        link.built_at(Some(PoseKey::of(a, b)));
+        (solver, solver_bodies, link, stage)
+    }
+
+    #[test]
+    fn carried_hinge_rows_have_the_errors_of_the_new_pose_to_first_order() {
+        let shift = Vec3::new(0.01, -0.02, 0.005);
+        let axis = Vec3::new(0.3, 0.5, 0.8).normalize();
+        for (turn_a, turn_b) in [(0.0, 0.0), (0.002, -0.004), (-0.009, 0.0095)] {
+            let (solver, mut bodies, mut link, stage) = built_hinge();
+            let built = link;
+            bodies[0].delta_position -= 0.5 * shift;
+            bodies[0].delta_rotation = Quat::from_axis_angle(axis, turn_a);
+            bodies[1].delta_position += shift;
+            bodies[1].delta_rotation =
+                Quat::from_axis_angle(Vec3::new(axis.z, axis.x, axis.y), turn_b);
+            let (a, b) = (&bodies[0], &bodies[1]);
+            assert!(link.carry(a, b, &stage, CARRY_ANGLE));
+            // Jacobians and turned vectors kept, only the targets changed; the rows still count as built at
+            // the first pose.
+            for (carried, kept) in link.rows.rows().iter().zip(built.rows.rows()) {
+                assert_eq!((carried.a, carried.b), (kept.a, kept.b));
+            }
+            assert!(!link.is_built_at(&PoseKey::of(a, b)));
+            let exact = PreparedHinge::direct_errors(&solver.joints[0].pair, a, b);
+            // Point rows are linear in the displacements (exact up to rounding); a turn θ of a lever r moves
+            // an anchor by r·θ²/2 beyond its linearisation (levers ≤ 0.52 m), and the alignment rows' error
+            // is second order in θ likewise.
+            let theta = turn_a.abs().max(turn_b.abs());
+            let bound = 1e-6 + 0.6 * theta * theta;
+            for (row, &(c, _)) in link.rows.rows().iter().zip(&exact) {
+                let error = (row.target.bias - c).abs();
+                assert!(
+                    error <= bound,
+                    "{turn_a} {turn_b}: {} vs {c}",
+                    row.target.bias
+                );
+            }
+            // A translation alone is carried without the rounding of a second-order term.
+            if theta == 0.0 {
+                for (row, &(c, _)) in link.rows.rows().iter().zip(&exact) {
+                    assert!((row.target.bias - c).abs() <= 1e-6);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_hinge_turned_further_than_the_carry_angle_is_not_carried() {
+        let (_, mut bodies, mut link, stage) = built_hinge();
+        let built = link;
+        bodies[1].delta_rotation = Quat::from_rotation_x(1.2 * CARRY_ANGLE);
+        let (a, b) = (&bodies[0], &bodies[1]);
+        assert!(!link.carry(a, b, &stage, CARRY_ANGLE));
+        assert_eq!(link, built, "nothing changed");
+        // Nor is any pose with a carry angle of 0, or a link holding no rows of this step.
+        bodies[1].delta_rotation = Quat::IDENTITY;
+        let (a, b) = (&bodies[0], &bodies[1]);
+        assert!(!link.carry(a, b, &stage, 0.0));
+        link.forget();
+        assert!(!link.carry(a, b, &stage, CARRY_ANGLE));
     }
 }
