@@ -172,12 +172,15 @@ impl NarrowPhase {
                 // Most candidate pairs of a pile are apart: no poses to compose, nothing to convert.
                 continue;
             }
-            // Composed with our scalar rotations, not parry's `Pose::inv_mul` (see `rebound_math::rotate`).
-            let pos12 = to_parry_pose(
-                c1.world_pose(b1.pose())
-                    .inverse()
-                    .mul_pose(&c2.world_pose(b2.pose())),
-            );
+            // Composed with our scalar rotations, not parry's `Pose::inv_mul` (see `rebound_math::rotate`); only
+            // where a generator runs (a recycled box pair needs none).
+            let pos12 = || {
+                to_parry_pose(
+                    c1.world_pose(b1.pose())
+                        .inverse()
+                        .mul_pose(&c2.world_pose(b2.pose())),
+                )
+            };
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
             if shape1.is_convex() && shape2.is_convex() {
@@ -196,7 +199,7 @@ impl NarrowPhase {
                 let mut ours = ShapeManifold::default();
                 match (&c1.desc.shape, &c2.desc.shape) {
                     (ColliderShape::Ball { radius: r1 }, ColliderShape::Ball { radius: r2 }) => {
-                        ball_ball(&pos12, *r1, *r2, prediction, &mut ours);
+                        ball_ball(&pos12(), *r1, *r2, prediction, &mut ours);
                     }
                     (
                         ColliderShape::Cuboid { half_extents: e1 },
@@ -211,6 +214,7 @@ impl NarrowPhase {
                             seam.recycle(old, &relative, prediction, out);
                             continue;
                         }
+                        let pos12 = pos12();
                         box_box_manifold(
                             *e1,
                             *e2,
@@ -235,7 +239,13 @@ impl NarrowPhase {
                         let manifold = &mut self.convex;
                         forget_manifold_history(manifold);
                         let computed = DefaultQueryDispatcher.contact_manifold_convex_convex(
-                            &pos12, shape1, shape2, None, None, prediction, manifold,
+                            &pos12(),
+                            shape1,
+                            shape2,
+                            None,
+                            None,
+                            prediction,
+                            manifold,
                         );
                         if computed.is_ok() {
                             let key = fnv1a(key_base, &[manifold.subshape1, manifold.subshape2]);
@@ -250,7 +260,7 @@ impl NarrowPhase {
             let mut cache = cached.unwrap_or_default();
             cache.forget_history();
             let dispatched = DefaultQueryDispatcher.contact_manifolds(
-                &pos12,
+                &pos12(),
                 shape1,
                 shape2,
                 prediction,
