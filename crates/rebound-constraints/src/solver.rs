@@ -702,6 +702,12 @@ impl JointSolver {
                     after = step.try_scaled(before, 0.5, 2);
                 }
                 match after {
+                    // Within tolerance: the next iteration would build every row only to measure the error
+                    // the step just measured.
+                    Some(after) if after <= PROJECTION_TOLERANCE => {
+                        known = Some(after);
+                        break;
+                    }
                     Some(after) => known = Some(after),
                     None => break,
                 }
