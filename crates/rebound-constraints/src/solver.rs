@@ -57,6 +57,24 @@ pub(crate) struct Stage {
     pub joint_softness: Softness,
 }
 
+impl Stage {
+    /// The stage of the position projection for substeps of `h` (s): a bias rate of 1 and `inv_h` = 1 make
+    /// every row's bias its position error `C` (m or rad), slack ropes included (their speculative bias is
+    /// `C·inv_h`).
+    fn projection(h: f32) -> Self {
+        Self {
+            bias: Bias::On,
+            h,
+            inv_h: 1.0,
+            joint_softness: Softness {
+                bias_rate: 1.0,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+            },
+        }
+    }
+}
+
 /// Newton iterations of the position projection (the rows are re-linearised at the moved poses).
 const PROJECTION_ITERATIONS: usize = 4;
 
@@ -610,18 +628,7 @@ impl JointSolver {
     /// a link that turns fast (the whip of a falling chain turns links by 90° within a step) drifts by
     /// `(v·h)²/(2L)` in each substep, far more than the soft correction takes back.
     pub fn project_positions(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
-        // A bias rate of 1 and `inv_h` = 1 make every row's bias its position error `C` (m or rad), slack
-        // ropes included (their speculative bias is `C·inv_h`).
-        let stage = Stage {
-            bias: Bias::On,
-            h: ctx.h,
-            inv_h: 1.0,
-            joint_softness: Softness {
-                bias_rate: 1.0,
-                mass_scale: 1.0,
-                impulse_scale: 0.0,
-            },
-        };
+        let stage = Stage::projection(ctx.h);
         for path in 0..self.paths.len() {
             let Some(range) = self.paths.get(path).cloned() else {
                 continue;
@@ -1404,7 +1411,7 @@ mod tests {
     }
 
     /// A hinge between two dynamic bodies, prepared, with its rows built in `link` at the bodies' pose; the
-    /// stage makes every row's bias its position error (as the projection's does).
+    /// projection's stage, which makes every row's bias its position error.
     fn built_hinge() -> (JointSolver, Vec<SolverBody>, Link, Stage) {
         let desc = |x: f32, angle: f32| {
             BodyDesc::dynamic()
@@ -1431,16 +1438,7 @@ mod tests {
             solver.prepare(&[joint], &states, &pairs, &solver_bodies, &params, &ctx),
             0
         );
-        let stage = Stage {
-            bias: Bias::On,
-            h: ctx.h,
-            inv_h: 1.0,
-            joint_softness: Softness {
-                bias_rate: 1.0,
-                mass_scale: 1.0,
-                impulse_scale: 0.0,
-            },
-        };
+        let stage = Stage::projection(ctx.h);
         let mut link = empty_link();
         let j = &mut solver.joints[0];
         let (a, b) = (&solver_bodies[0], &solver_bodies[1]);
