@@ -118,9 +118,7 @@ pub fn course_mul(q: Quat, p: Quat) -> Quat {
 #[inline]
 #[must_use]
 pub fn rotate(q: Quat, v: Vec3) -> Vec3 {
-    let u = Vec3::new(q.x, q.y, q.z);
-    let t = 2.0 * u.cross(v);
-    v + q.w * t + u.cross(t)
+    rotate_by_parts(Vec3::new(q.x, q.y, q.z), q.w, v)
 }
 
 /// Rotates `v` by the inverse of the unit quaternion `q` (`q*·v·q`) — [`rotate`] by the conjugate, without
@@ -128,9 +126,15 @@ pub fn rotate(q: Quat, v: Vec3) -> Vec3 {
 #[inline]
 #[must_use]
 pub fn rotate_inverse(q: Quat, v: Vec3) -> Vec3 {
-    let u = Vec3::new(-q.x, -q.y, -q.z);
+    rotate_by_parts(Vec3::new(-q.x, -q.y, -q.z), q.w, v)
+}
+
+/// `v` rotated by the unit quaternion with vector part `u` and scalar part `w`: `v + w·t + u × t`,
+/// `t = 2 u × v` (see [`rotate`]).
+#[inline]
+fn rotate_by_parts(u: Vec3, w: f32, v: Vec3) -> Vec3 {
     let t = 2.0 * u.cross(v);
-    v + q.w * t + u.cross(t)
+    v + w * t + u.cross(t)
 }
 
 /// The rotation matrix of the unit quaternion `q` in glam's column-vector convention: `v' = R·v`.
