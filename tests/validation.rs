@@ -483,6 +483,69 @@ fn a_box_sliding_at_5_m_s_stops_after_v_squared_over_2_mu_g() {
     );
 }
 
+/// Friction against twist: a cube resting on its face and spinning about the vertical. Its four corner
+/// contacts each carry `m·g/4` and slide at `ω·d` (`d = h·√2`, half-extent `h`), so Coulomb friction brakes it
+/// with the torque `μ·m·g·d` — what per-point friction gives and what the friction patch's twist row is limited
+/// to (`docs/physics.md`, "Friction patch"). With `I = (2/3)·m·h²` the spin slows at `α = 3·μ·g·d/(2·h²)`,
+/// stops after turning `ω₀²/(2α)` and stays stopped; no net force moves the centre.
+#[test]
+fn a_cube_spinning_on_its_face_stops_after_turning_omega_squared_over_2_alpha() {
+    const MU: f32 = 0.5;
+    const HALF: f32 = 0.5;
+    const SPIN: f32 = 5.0;
+    let mut w = world();
+    add_ground(&mut w, MU, 0.0);
+    let b = w
+        .insert_body(
+            BodyDesc::dynamic()
+                .with_position(Vec3::new(0.0, HALF, 0.0))
+                .with_angular_velocity(Vec3::Y * SPIN),
+        )
+        .unwrap();
+    w.insert_collider(
+        ColliderDesc::cuboid(Vec3::splat(HALF))
+            .with_density(1.0)
+            .with_friction(MU),
+        b,
+    )
+    .unwrap();
+    let d = HALF * core::f32::consts::SQRT_2;
+    let alpha = 3.0 * MU * G * d / (2.0 * HALF * HALF);
+    // Halfway to the stop the spin has lost α·t.
+    let half_time = SPIN / alpha / 2.0;
+    let steps = (half_time / DT).round() as usize;
+    for _ in 0..steps {
+        w.step(DT);
+    }
+    let t = steps as f32 * DT;
+    let omega = body(&w, b).angular_velocity().y;
+    let expected = SPIN - alpha * t;
+    assert!(
+        (omega - expected).abs() < 0.03 * SPIN,
+        "spin {omega} rad/s after {t} s, expected {expected} rad/s"
+    );
+    for _ in steps..60 {
+        w.step(DT);
+    }
+    let (axis, angle) = body(&w, b).rotation().to_axis_angle();
+    let turned = angle * axis.y.signum();
+    let expected = SPIN * SPIN / (2.0 * alpha);
+    assert!(
+        (turned - expected).abs() < 0.03 * expected,
+        "turned {turned} rad, expected {expected} rad ± 3 %"
+    );
+    assert!(
+        body(&w, b).angular_velocity().length() < 1e-2,
+        "still spinning at {}",
+        body(&w, b).angular_velocity()
+    );
+    let p = body(&w, b).position();
+    assert!(
+        p.x.hypot(p.z) < 1e-3,
+        "the centre moved to {p}: twist friction pushed it"
+    );
+}
+
 #[test]
 fn a_torque_free_spinning_box_conserves_angular_momentum() {
     let mut w = world_with(WorldSettings {

@@ -1,5 +1,6 @@
-//! The contact-constraint kernel: soft non-penetration with a push-out speed cap, Coulomb friction on two
-//! tangents with a circular cone, and restitution. Stages: *prepare* → per substep *warm start*, *solve*
+//! The contact-constraint kernel: soft non-penetration with a push-out speed cap, Coulomb friction on each
+//! manifold's patch (two tangents with a circular cone at the centre of the points, and twist about the
+//! normal), and restitution. Stages: *prepare* → per substep *warm start*, *solve*
 //! (bias on), *relax* (bias off) → *restitution* (once) → *store impulses*.
 //!
 //! Contacts arrive as plain data ([`Contact`]); the collision backend (or a test) makes them. Bodies are
@@ -25,7 +26,9 @@
 //!
 //! so a speculative contact lets the bodies close exactly the gap in this substep and no more, an overlap is
 //! pushed out softly at no more than `v_max`, and the relax pass removes the push-out velocity so that resting
-//! bodies do not gain energy. Friction: `λ_t ← clamp_circle(λ_t − M_t·v_t, μ·λ)`. Restitution, once after
+//! bodies do not gain energy. Friction, at the patch centre `c` (the mean of the points' anchors):
+//! `λ_t ← clamp_circle(λ_t − M_t·v_t, μ·Σλ)`, and about the normal `τ ← clamp(τ − m_τ·n·(ω_b − ω_a),
+//! ±μ·Σλ·|r − c|)` (`docs/physics.md`, "Contacts"). Restitution, once after
 //! the substeps, drives `v_n` to `−C_r·v_n⁻` where `v_n⁻` is the approach speed — the most negative normal
 //! velocity the bias passes met before applying their impulse, so a body that keeps falling for part of the
 //! step rebounds from its speed at impact, not its speed when the step began — for contacts that approached
@@ -156,18 +159,37 @@ struct PreparedPoint {
     /// contact is an ordinary one (otherwise a ball that handed its momentum on would be pushed again).
     bounced: bool,
     normal_impulse: f32,
-    tangent_impulse: Vec2,
     max_normal_impulse: f32,
     normal_mass: f32,
-    tangent_mass: [f32; 2],
+    /// The point's distance from its manifold's patch centre (m): its lever against twist.
+    twist_radius: f32,
     rn_a: Vec3,
     rn_b: Vec3,
     wn_a: Vec3,
     wn_b: Vec3,
+}
+
+/// A manifold's friction patch: two tangent rows at the centre of its points and one twist row about the
+/// normal, in place of two tangent rows per point (`docs/physics.md`, "Friction patch").
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Patch {
+    /// The centre `c` of the points, relative to body A's centre of mass (m).
+    center_a: Vec3,
+    /// `Σ|ρ|²` over the points, `ρ = r_a − c` a point's offset from the centre (m²).
+    spread: f32,
+    /// Accumulated tangent impulse in the manifold's tangent basis (N·s).
+    tangent_impulse: Vec2,
+    tangent_mass: [f32; 2],
     rt_a: [Vec3; 2],
     rt_b: [Vec3; 2],
     wt_a: [Vec3; 2],
     wt_b: [Vec3; 2],
+    /// Accumulated twist impulse about the normal (N·m·s).
+    twist_impulse: f32,
+    twist_mass: f32,
+    /// `I_a⁻¹·n` and `I_b⁻¹·n`.
+    twist_a: Vec3,
+    twist_b: Vec3,
 }
 
 /// A prepared contact manifold. Its points live in the solver's flat point array (`first_point ..
@@ -181,6 +203,8 @@ struct PreparedContact {
     body_b: usize,
     first_point: usize,
     point_count: usize,
+    /// Index of the manifold's friction patch in the solver's patches (scalar path only).
+    patch: usize,
     /// Index of the manifold's rolling-resistance block, or `None` without rolling friction.
     rolling: Option<usize>,
     normal: Vec3,
@@ -211,11 +235,15 @@ struct Rolling {
 pub struct ContactSolver {
     contacts: Vec<PreparedContact>,
     points: Vec<PreparedPoint>,
+    /// The friction patches of the scalar path's manifolds.
+    patches: Vec<Patch>,
     rolling: Vec<Rolling>,
     /// The wide-solved manifolds, four at a time, colour after colour (see [`wide`]).
     batches: Vec<wide::Batch>,
     /// The batches' point slots.
     slots: Vec<wide::PointX4>,
+    /// The batches' friction patches.
+    patches_x4: Vec<wide::PatchX4>,
     /// Indices of the manifolds the scalar path solves, after the batches.
     scalar: Vec<usize>,
     coloring: wide::Coloring,
@@ -255,6 +283,7 @@ impl ContactSolver {
     ) -> usize {
         self.contacts.clear();
         self.points.clear();
+        self.patches.clear();
         self.rolling.clear();
         self.contacts.reserve(contacts.len());
         let body_count = bodies.len().min(params.len());
@@ -288,6 +317,7 @@ impl ContactSolver {
                 body_b: contact.body_b,
                 first_point: NO_POINTS,
                 point_count: contact.points().len(),
+                patch: NO_POINTS,
                 rolling,
                 normal,
                 tangents: [t1, t2],
@@ -315,14 +345,20 @@ impl ContactSolver {
             &input,
             &mut self.batches,
             &mut self.slots,
+            &mut self.patches_x4,
             &mut self.scalar,
         );
         for &index in &self.scalar {
             let c = &mut self.contacts[index];
+            let points = contacts[c.source].points();
+            let patch = input.patch(c, points);
             c.first_point = self.points.len();
-            for point in contacts[c.source].points() {
-                self.points.push(input.scalar_point(c, point));
+            c.patch = self.patches.len();
+            for point in points {
+                self.points
+                    .push(input.scalar_point(c, point, patch.center_a));
             }
+            self.patches.push(patch);
         }
         skipped
     }
@@ -331,22 +367,23 @@ impl ContactSolver {
     /// the iterations start from the previous answer.
     pub fn warm_start(&self, bodies: &mut [SolverBody]) {
         for batch in &self.batches {
-            batch.warm_start(&self.slots, bodies);
+            batch.warm_start(&self.slots, &self.patches_x4, bodies);
         }
         for c in self.scalar.iter().map(|&i| &self.contacts[i]) {
             let (mut a, mut b) = (bodies[c.body_a], bodies[c.body_b]);
             for p in &self.points[c.first_point..c.first_point + c.point_count] {
-                let linear = c.normal * p.normal_impulse
-                    + c.tangents[0] * p.tangent_impulse.x
-                    + c.tangents[1] * p.tangent_impulse.y;
-                a.linear_velocity -= linear * c.inv_mass_a;
-                b.linear_velocity += linear * c.inv_mass_b;
-                a.angular_velocity -= p.wn_a * p.normal_impulse
-                    + p.wt_a[0] * p.tangent_impulse.x
-                    + p.wt_a[1] * p.tangent_impulse.y;
-                b.angular_velocity += p.wn_b * p.normal_impulse
-                    + p.wt_b[0] * p.tangent_impulse.x
-                    + p.wt_b[1] * p.tangent_impulse.y;
+                apply_normal(
+                    &mut a,
+                    &mut b,
+                    c.inv_mass_a,
+                    c.inv_mass_b,
+                    c.normal,
+                    p,
+                    p.normal_impulse,
+                );
+            }
+            if let Some(patch) = self.patches.get(c.patch) {
+                patch.warm_start(c, &mut a, &mut b);
             }
             if let Some(r) = c.rolling.map(|i| &self.rolling[i]) {
                 a.angular_velocity -= r.inv_inertia_a * r.impulse;
@@ -357,7 +394,8 @@ impl ContactSolver {
     }
 
     /// Stages *solve* (`Bias::On`) and *relax* (`Bias::Off`): one Gauss–Seidel pass over every contact,
-    /// normal impulses first, then friction clamped to the circle of radius μ·λ_n.
+    /// normal impulses first, then the friction patch: tangents clamped to the circle of radius μ·Σλ_n, twist
+    /// to ±μ·Σλ_n·|ρ|.
     ///
     /// The current separation of a point is `s₀ + n·(Δp_b − Δp_a) + (Δq_b⁻¹·n − n)·r_b − (Δq_a⁻¹·n − n)·r_a`:
     /// `n·(Δq·r − r) = (Δq⁻¹·n − n)·r` for a rotation, so the two rotations are done once per manifold instead of
@@ -367,7 +405,7 @@ impl ContactSolver {
     /// batches in `Vec4` lanes (`docs/physics.md`, Contacts); the rest one by one after them.
     pub fn solve(&mut self, bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
         for batch in &self.batches {
-            batch.solve(&mut self.slots, bodies, ctx, bias);
+            batch.solve(&mut self.slots, &mut self.patches_x4, bodies, ctx, bias);
         }
         for &index in &self.scalar {
             let c = &self.contacts[index];
@@ -377,6 +415,8 @@ impl ContactSolver {
             let shift = normal.dot(b.delta_position - a.delta_position);
             let turn_a = rotate_inverse(a.delta_rotation, normal) - normal;
             let turn_b = rotate_inverse(b.delta_rotation, normal) - normal;
+            // Σλ_n and Σλ_n·|ρ| after the normal rows: the friction patch's limits.
+            let (mut total, mut twist_total) = (0.0, 0.0);
             for p in points.iter_mut() {
                 let s = p.separation + shift + turn_b.dot(p.anchor_b) - turn_a.dot(p.anchor_a);
                 let vn = normal.dot(b.linear_velocity - a.linear_velocity)
@@ -434,6 +474,8 @@ impl ContactSolver {
                 let accumulated = (p.normal_impulse + delta).max(0.0);
                 let applied = accumulated - p.normal_impulse;
                 p.normal_impulse = accumulated;
+                total += accumulated;
+                twist_total += accumulated * p.twist_radius;
                 p.max_normal_impulse = p.max_normal_impulse.max(applied);
                 apply_normal(
                     &mut a,
@@ -445,23 +487,11 @@ impl ContactSolver {
                     applied,
                 );
             }
-            for p in points.iter_mut() {
-                let dv = b.velocity_at(p.anchor_b) - a.velocity_at(p.anchor_a);
-                let vt = Vec2::new(dv.dot(c.tangents[0]), dv.dot(c.tangents[1]));
-                let candidate = p.tangent_impulse
-                    - Vec2::new(p.tangent_mass[0] * vt.x, p.tangent_mass[1] * vt.y);
-                let limit = c.friction * p.normal_impulse;
-                let accumulated = candidate.clamp_length_max(limit);
-                let applied = accumulated - p.tangent_impulse;
-                p.tangent_impulse = accumulated;
-                let linear = c.tangents[0] * applied.x + c.tangents[1] * applied.y;
-                a.linear_velocity -= linear * c.inv_mass_a;
-                b.linear_velocity += linear * c.inv_mass_b;
-                a.angular_velocity -= p.wt_a[0] * applied.x + p.wt_a[1] * applied.y;
-                b.angular_velocity += p.wt_b[0] * applied.x + p.wt_b[1] * applied.y;
+            if let Some(patch) = self.patches.get_mut(c.patch) {
+                patch.solve(c, &mut a, &mut b, total, twist_total);
             }
             if let Some(r) = c.rolling.map(|i| &mut self.rolling[i]) {
-                let total_normal: f32 = points.iter().map(|p| p.normal_impulse).sum();
+                let total_normal = total;
                 let candidate = r.impulse - r.mass * (b.angular_velocity - a.angular_velocity);
                 let accumulated = candidate.clamp_length_max(r.friction * total_normal);
                 let applied = accumulated - r.impulse;
@@ -490,22 +520,30 @@ impl ContactSolver {
     /// in one iteration this step (N·s) — what contact events report as the hit strength. For a caller that
     /// keeps its own contacts: one pass gives it everything [`ContactSolver::store_impulses`] writes and more.
     pub fn for_each_point_result(&self, mut f: impl FnMut(usize, usize, f32, Vec3, f32)) {
-        let basis = |c: &PreparedContact, [x, y]: [f32; 2]| c.tangents[0] * x + c.tangents[1] * y;
         for &index in &self.scalar {
             let c = &self.contacts[index];
+            let patch = self.patches.get(c.patch).copied().unwrap_or_default();
+            let share = PatchShare::new(
+                c.normal,
+                c.tangents,
+                patch.tangent_impulse.to_array(),
+                patch.twist_impulse,
+                patch.spread,
+                c.point_count,
+            );
             for (k, p) in self.points[c.first_point..][..c.point_count]
                 .iter()
                 .enumerate()
             {
-                let tangent = basis(c, p.tangent_impulse.to_array());
+                let tangent = share.at(p.anchor_a - patch.center_a);
                 f(c.source, k, p.normal_impulse, tangent, p.max_normal_impulse);
             }
         }
         for batch in &self.batches {
-            for (index, impulses) in batch.results(&self.slots, &self.contacts) {
+            for (index, impulses) in batch.results(&self.slots, &self.patches_x4, &self.contacts) {
                 let c = &self.contacts[index];
                 for (k, (normal, tangent, max)) in impulses.enumerate() {
-                    f(c.source, k, normal, basis(c, tangent), max);
+                    f(c.source, k, normal, tangent, max);
                 }
             }
         }
@@ -524,11 +562,11 @@ struct PrepareInput<'a> {
 }
 
 impl PrepareInput<'_> {
-    /// The prepared form of `point`, a point of manifold `c`: anchors, angular Jacobian terms, effective
-    /// masses and the warm-start impulses in the manifold's tangent basis. The pre-step normal velocity,
-    /// which only a bounce reads, is left at 0 (see [`PrepareInput::scalar_point`]).
+    /// The prepared form of `point`, a point of manifold `c` whose patch centre is `center_a`: anchors, angular
+    /// Jacobian terms, effective mass, twist lever and the warm-start normal impulse. The pre-step normal
+    /// velocity, which only a bounce reads, is left at 0 (see [`PrepareInput::scalar_point`]).
     #[inline]
-    fn point(&self, c: &PreparedContact, point: &ContactPoint) -> PreparedPoint {
+    fn point(&self, c: &PreparedContact, point: &ContactPoint, center_a: Vec3) -> PreparedPoint {
         let (pa, pb) = (&self.params[c.body_a], &self.params[c.body_b]);
         let normal = c.normal;
         let (ra, rb) = (point.anchor_a, point.anchor_b);
@@ -537,59 +575,209 @@ impl PrepareInput<'_> {
         let wn_a = pa.inv_inertia_world * rn_a;
         let wn_b = pb.inv_inertia_world * rn_b;
         let k_normal = pa.inv_mass + pb.inv_mass + rn_a.dot(wn_a) + rn_b.dot(wn_b);
-        let mut rt_a = [Vec3::ZERO; 2];
-        let mut rt_b = [Vec3::ZERO; 2];
-        let mut wt_a = [Vec3::ZERO; 2];
-        let mut wt_b = [Vec3::ZERO; 2];
-        let mut tangent_mass = [0.0; 2];
-        for (i, t) in c.tangents.iter().enumerate() {
-            rt_a[i] = ra.cross(*t);
-            rt_b[i] = rb.cross(*t);
-            wt_a[i] = pa.inv_inertia_world * rt_a[i];
-            wt_b[i] = pb.inv_inertia_world * rt_b[i];
-            let k = pa.inv_mass + pb.inv_mass + rt_a[i].dot(wt_a[i]) + rt_b[i].dot(wt_b[i]);
-            tangent_mass[i] = if k > 0.0 { 1.0 / k } else { 0.0 };
-        }
-        let (normal_impulse, tangent_impulse) = if self.ctx.warm_starting {
-            (
-                point.normal_impulse,
-                Vec2::new(
-                    point.tangent_impulse.dot(c.tangents[0]),
-                    point.tangent_impulse.dot(c.tangents[1]),
-                ),
-            )
-        } else {
-            (0.0, Vec2::ZERO)
-        };
+        let rho = ra - center_a;
         PreparedPoint {
             anchor_a: ra,
             anchor_b: rb,
             separation: point.separation,
             relative_velocity: 0.0,
             bounced: false,
-            normal_impulse,
-            tangent_impulse,
+            normal_impulse: if self.ctx.warm_starting {
+                point.normal_impulse
+            } else {
+                0.0
+            },
             max_normal_impulse: 0.0,
             normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
-            tangent_mass,
+            twist_radius: rho.dot(rho).sqrt(),
             rn_a,
             rn_b,
             wn_a,
             wn_b,
-            rt_a,
-            rt_b,
-            wt_a,
-            wt_b,
         }
     }
 
     /// [`PrepareInput::point`] with the pre-step normal velocity, for the scalar path (which bounces).
-    fn scalar_point(&self, c: &PreparedContact, point: &ContactPoint) -> PreparedPoint {
+    fn scalar_point(
+        &self,
+        c: &PreparedContact,
+        point: &ContactPoint,
+        center_a: Vec3,
+    ) -> PreparedPoint {
         let (sa, sb) = (&self.bodies[c.body_a], &self.bodies[c.body_b]);
         let dv = sb.velocity_at(point.anchor_b) - sa.velocity_at(point.anchor_a);
         PreparedPoint {
             relative_velocity: dv.dot(c.normal),
-            ..self.point(c, point)
+            ..self.point(c, point, center_a)
+        }
+    }
+
+    /// The friction patch of manifold `c` with points `points`: the centre of the points on each body, the
+    /// tangent rows there, the twist row, and the warm-start impulses recovered from the points' stored
+    /// friction impulses ([`PatchShare`] in reverse: their sum, and their moment about the centre).
+    fn patch(&self, c: &PreparedContact, points: &[ContactPoint]) -> Patch {
+        let (pa, pb) = (&self.params[c.body_a], &self.params[c.body_b]);
+        let normal = c.normal;
+        let count = points.len() as f32;
+        let [center_a, center_b, warm_linear] = patch_sums(points);
+        let (mut spread, mut warm_twist) = (0.0, 0.0);
+        for p in points {
+            let rho = p.anchor_a - center_a;
+            spread += rho.dot(rho);
+            warm_twist += rho.cross(p.tangent_impulse).dot(normal);
+        }
+        let mass_sum = pa.inv_mass + pb.inv_mass;
+        let invert = |k: f32| if k > 0.0 && count > 0.0 { 1.0 / k } else { 0.0 };
+        let mut patch = Patch {
+            center_a,
+            spread,
+            twist_a: pa.inv_inertia_world * normal,
+            twist_b: pb.inv_inertia_world * normal,
+            ..Patch::default()
+        };
+        for (i, t) in c.tangents.iter().enumerate() {
+            patch.rt_a[i] = center_a.cross(*t);
+            patch.rt_b[i] = center_b.cross(*t);
+            patch.wt_a[i] = pa.inv_inertia_world * patch.rt_a[i];
+            patch.wt_b[i] = pb.inv_inertia_world * patch.rt_b[i];
+            patch.tangent_mass[i] = invert(
+                mass_sum + patch.rt_a[i].dot(patch.wt_a[i]) + patch.rt_b[i].dot(patch.wt_b[i]),
+            );
+        }
+        patch.twist_mass = invert(normal.dot(patch.twist_a) + normal.dot(patch.twist_b));
+        if self.ctx.warm_starting {
+            patch.tangent_impulse = Vec2::new(
+                warm_linear.dot(c.tangents[0]),
+                warm_linear.dot(c.tangents[1]),
+            );
+            patch.twist_impulse = warm_twist;
+        }
+        patch
+    }
+}
+
+impl Patch {
+    /// Applies the accumulated friction impulses again (stage *warm start*).
+    fn warm_start(&self, c: &PreparedContact, a: &mut SolverBody, b: &mut SolverBody) {
+        let [x, y] = self.tangent_impulse.to_array();
+        let linear = c.tangents[0] * x + c.tangents[1] * y;
+        a.linear_velocity -= linear * c.inv_mass_a;
+        b.linear_velocity += linear * c.inv_mass_b;
+        a.angular_velocity -= self.wt_a[0] * x;
+        a.angular_velocity -= self.wt_a[1] * y;
+        b.angular_velocity += self.wt_b[0] * x;
+        b.angular_velocity += self.wt_b[1] * y;
+        a.angular_velocity -= self.twist_a * self.twist_impulse;
+        b.angular_velocity += self.twist_b * self.twist_impulse;
+    }
+
+    /// One pass of the patch's rows after the normal rows: the tangent impulse clamped to the circle of radius
+    /// `μ·Σλ_n` (`total`), then the twist impulse to `±μ·Σλ_n·|ρ|` (`twist_total`). The wide path's
+    /// equations, in the same order of operations.
+    fn solve(
+        &mut self,
+        c: &PreparedContact,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        total: f32,
+        twist_total: f32,
+    ) {
+        let [t0, t1] = c.tangents;
+        let dv = b.linear_velocity - a.linear_velocity;
+        let vt0 = t0.dot(dv) + b.angular_velocity.dot(self.rt_b[0])
+            - a.angular_velocity.dot(self.rt_a[0]);
+        let vt1 = t1.dot(dv) + b.angular_velocity.dot(self.rt_b[1])
+            - a.angular_velocity.dot(self.rt_a[1]);
+        let mut x = self.tangent_impulse.x - self.tangent_mass[0] * vt0;
+        let mut y = self.tangent_impulse.y - self.tangent_mass[1] * vt1;
+        let limit = c.friction * total;
+        let length_squared = x * x + y * y;
+        if length_squared > limit * limit {
+            let scale = limit / length_squared.sqrt();
+            x *= scale;
+            y *= scale;
+        }
+        let (ax, ay) = (x - self.tangent_impulse.x, y - self.tangent_impulse.y);
+        self.tangent_impulse = Vec2::new(x, y);
+        let linear = t0 * ax + t1 * ay;
+        a.linear_velocity -= linear * c.inv_mass_a;
+        b.linear_velocity += linear * c.inv_mass_b;
+        a.angular_velocity -= self.wt_a[0] * ax;
+        a.angular_velocity -= self.wt_a[1] * ay;
+        b.angular_velocity += self.wt_b[0] * ax;
+        b.angular_velocity += self.wt_b[1] * ay;
+        if c.point_count > 1 {
+            let spin = c.normal.dot(b.angular_velocity - a.angular_velocity);
+            let limit = c.friction * twist_total;
+            let candidate = (self.twist_impulse - self.twist_mass * spin)
+                .max(-limit)
+                .min(limit);
+            let applied = candidate - self.twist_impulse;
+            self.twist_impulse = candidate;
+            a.angular_velocity -= self.twist_a * applied;
+            b.angular_velocity += self.twist_b * applied;
+        }
+    }
+}
+
+/// The centre of `points` on each body — the mean of their anchors relative to body A's and body B's centre
+/// of mass (zero without points) — and the sum of the friction impulses they carry from the last step.
+pub(crate) fn patch_sums(points: &[ContactPoint]) -> [Vec3; 3] {
+    let count = points.len() as f32;
+    let per_point = if count > 0.0 { 1.0 / count } else { 0.0 };
+    let (mut sum_a, mut sum_b, mut friction) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
+    for p in points {
+        sum_a += p.anchor_a;
+        sum_b += p.anchor_b;
+        friction += p.tangent_impulse;
+    }
+    [sum_a * per_point, sum_b * per_point, friction]
+}
+
+/// A patch's friction shared out among its points, for warm starting the next step and for reporting: point
+/// `k` at offset `ρ_k` from the centre gets `f_k = λ_t/N + τ·(n × ρ_k)/Σ|ρ|²`. The shares add up to the
+/// patch's tangent impulse `λ_t` (the `ρ_k` sum to zero) and their moment about the centre along `n` is its
+/// twist impulse `τ` (`ρ × (n × ρ) = n·|ρ|²` for `ρ` in the contact plane), so the next step's patch recovers
+/// both from the points, whichever of them persist.
+pub(crate) struct PatchShare {
+    normal: Vec3,
+    linear: Vec3,
+    twist: f32,
+}
+
+impl PatchShare {
+    /// The share-out of tangent impulse `[x, y]` (in basis `tangents`) and twist impulse `twist` of a patch
+    /// of `count` points with spread `spread`.
+    pub(crate) fn new(
+        normal: Vec3,
+        tangents: [Vec3; 2],
+        [x, y]: [f32; 2],
+        twist: f32,
+        spread: f32,
+        count: usize,
+    ) -> Self {
+        let linear = tangents[0] * x + tangents[1] * y;
+        if count <= 1 {
+            // A lone point takes the whole patch and no twist.
+            return Self {
+                normal,
+                linear,
+                twist: 0.0,
+            };
+        }
+        Self {
+            normal,
+            linear: linear / count as f32,
+            twist: if spread > 0.0 { twist / spread } else { 0.0 },
+        }
+    }
+
+    /// The friction impulse (world vector, N·s) of the point at offset `rho` from the patch centre.
+    pub(crate) fn at(&self, rho: Vec3) -> Vec3 {
+        if self.twist == 0.0 {
+            self.linear
+        } else {
+            self.linear + self.normal.cross(rho) * self.twist
         }
     }
 }
@@ -632,4 +820,52 @@ fn apply_normal(
 fn write_pair(bodies: &mut [SolverBody], ia: usize, a: SolverBody, ib: usize, b: SolverBody) {
     bodies[ia] = a;
     bodies[ib] = b;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ContactPoint, PatchShare, patch_sums};
+    use proptest::prelude::*;
+    use rebound_math::{Quat, Vec3};
+
+    proptest! {
+        /// The friction a patch shares out among its points (for warm starting and reporting) gives the patch
+        /// back: the shares sum to its tangent impulse and their moment about the centre, along the normal, is
+        /// its twist impulse — which is how the next step's patch recovers both from the points.
+        #[test]
+        fn shared_out_patch_friction_sums_to_the_patch_impulses(
+            tilt in -1.5f32..1.5,
+            offsets in prop::collection::vec((-1.0f32..1.0, -1.0f32..1.0), 2..=4),
+            x in -2.0f32..2.0,
+            y in -2.0f32..2.0,
+            twist in -2.0f32..2.0,
+        ) {
+            let turn = Quat::from_rotation_x(tilt);
+            let normal = turn * Vec3::Y;
+            let tangents = [turn * Vec3::X, turn * Vec3::Z];
+            let base = Vec3::new(0.3, -0.2, 0.1);
+            let mut points: Vec<ContactPoint> = offsets
+                .iter()
+                .map(|&(u, v)| ContactPoint {
+                    anchor_a: base + tangents[0] * u + tangents[1] * v,
+                    ..ContactPoint::default()
+                })
+                .collect();
+            let [center, _, _] = patch_sums(&points);
+            let spread: f32 = points.iter().map(|p| (p.anchor_a - center).length_squared()).sum();
+            prop_assume!(spread > 1e-2);
+            let share = PatchShare::new(normal, tangents, [x, y], twist, spread, points.len());
+            for p in &mut points {
+                p.tangent_impulse = share.at(p.anchor_a - center);
+            }
+            let [_, _, total] = patch_sums(&points);
+            let moment: f32 = points
+                .iter()
+                .map(|p| (p.anchor_a - center).cross(p.tangent_impulse).dot(normal))
+                .sum();
+            let linear = tangents[0] * x + tangents[1] * y;
+            prop_assert!((total - linear).length() < 1e-5 * (1.0 + twist.abs() / spread), "{total} vs {linear}");
+            prop_assert!((moment - twist).abs() < 1e-5, "{moment} vs {twist}");
+        }
+    }
 }

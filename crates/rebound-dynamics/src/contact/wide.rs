@@ -15,7 +15,7 @@
 //! A batch has as many point slots as its largest manifold; the slots a smaller manifold leaves empty, and
 //! the empty lanes of a colour's last batch, carry zero masses and so apply zero impulses.
 
-use super::{ContactPoint, PrepareInput, PreparedContact};
+use super::{ContactPoint, PatchShare, PrepareInput, PreparedContact, patch_sums};
 use crate::{Bias, SolverBody, StepContext};
 use rebound_math::glam::BVec4A;
 use rebound_math::{Mat3, Mat4, Vec3, Vec4};
@@ -45,6 +45,12 @@ struct Vec3x4 {
 }
 
 impl Vec3x4 {
+    const ZERO: Self = Self {
+        x: Vec4::ZERO,
+        y: Vec4::ZERO,
+        z: Vec4::ZERO,
+    };
+
     /// The four lanes' vectors, transposed (one 4×4 transpose instead of twelve lane inserts).
     #[inline(always)]
     fn from_lanes(v: [Vec3; LANES]) -> Self {
@@ -115,6 +121,22 @@ impl Vec3x4 {
         }
     }
 
+    /// The vector of lane `lane`.
+    #[inline(always)]
+    fn lane(&self, lane: usize) -> Vec3 {
+        Vec3::new(self.x[lane], self.y[lane], self.z[lane])
+    }
+
+    /// The lanes of `self` where `mask` is set, zero elsewhere.
+    #[inline(always)]
+    fn select(&self, mask: BVec4A) -> Self {
+        Self {
+            x: Vec4::select(mask, self.x, Vec4::ZERO),
+            y: Vec4::select(mask, self.y, Vec4::ZERO),
+            z: Vec4::select(mask, self.z, Vec4::ZERO),
+        }
+    }
+
     /// `self += v·s`.
     #[inline(always)]
     fn add_scaled(&mut self, v: &Self, s: Vec4) {
@@ -158,18 +180,53 @@ pub(super) struct PointX4 {
     anchor_b: Vec3x4,
     separation: Vec4,
     normal_impulse: Vec4,
-    tangent_impulse: [Vec4; 2],
     max_normal_impulse: Vec4,
     normal_mass: Vec4,
-    tangent_mass: [Vec4; 2],
+    /// The point's distance from the patch centre (m): its lever against twist.
+    twist_radius: Vec4,
     rn_a: Vec3x4,
     rn_b: Vec3x4,
     wn_a: Vec3x4,
     wn_b: Vec3x4,
+}
+
+/// A batch's friction patch in each lane: two tangent rows at the centre of the manifold's points and one
+/// twist row about the normal.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(super) struct PatchX4 {
+    /// The patch centre relative to body A's centre of mass (m).
+    center_a: Vec3x4,
+    /// `Σ|ρ|²` over the points, `ρ` a point's offset from the centre (m²).
+    spread: Vec4,
+    tangent_impulse: [Vec4; 2],
+    tangent_mass: [Vec4; 2],
     rt_a: [Vec3x4; 2],
     rt_b: [Vec3x4; 2],
     wt_a: [Vec3x4; 2],
     wt_b: [Vec3x4; 2],
+    twist_impulse: Vec4,
+    twist_mass: Vec4,
+    /// `I⁻¹·n` of each body.
+    twist_a: Vec3x4,
+    twist_b: Vec3x4,
+}
+
+impl PatchX4 {
+    /// No patch: zero impulses (what a batch without one reports).
+    const EMPTY: Self = Self {
+        center_a: Vec3x4::ZERO,
+        spread: Vec4::ZERO,
+        tangent_impulse: [Vec4::ZERO; 2],
+        tangent_mass: [Vec4::ZERO; 2],
+        rt_a: [Vec3x4::ZERO; 2],
+        rt_b: [Vec3x4::ZERO; 2],
+        wt_a: [Vec3x4::ZERO; 2],
+        wt_b: [Vec3x4::ZERO; 2],
+        twist_impulse: Vec4::ZERO,
+        twist_mass: Vec4::ZERO,
+        twist_a: Vec3x4::ZERO,
+        twist_b: Vec3x4::ZERO,
+    };
 }
 
 /// Up to four manifolds without a moving body in common, solved side by side.
@@ -184,6 +241,10 @@ pub(super) struct Batch {
     /// its largest manifold has points.
     first_slot: usize,
     slots: usize,
+    /// The batch's friction patch (index into the solver's patches).
+    patch: usize,
+    /// Whether some lane has two points or more (else no twist row).
+    twist: bool,
     normal: Vec3x4,
     tangents: [Vec3x4; 2],
     friction: Vec4,
@@ -220,11 +281,13 @@ impl Coloring {
         input: &PrepareInput<'_>,
         batches: &mut Vec<Batch>,
         slots: &mut Vec<PointX4>,
+        patches: &mut Vec<PatchX4>,
         scalar: &mut Vec<usize>,
     ) {
         let params = input.params;
         batches.clear();
         slots.clear();
+        patches.clear();
         scalar.clear();
         self.used.clear();
         self.used.resize(params.len(), 0);
@@ -254,7 +317,7 @@ impl Coloring {
                 }
                 self.members[color].push(index);
             }
-            self.flush(chunk, contacts, input, batches, slots);
+            self.flush(chunk, contacts, input, batches, slots, patches);
         }
     }
 
@@ -267,10 +330,11 @@ impl Coloring {
         input: &PrepareInput<'_>,
         batches: &mut Vec<Batch>,
         slots: &mut Vec<PointX4>,
+        patches: &mut Vec<PatchX4>,
     ) {
         for members in &mut self.members {
             for group in members.chunks(LANES) {
-                batches.push(Batch::new(group, contacts, input, slots));
+                batches.push(Batch::new(group, contacts, input, slots, patches));
             }
             members.clear();
         }
@@ -294,6 +358,7 @@ impl Batch {
         contacts: &[PreparedContact],
         input: &PrepareInput<'_>,
         slots: &mut Vec<PointX4>,
+        patches: &mut Vec<PatchX4>,
     ) -> Self {
         let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
         let lanes = [lane(0), lane(1), lane(2), lane(3)];
@@ -327,45 +392,91 @@ impl Batch {
         let invert = |k: Vec4, present: BVec4A| {
             Vec4::select(k.cmpgt(Vec4::ZERO) & present, Vec4::ONE / k, Vec4::ZERO)
         };
+        // The patch centres, and the friction the points carry from the last step, lane by lane; in a batch of
+        // one-point manifolds (a pile of balls), the point itself and its friction — the same bits.
+        let single = slot_count == 1;
+        let mut sums = (!single).then(|| {
+            let sums = lanes.map(|c| {
+                c.map_or([Vec3::ZERO; 3], |c| {
+                    patch_sums(input.contacts[c.source].points())
+                })
+            });
+            [0, 1, 2].map(|k| gather3(&sums, |s| s[k]))
+        });
+        let present = gather1(&headers, |c| c.point_count as f32).cmpgt(Vec4::ZERO);
+        let (mut spread, mut warm_twist) = (Vec4::ZERO, Vec4::ZERO);
         for slot in 0..slot_count {
             let points = lanes.map(|c| c.and_then(|c| input.contacts[c.source].points().get(slot)));
-            let present = BVec4A::from_array(points.map(|p| p.is_some()));
+            let here = BVec4A::from_array(points.map(|p| p.is_some()));
             let point =
                 |f: fn(&ContactPoint) -> Vec3| gather3(&points, |p| p.map_or(Vec3::ZERO, f));
             let (anchor_a, anchor_b) = (point(|p| p.anchor_a), point(|p| p.anchor_b));
+            let friction = point(|p| p.tangent_impulse);
+            let [center_a, _, _] = *sums.get_or_insert([anchor_a, anchor_b, friction]);
             let rn_a = anchor_a.cross(&normal);
             let rn_b = anchor_b.cross(&normal);
             let wn_a = inertia_a.mul(&rn_a);
             let wn_b = inertia_b.mul(&rn_b);
-            let normal_mass = invert(mass_sum + rn_a.dot(&wn_a) + rn_b.dot(&wn_b), present);
-            let mut x4 = PointX4 {
+            let normal_mass = invert(mass_sum + rn_a.dot(&wn_a) + rn_b.dot(&wn_b), here);
+            // A lone point is the centre: no lever, no spread.
+            let rho2 = if single {
+                Vec4::ZERO
+            } else {
+                let rho = anchor_a.sub(&center_a).select(here);
+                warm_twist += rho.cross(&friction).dot(&normal);
+                rho.dot(&rho)
+            };
+            spread += rho2;
+            slots.push(PointX4 {
                 anchor_a,
                 anchor_b,
                 separation: gather1(&points, |p| p.map_or(0.0, |p| p.separation)),
+                normal_impulse: if input.ctx.warm_starting {
+                    gather1(&points, |p| p.map_or(0.0, |p| p.normal_impulse))
+                } else {
+                    Vec4::ZERO
+                },
+                max_normal_impulse: Vec4::ZERO,
                 normal_mass,
+                twist_radius: rho2.sqrt(),
                 rn_a,
                 rn_b,
                 wn_a,
                 wn_b,
-                ..PointX4::default()
-            };
-            for (i, t) in tangents.iter().enumerate() {
-                x4.rt_a[i] = anchor_a.cross(t);
-                x4.rt_b[i] = anchor_b.cross(t);
-                x4.wt_a[i] = inertia_a.mul(&x4.rt_a[i]);
-                x4.wt_b[i] = inertia_b.mul(&x4.rt_b[i]);
-                x4.tangent_mass[i] = invert(
-                    mass_sum + x4.rt_a[i].dot(&x4.wt_a[i]) + x4.rt_b[i].dot(&x4.wt_b[i]),
-                    present,
-                );
-            }
-            if input.ctx.warm_starting {
-                x4.normal_impulse = gather1(&points, |p| p.map_or(0.0, |p| p.normal_impulse));
-                let impulse = point(|p| p.tangent_impulse);
-                x4.tangent_impulse = [impulse.dot(&tangents[0]), impulse.dot(&tangents[1])];
-            }
-            slots.push(x4);
+            });
         }
+        let [center_a, center_b, warm_linear] = sums.unwrap_or([Vec3x4::ZERO; 3]);
+        let twist = lanes.iter().flatten().any(|c| c.point_count > 1);
+        let mut patch = PatchX4 {
+            center_a,
+            spread,
+            ..PatchX4::EMPTY
+        };
+        for (i, t) in tangents.iter().enumerate() {
+            patch.rt_a[i] = center_a.cross(t);
+            patch.rt_b[i] = center_b.cross(t);
+            patch.wt_a[i] = inertia_a.mul(&patch.rt_a[i]);
+            patch.wt_b[i] = inertia_b.mul(&patch.rt_b[i]);
+            patch.tangent_mass[i] = invert(
+                mass_sum + patch.rt_a[i].dot(&patch.wt_a[i]) + patch.rt_b[i].dot(&patch.wt_b[i]),
+                present,
+            );
+        }
+        // A batch of one-point manifolds has no twist row (no lever to resist twist with).
+        if twist {
+            patch.twist_a = inertia_a.mul(&normal);
+            patch.twist_b = inertia_b.mul(&normal);
+            patch.twist_mass = invert(
+                normal.dot(&patch.twist_a) + normal.dot(&patch.twist_b),
+                present,
+            );
+        }
+        if input.ctx.warm_starting {
+            patch.tangent_impulse = [warm_linear.dot(&tangents[0]), warm_linear.dot(&tangents[1])];
+            patch.twist_impulse = warm_twist;
+        }
+        let patch_index = patches.len();
+        patches.push(patch);
         Self {
             contacts: [0, 1, 2, 3].map(|i| group.get(i).copied().unwrap_or(0)),
             lanes: group.len(),
@@ -373,6 +484,8 @@ impl Batch {
             body_b: headers.map(|c| c.body_b),
             first_slot,
             slots: slot_count,
+            patch: patch_index,
+            twist,
             normal,
             tangents,
             friction: gather1(&headers, |c| c.friction),
@@ -390,6 +503,7 @@ impl Batch {
     pub(super) fn solve(
         &self,
         slots: &mut [PointX4],
+        patches: &mut [PatchX4],
         bodies: &mut [SolverBody],
         ctx: &StepContext,
         bias: Bias,
@@ -413,6 +527,8 @@ impl Batch {
         let one = Vec4::ONE;
         let inv_h = Vec4::splat(ctx.inv_h);
         let max_push = Vec4::splat(-ctx.max_push_out_speed);
+        let mut total = zero;
+        let mut twist_total = zero;
         for p in points.iter_mut() {
             let s = p.separation + shift + turn_b.dot(&p.anchor_b) - turn_a.dot(&p.anchor_a);
             let vn = normal.dot(&vb.sub(&va)) + wb.dot(&p.rn_b) - wa.dot(&p.rn_a);
@@ -430,6 +546,8 @@ impl Batch {
             let accumulated = (p.normal_impulse + delta).max(zero);
             let applied = accumulated - p.normal_impulse;
             p.normal_impulse = accumulated;
+            total += accumulated;
+            twist_total += accumulated * p.twist_radius;
             p.max_normal_impulse = p.max_normal_impulse.max(applied);
             va.sub_scaled(&normal, applied * self.inv_mass_a);
             vb.add_scaled(&normal, applied * self.inv_mass_b);
@@ -437,17 +555,18 @@ impl Batch {
             wb.add_scaled(&p.wn_b, applied);
         }
         let [t0, t1] = self.tangents;
-        for p in points.iter_mut() {
+        // The patch's rows, limited by this pass's normal impulses.
+        if let Some(p) = patches.get_mut(self.patch) {
             let dv = vb.sub(&va);
             let vt0 = t0.dot(&dv) + wb.dot(&p.rt_b[0]) - wa.dot(&p.rt_a[0]);
             let vt1 = t1.dot(&dv) + wb.dot(&p.rt_b[1]) - wa.dot(&p.rt_a[1]);
             let x = p.tangent_impulse[0] - p.tangent_mass[0] * vt0;
             let y = p.tangent_impulse[1] - p.tangent_mass[1] * vt1;
             // Clamp to the friction circle (glam's `clamp_length_max`, lane by lane).
-            let limit = self.friction * p.normal_impulse;
+            let limit = self.friction * total;
             let length_squared = x * x + y * y;
             let slipping = length_squared.cmpgt(limit * limit);
-            // Most points of a resting pile stick: the square root and division (a long dependency chain)
+            // Most patches of a resting pile stick: the square root and division (a long dependency chain)
             // only when some lane slips. Multiplying by the kept lanes' 1 changes no bit, so this is the
             // unbranched clamp's result.
             let (x, y) = if slipping.any() {
@@ -465,29 +584,49 @@ impl Batch {
             wa.sub_scaled(&p.wt_a[1], ay);
             wb.add_scaled(&p.wt_b[0], ax);
             wb.add_scaled(&p.wt_b[1], ay);
+            if self.twist {
+                let spin = normal.dot(&wb.sub(&wa));
+                let limit = self.friction * twist_total;
+                let candidate = (p.twist_impulse - p.twist_mass * spin)
+                    .max(-limit)
+                    .min(limit);
+                let applied = candidate - p.twist_impulse;
+                p.twist_impulse = candidate;
+                wa.sub_scaled(&p.twist_a, applied);
+                wb.add_scaled(&p.twist_b, applied);
+            }
         }
         self.scatter(bodies, &va, &wa, &vb, &wb);
     }
 
     /// Stage *warm start* for the batch's manifolds: applies their accumulated impulses again.
-    pub(super) fn warm_start(&self, slots: &[PointX4], bodies: &mut [SolverBody]) {
+    pub(super) fn warm_start(
+        &self,
+        slots: &[PointX4],
+        patches: &[PatchX4],
+        bodies: &mut [SolverBody],
+    ) {
         let (mut va, mut wa, mut vb, mut wb) = self.gather(bodies);
-        let [t0, t1] = self.tangents;
         for p in &slots[self.first_slot..][..self.slots] {
+            va.sub_scaled(&self.normal, p.normal_impulse * self.inv_mass_a);
+            vb.add_scaled(&self.normal, p.normal_impulse * self.inv_mass_b);
+            wa.sub_scaled(&p.wn_a, p.normal_impulse);
+            wb.add_scaled(&p.wn_b, p.normal_impulse);
+        }
+        if let Some(p) = patches.get(self.patch) {
+            let [t0, t1] = self.tangents;
             let [x, y] = p.tangent_impulse;
-            let linear = self
-                .normal
-                .scale(p.normal_impulse)
-                .add(&t0.scale(x))
-                .add(&t1.scale(y));
+            let linear = t0.scale(x).add(&t1.scale(y));
             va.sub_scaled(&linear, self.inv_mass_a);
             vb.add_scaled(&linear, self.inv_mass_b);
-            wa.sub_scaled(&p.wn_a, p.normal_impulse);
             wa.sub_scaled(&p.wt_a[0], x);
             wa.sub_scaled(&p.wt_a[1], y);
-            wb.add_scaled(&p.wn_b, p.normal_impulse);
             wb.add_scaled(&p.wt_b[0], x);
             wb.add_scaled(&p.wt_b[1], y);
+            if self.twist {
+                wa.sub_scaled(&p.twist_a, p.twist_impulse);
+                wb.add_scaled(&p.twist_b, p.twist_impulse);
+            }
         }
         self.scatter(bodies, &va, &wa, &vb, &wb);
     }
@@ -560,23 +699,37 @@ impl Batch {
         }
     }
 
-    /// For each lane: the manifold's index, and per point its accumulated normal impulse, tangent impulse
-    /// (in the manifold's tangent basis) and largest applied normal impulse.
+    /// For each lane: the manifold's index, and per point its accumulated normal impulse, its share of the
+    /// patch's friction (world vector, [`PatchShare`]) and its largest applied normal impulse.
     pub(super) fn results<'a>(
         &'a self,
         slots: &'a [PointX4],
+        patches: &'a [PatchX4],
         contacts: &'a [PreparedContact],
-    ) -> impl Iterator<Item = (usize, impl Iterator<Item = (f32, [f32; 2], f32)> + 'a)> + 'a {
+    ) -> impl Iterator<Item = (usize, impl Iterator<Item = (f32, Vec3, f32)> + 'a)> + 'a {
         let points = &slots[self.first_slot..][..self.slots];
+        let patch = patches.get(self.patch).unwrap_or(&PatchX4::EMPTY);
         self.contacts[..self.lanes]
             .iter()
             .enumerate()
             .map(move |(lane, &index)| {
-                let count = contacts[index].point_count;
-                let impulses = points[..count].iter().map(move |w| {
+                let c = &contacts[index];
+                let share = PatchShare::new(
+                    c.normal,
+                    c.tangents,
+                    [
+                        patch.tangent_impulse[0][lane],
+                        patch.tangent_impulse[1][lane],
+                    ],
+                    patch.twist_impulse[lane],
+                    patch.spread[lane],
+                    c.point_count,
+                );
+                let center = patch.center_a.lane(lane);
+                let impulses = points[..c.point_count].iter().map(move |w| {
                     (
                         w.normal_impulse[lane],
-                        [w.tangent_impulse[0][lane], w.tangent_impulse[1][lane]],
+                        share.at(w.anchor_a.lane(lane) - center),
                         w.max_normal_impulse[lane],
                     )
                 });
@@ -592,6 +745,7 @@ const EMPTY_LANE: PreparedContact = PreparedContact {
     body_b: 0,
     first_point: 0,
     point_count: 0,
+    patch: 0,
     rolling: None,
     normal: Vec3::ZERO,
     tangents: [Vec3::ZERO; 2],
@@ -751,30 +905,37 @@ mod tests {
         for batch in &solver.batches {
             for (l, &index) in batch.contacts[..batch.lanes].iter().enumerate() {
                 let c = &solver.contacts[index];
-                for (k, point) in contacts[c.source].points().iter().enumerate() {
-                    let scalar = input.point(c, point);
+                let points = contacts[c.source].points();
+                let lane_of = |v: &super::Vec3x4| v.lane(l);
+                let patch = input.patch(c, points);
+                let x4 = &solver.patches_x4[batch.patch];
+                assert_eq!(bits(lane_of(&x4.center_a)), bits(patch.center_a));
+                assert_eq!(bits(lane_of(&x4.wt_a[0])), bits(patch.wt_a[0]));
+                assert_eq!(bits(lane_of(&x4.wt_b[1])), bits(patch.wt_b[1]));
+                assert_eq!(bits(lane_of(&x4.twist_b)), bits(patch.twist_b));
+                for (wide, scalar) in [
+                    (x4.spread, patch.spread),
+                    (x4.tangent_mass[0], patch.tangent_mass[0]),
+                    (x4.tangent_mass[1], patch.tangent_mass[1]),
+                    (x4.tangent_impulse[0], patch.tangent_impulse.x),
+                    (x4.tangent_impulse[1], patch.tangent_impulse.y),
+                    (x4.twist_impulse, patch.twist_impulse),
+                    (x4.twist_mass, patch.twist_mass),
+                ] {
+                    assert_eq!(wide[l].to_bits(), scalar.to_bits());
+                }
+                for (k, point) in points.iter().enumerate() {
+                    let scalar = input.point(c, point, patch.center_a);
                     let slot = &solver.slots[batch.first_slot + k];
-                    let lane_of = |v: &super::Vec3x4| v.lanes()[l];
                     assert_eq!(bits(lane_of(&slot.wn_a)), bits(scalar.wn_a));
                     assert_eq!(bits(lane_of(&slot.wn_b)), bits(scalar.wn_b));
-                    assert_eq!(bits(lane_of(&slot.wt_b[1])), bits(scalar.wt_b[1]));
-                    assert_eq!(slot.normal_mass[l].to_bits(), scalar.normal_mass.to_bits());
-                    assert_eq!(
-                        slot.tangent_mass[0][l].to_bits(),
-                        scalar.tangent_mass[0].to_bits()
-                    );
-                    assert_eq!(
-                        slot.tangent_mass[1][l].to_bits(),
-                        scalar.tangent_mass[1].to_bits()
-                    );
-                    assert_eq!(
-                        slot.normal_impulse[l].to_bits(),
-                        scalar.normal_impulse.to_bits()
-                    );
-                    assert_eq!(
-                        slot.tangent_impulse[1][l].to_bits(),
-                        scalar.tangent_impulse.y.to_bits()
-                    );
+                    for (wide, scalar) in [
+                        (slot.normal_mass, scalar.normal_mass),
+                        (slot.normal_impulse, scalar.normal_impulse),
+                        (slot.twist_radius, scalar.twist_radius),
+                    ] {
+                        assert_eq!(wide[l].to_bits(), scalar.to_bits());
+                    }
                     compared += 1;
                 }
             }
