@@ -371,17 +371,15 @@ impl ContactSolver {
         }
         for c in self.scalar.iter().map(|&i| &self.contacts[i]) {
             let (mut a, mut b) = (bodies[c.body_a], bodies[c.body_b]);
+            // All normal impulses act along n: their sum moves the linear velocities once (as the wide path).
+            let mut pushed = 0.0;
             for p in &self.points[c.first_point..c.first_point + c.point_count] {
-                apply_normal(
-                    &mut a,
-                    &mut b,
-                    c.inv_mass_a,
-                    c.inv_mass_b,
-                    c.normal,
-                    p,
-                    p.normal_impulse,
-                );
+                pushed += p.normal_impulse;
+                a.angular_velocity -= p.wn_a * p.normal_impulse;
+                b.angular_velocity += p.wn_b * p.normal_impulse;
             }
+            a.linear_velocity -= c.normal * (pushed * c.inv_mass_a);
+            b.linear_velocity += c.normal * (pushed * c.inv_mass_b);
             if let Some(patch) = self.patches.get(c.patch) {
                 patch.warm_start(c, &mut a, &mut b);
             }
@@ -417,11 +415,14 @@ impl ContactSolver {
             let turn_b = rotate_inverse(b.delta_rotation, normal) - normal;
             // Σλ_n and Σλ_n·|ρ| after the normal rows: the friction patch's limits.
             let (mut total, mut twist_total) = (0.0, 0.0);
+            // The normal rows change the linear velocities only along n: carry `u = n·(v_b − v_a)` and the
+            // sum of the applied impulses, applied to the velocities once after the rows (as the wide path).
+            let mut u = normal.dot(b.linear_velocity - a.linear_velocity);
+            let u_gain = (c.inv_mass_a + c.inv_mass_b) * normal.dot(normal);
+            let mut pushed = 0.0;
             for p in points.iter_mut() {
                 let s = p.separation + shift + turn_b.dot(p.anchor_b) - turn_a.dot(p.anchor_a);
-                let vn = normal.dot(b.linear_velocity - a.linear_velocity)
-                    + b.angular_velocity.dot(p.rn_b)
-                    - a.angular_velocity.dot(p.rn_a);
+                let vn = u + b.angular_velocity.dot(p.rn_b) - a.angular_velocity.dot(p.rn_a);
                 // The approach speed restitution reverses is the fastest seen before an impulse acted, in any
                 // pass: a falling body keeps accelerating after the step began, and a ball struck by its
                 // neighbour in a row approaches the next only once struck.
@@ -447,15 +448,10 @@ impl ContactSolver {
                     p.normal_impulse = 0.0;
                     let impulse = (-p.normal_mass * (vn - bounce)).max(0.0);
                     p.max_normal_impulse = p.max_normal_impulse.max(impulse);
-                    apply_normal(
-                        &mut a,
-                        &mut b,
-                        c.inv_mass_a,
-                        c.inv_mass_b,
-                        normal,
-                        p,
-                        impulse,
-                    );
+                    pushed += impulse;
+                    u += impulse * u_gain;
+                    a.angular_velocity -= p.wn_a * impulse;
+                    b.angular_velocity += p.wn_b * impulse;
                     continue;
                 }
                 let (velocity_bias, mass_scale, impulse_scale) = if s > 0.0 {
@@ -477,16 +473,13 @@ impl ContactSolver {
                 total += accumulated;
                 twist_total += accumulated * p.twist_radius;
                 p.max_normal_impulse = p.max_normal_impulse.max(applied);
-                apply_normal(
-                    &mut a,
-                    &mut b,
-                    c.inv_mass_a,
-                    c.inv_mass_b,
-                    normal,
-                    p,
-                    applied,
-                );
+                pushed += applied;
+                u += applied * u_gain;
+                a.angular_velocity -= p.wn_a * applied;
+                b.angular_velocity += p.wn_b * applied;
             }
+            a.linear_velocity -= normal * (pushed * c.inv_mass_a);
+            b.linear_velocity += normal * (pushed * c.inv_mass_b);
             if let Some(patch) = self.patches.get_mut(c.patch) {
                 patch.solve(c, &mut a, &mut b, total, twist_total);
             }
@@ -795,22 +788,6 @@ fn angular_mass(k: Mat3) -> Mat3 {
         invert(k.y_axis.y),
         invert(k.z_axis.z),
     ))
-}
-
-#[inline]
-fn apply_normal(
-    a: &mut SolverBody,
-    b: &mut SolverBody,
-    inv_mass_a: f32,
-    inv_mass_b: f32,
-    normal: Vec3,
-    p: &PreparedPoint,
-    impulse: f32,
-) {
-    a.linear_velocity -= normal * (impulse * inv_mass_a);
-    b.linear_velocity += normal * (impulse * inv_mass_b);
-    a.angular_velocity -= p.wn_a * impulse;
-    b.angular_velocity += p.wn_b * impulse;
 }
 
 /// Writes two solver bodies back. A fixed body's copy is written too, unchanged (its inverse mass and inertia

@@ -529,9 +529,15 @@ impl Batch {
         let max_push = Vec4::splat(-ctx.max_push_out_speed);
         let mut total = zero;
         let mut twist_total = zero;
+        // The normal rows change the linear velocities only along n: the loop carries `u = n·(v_b − v_a)` and
+        // the sum of the applied impulses, and the velocities take that sum once after it (fewer live
+        // registers in the loop; the scalar path does the same).
+        let mut u = normal.dot(&vb.sub(&va));
+        let u_gain = (self.inv_mass_a + self.inv_mass_b) * normal.dot(&normal);
+        let mut pushed = zero;
         for p in points.iter_mut() {
             let s = p.separation + shift + turn_b.dot(&p.anchor_b) - turn_a.dot(&p.anchor_a);
-            let vn = normal.dot(&vb.sub(&va)) + wb.dot(&p.rn_b) - wa.dot(&p.rn_a);
+            let vn = u + wb.dot(&p.rn_b) - wa.dot(&p.rn_a);
             let speculative: BVec4A = s.cmpgt(zero);
             let (velocity_bias, mass_scale, impulse_scale) = match bias {
                 Bias::On => (
@@ -549,11 +555,13 @@ impl Batch {
             total += accumulated;
             twist_total += accumulated * p.twist_radius;
             p.max_normal_impulse = p.max_normal_impulse.max(applied);
-            va.sub_scaled(&normal, applied * self.inv_mass_a);
-            vb.add_scaled(&normal, applied * self.inv_mass_b);
+            pushed += applied;
+            u += applied * u_gain;
             wa.sub_scaled(&p.wn_a, applied);
             wb.add_scaled(&p.wn_b, applied);
         }
+        va.sub_scaled(&normal, pushed * self.inv_mass_a);
+        vb.add_scaled(&normal, pushed * self.inv_mass_b);
         let [t0, t1] = self.tangents;
         // The patch's rows, limited by this pass's normal impulses.
         if let Some(p) = patches.get_mut(self.patch) {
@@ -607,12 +615,15 @@ impl Batch {
         bodies: &mut [SolverBody],
     ) {
         let (mut va, mut wa, mut vb, mut wb) = self.gather(bodies);
+        // All normal impulses act along n: their sum moves the linear velocities once.
+        let mut pushed = Vec4::ZERO;
         for p in &slots[self.first_slot..][..self.slots] {
-            va.sub_scaled(&self.normal, p.normal_impulse * self.inv_mass_a);
-            vb.add_scaled(&self.normal, p.normal_impulse * self.inv_mass_b);
+            pushed += p.normal_impulse;
             wa.sub_scaled(&p.wn_a, p.normal_impulse);
             wb.add_scaled(&p.wn_b, p.normal_impulse);
         }
+        va.sub_scaled(&self.normal, pushed * self.inv_mass_a);
+        vb.add_scaled(&self.normal, pushed * self.inv_mass_b);
         if let Some(p) = patches.get(self.patch) {
             let [t0, t1] = self.tangents;
             let [x, y] = p.tangent_impulse;
