@@ -129,11 +129,13 @@ impl BodyParams {
             (BodyType::Dynamic, Integrator::ExplicitEuler) => Motion::DynamicExplicit,
         };
         let mass = body.mass_properties();
+        // Inverted once (it is not stored): `RigidBody::inv_inertia_world` would invert it again.
+        let local_inv_inertia = body.local_inv_inertia();
         Self {
             inv_mass: body.inv_mass(),
-            inv_inertia_world: inertia::rotate_inertia(body.rotation(), body.local_inv_inertia()),
+            inv_inertia_world: inertia::rotate_inertia(body.rotation(), local_inv_inertia),
             local_inertia: mass.local_inertia(),
-            local_inv_inertia: body.local_inv_inertia(),
+            local_inv_inertia,
             rotation: body.rotation(),
             center_of_mass: body.center_of_mass(),
             local_center_of_mass: mass.local_center_of_mass(),
