@@ -196,6 +196,7 @@ fn metric_names_are_the_rapier_sides() {
                 "top_dy",
                 "max_horiz_drift",
                 "max_z_drift",
+                "max_z_drift_run",
                 "standing",
             ],
         ),
