@@ -473,6 +473,11 @@ impl JointSolver {
         if !self.settings.tethers {
             return;
         }
+        // Every joint on one directly solved path (a rope chain, a bridge): each body's way to a fixed body
+        // runs along that path alone, so the search would make no tether (see `crate::tether`).
+        if self.paths.len() == 1 && self.path_joints.len() == self.joints.len() {
+            return;
+        }
         self.edges.clear();
         self.edges.extend(self.joints.iter().map(|j| Edge {
             index_a: j.pair.index_a,
