@@ -653,6 +653,19 @@ impl Patch {
     /// Applies the accumulated friction impulses again (stage *warm start*).
     fn warm_start(&self, c: &PreparedContact, a: &mut SolverBody, b: &mut SolverBody) {
         let [x, y] = self.tangent_impulse.to_array();
+        self.apply_tangent(c, a, b, x, y);
+        self.apply_twist(a, b, self.twist_impulse);
+    }
+
+    /// Applies the tangent impulses `x` and `y` (N·s, along the manifold's tangents) at the patch centre.
+    fn apply_tangent(
+        &self,
+        c: &PreparedContact,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        x: f32,
+        y: f32,
+    ) {
         let linear = c.tangents[0] * x + c.tangents[1] * y;
         a.linear_velocity -= linear * c.inv_mass_a;
         b.linear_velocity += linear * c.inv_mass_b;
@@ -660,8 +673,12 @@ impl Patch {
         a.angular_velocity -= self.wt_a[1] * y;
         b.angular_velocity += self.wt_b[0] * x;
         b.angular_velocity += self.wt_b[1] * y;
-        a.angular_velocity -= self.twist_a * self.twist_impulse;
-        b.angular_velocity += self.twist_b * self.twist_impulse;
+    }
+
+    /// Applies the twist impulse `impulse` (N·m·s, about the normal).
+    fn apply_twist(&self, a: &mut SolverBody, b: &mut SolverBody, impulse: f32) {
+        a.angular_velocity -= self.twist_a * impulse;
+        b.angular_velocity += self.twist_b * impulse;
     }
 
     /// One pass of the patch's rows after the normal rows: the tangent impulse clamped to the circle of radius
@@ -692,13 +709,7 @@ impl Patch {
         }
         let (ax, ay) = (x - self.tangent_impulse.x, y - self.tangent_impulse.y);
         self.tangent_impulse = Vec2::new(x, y);
-        let linear = t0 * ax + t1 * ay;
-        a.linear_velocity -= linear * c.inv_mass_a;
-        b.linear_velocity += linear * c.inv_mass_b;
-        a.angular_velocity -= self.wt_a[0] * ax;
-        a.angular_velocity -= self.wt_a[1] * ay;
-        b.angular_velocity += self.wt_b[0] * ax;
-        b.angular_velocity += self.wt_b[1] * ay;
+        self.apply_tangent(c, a, b, ax, ay);
         if c.point_count > 1 {
             let spin = c.normal.dot(b.angular_velocity - a.angular_velocity);
             let limit = c.friction * twist_total;
@@ -707,8 +718,7 @@ impl Patch {
                 .min(limit);
             let applied = candidate - self.twist_impulse;
             self.twist_impulse = candidate;
-            a.angular_velocity -= self.twist_a * applied;
-            b.angular_velocity += self.twist_b * applied;
+            self.apply_twist(a, b, applied);
         }
     }
 }
