@@ -486,7 +486,7 @@ fn a_box_sliding_at_5_m_s_stops_after_v_squared_over_2_mu_g() {
 /// Friction against twist: a cube resting on its face and spinning about the vertical. Its four corner
 /// contacts each carry `m·g/4` and slide at `ω·d` (`d = h·√2`, half-extent `h`), so Coulomb friction brakes it
 /// with the torque `μ·m·g·d` — what per-point friction gives and what the friction patch's twist row is limited
-/// to (`docs/physics.md`, "Friction patch"). With `I = (2/3)·m·h²` the spin slows at `α = 3·μ·g·d/(2·h²)`,
+/// to (`docs/physics.md`, Contacts, "Friction"). With `I = (2/3)·m·h²` the spin slows at `α = 3·μ·g·d/(2·h²)`,
 /// stops after turning `ω₀²/(2α)` and stays stopped; no net force moves the centre.
 #[test]
 fn a_cube_spinning_on_its_face_stops_after_turning_omega_squared_over_2_alpha() {

@@ -170,7 +170,7 @@ struct PreparedPoint {
 }
 
 /// A manifold's friction patch: two tangent rows at the centre of its points and one twist row about the
-/// normal, in place of two tangent rows per point (`docs/physics.md`, "Friction patch").
+/// normal, in place of two tangent rows per point (`docs/physics.md`, Contacts, "Friction").
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct Patch {
     /// The centre `c` of the points, relative to body A's centre of mass (m).
