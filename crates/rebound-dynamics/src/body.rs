@@ -293,8 +293,12 @@ impl RigidBody {
     /// Centre of mass in world space (m).
     #[must_use]
     pub fn center_of_mass(&self) -> Vec3 {
-        self.pose
-            .transform_point(self.mass_properties.local_center_of_mass())
+        let local = self.mass_properties.local_center_of_mass();
+        // Most bodies are centred on their centre of mass (every primitive shape is): no rotation to do.
+        if local == Vec3::ZERO {
+            return self.pose.position;
+        }
+        self.pose.transform_point(local)
     }
 
     /// Velocity of the centre of mass (m/s).
