@@ -774,12 +774,9 @@ fn approach_speed(
     a: &rebound_dynamics::RigidBody,
     b: &rebound_dynamics::RigidBody,
 ) -> f32 {
-    // `RigidBody::velocity_at_point` with the centres of mass once per manifold, not twice per point.
-    let (center_a, center_b) = (a.center_of_mass(), b.center_of_mass());
     m.points().iter().fold(0.0f32, |speed, p| {
         let world = a.pose().transform_point(p.local_anchor_a);
-        let velocity_a = a.linear_velocity() + a.angular_velocity().cross(world - center_a);
-        let velocity_b = b.linear_velocity() + b.angular_velocity().cross(world - center_b);
-        speed.max(-(velocity_b - velocity_a).dot(m.normal))
+        let closing = -(b.velocity_at_point(world) - a.velocity_at_point(world)).dot(m.normal);
+        speed.max(closing)
     })
 }
