@@ -192,7 +192,7 @@ pub(super) struct PointX4 {
 
 /// A batch's friction patch in each lane: two tangent rows at the centre of the manifold's points and one
 /// twist row about the normal.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct PatchX4 {
     /// The patch centre relative to body A's centre of mass (m).
     center_a: Vec3x4,
