@@ -341,21 +341,26 @@ fn row_self_coupling(row: &Row, turned: [Vec3; 2], mass_a: &InvMass, mass_b: &In
 }
 
 /// The rows one joint contributes to a pass, with its bodies' inverse masses.
+///
+/// Laid out in the order a pass reads it (`repr(C)`: the compiler would otherwise order fields by alignment):
+/// the masses, the per-row scalars, the turned vectors, then the rows. A one-row link (a rope of a chain)
+/// touches the first six cache lines and nothing after its first row; see [`Link`] for why that matters.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub(crate) struct JointRows {
-    pub rows: [Row; MAX_ROWS],
-    /// `[I_a⁻¹·J_a,angular, I_b⁻¹·J_b,angular]` of each row, turned once when the row is pushed (with the
-    /// masses given to [`JointRows::new`] or [`Link::reset`], which no row outlives).
-    turned: [[Vec3; 2]; MAX_ROWS],
-    /// Each row's position error `C` (m or rad) and how its target follows from it (see [`TargetRule`]).
-    errors: [(f32, TargetRule); MAX_ROWS],
+    pub count: usize,
+    pub mass_a: InvMass,
+    pub mass_b: InvMass,
     /// `J·M⁻¹·Jᵀ` of each row bounded at 0 (a rope, a limit), computed once when the row is pushed: the
     /// activation of every pass at the pose reads it ([`Link::activate`]); `None` for the other rows, whose
     /// value is computed where it is needed ([`JointRows::self_coupling`]).
     bounded_couplings: [Option<f32>; MAX_ROWS],
-    pub count: usize,
-    pub mass_a: InvMass,
-    pub mass_b: InvMass,
+    /// Each row's position error `C` (m or rad) and how its target follows from it (see [`TargetRule`]).
+    errors: [(f32, TargetRule); MAX_ROWS],
+    /// `[I_a⁻¹·J_a,angular, I_b⁻¹·J_b,angular]` of each row, turned once when the row is pushed (with the
+    /// masses given to [`JointRows::new`] or [`Link::reset`], which no row outlives).
+    turned: [[Vec3; 2]; MAX_ROWS],
+    pub rows: [Row; MAX_ROWS],
 }
 
 impl JointRows {
@@ -481,9 +486,18 @@ pub(crate) fn equality_violation(errors: &[(f32, TargetRule)], stage: &Stage) ->
 
 /// One link of a path as the direct solve sees it: the joint's rows, which of its bodies it shares with the
 /// next link (`true` = body B), its accumulated impulses and which rows take part.
+///
+/// Laid out hot fields first (`repr(C)`): what every pass reads of every link — impulses, active set, the
+/// keys of the kept rows and factorisation, the scalar sweep's entries, then the rows ([`JointRows`], also
+/// ordered so) — and the 5 × 5 blocks of the block sweep last. A link is about 2 kB; a 500-rope chain's links
+/// are a megabyte, far more than the first-level cache, and each pass sweeps them several times (rows and
+/// activation, forward and back substitution, the active-set check, the update). With the blocks' `[0][0]`
+/// entries serving the scalar sweep and the compiler's field order, a one-row link spread its reads over
+/// some twenty cache lines; packed, about ten (`docs/performance.md`, tenth session: first-level misses of
+/// the SCENES.md chain).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub(crate) struct Link {
-    pub rows: JointRows,
     pub lambda: [f32; MAX_ROWS],
     pub active: [bool; MAX_ROWS],
     /// The side of this joint on the body shared with the next link, and the side of the next link on it.
@@ -491,33 +505,48 @@ pub(crate) struct Link {
     /// Whether this is a position projection: the rows' biases hold their position errors `C`, the solve is
     /// `K·x = C` and the result moves the bodies instead of changing their velocities.
     positions: bool,
+    /// What the factorisation (`scalar`, or `factor`, `v`, `w`, `inv_pivot` and the blocks) was made for;
+    /// `None` when it is stale.
+    factored: Option<FactorKey>,
+    /// The scalar sweep's entries of a one-row link ([`solve_scalar_path`]).
+    scalar: ScalarEntries,
+    /// The pose the rows were built at ([`PoseKey`]); `None` when the rows are to be built.
+    pose: Option<PoseKey>,
+    pub rows: JointRows,
     /// Each row's compliance in a position projection (1/kg, added to its diagonal of `K`): that of the rows
     /// that stiffen a pulled rope or rod against turning ([`Link::stiffen`]), 0 for every other row. Set by
     /// [`Link::make_positional`] and read only while `positions` holds.
     compliance: [Real; MAX_ROWS],
-    /// Scratch of the Thomas sweep (see [`solve_block_path`]): the strictly lower part of the unit lower
-    /// triangular `L` of `Sᵢ = L·D·Lᵀ`, then `V = D⁻¹·L⁻¹·Cᵢ` and `y = D⁻¹·L⁻¹·r̃ᵢ`. For a one-row link (the
-    /// scalar sweep) `L` is 1 and `V`, `y` are the single entries `c' = c/s`, `r' = r̃/s`.
+    /// Scratch of the block Thomas sweep (see [`solve_block_path`]): the strictly lower part of the unit
+    /// lower triangular `L` of `Sᵢ = L·D·Lᵀ`, then `V = D⁻¹·L⁻¹·Cᵢ` and `y = D⁻¹·L⁻¹·r̃ᵢ`.
+    y: [Real; MAX_ROWS],
+    inv_pivot: [Real; MAX_ROWS],
     factor: Block,
     v: Block,
-    y: [Real; MAX_ROWS],
     /// The rest of the factorisation, kept for the next pass ([`FactorKey`]): the link's blocks `B` and `C`
-    /// (`K·λ` of a soft row reads them), `W = L⁻¹·C` (the next link's forward step reads it) and `D⁻¹`. For
-    /// a one-row link `B`, `C` and `factor` hold the single entries `b`, `c` and the Schur complement `s` of
-    /// the scalar sweep (0 for a vanishing pivot).
+    /// (`K·λ` of a soft row reads them), `W = L⁻¹·C` (the next link's forward step reads it) and `D⁻¹`
+    /// (`inv_pivot`).
+    w: Block,
     b_block: Block,
     c_block: Block,
-    w: Block,
-    inv_pivot: [Real; MAX_ROWS],
     /// The Jacobians of the first [`LANES`] rows four lanes wide, lane `k` holding row `k`: for `a.linear`,
     /// `a.angular`, `b.linear` and `b.angular` in turn, their x, y and z components. The block sweep's
     /// residuals read them ([`Link::residual`]); they are made with the blocks ([`Link::fill_lanes`]),
     /// which are made again whenever the rows are.
     lanes: [[Vec4; 3]; 4],
-    /// What `factor`, `v`, `w`, `inv_pivot` and the blocks were made for; `None` when they are stale.
-    factored: Option<FactorKey>,
-    /// The pose the rows were built at ([`PoseKey`]); `None` when the rows are to be built.
-    pose: Option<PoseKey>,
+}
+
+/// The entries of the scalar Thomas sweep of a one-row link ([`solve_scalar_path`]): its row's regularised
+/// `K` entry `b` (1 for a row not in the system), the coupling `c` with the next link, the reciprocal `1/s`
+/// of the Schur complement `s` (0 for a vanishing pivot), `c' = c/s` and `r' = r̃/s`. All but `r'` are kept
+/// while the link's [`FactorKey`] holds.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct ScalarEntries {
+    b: Real,
+    c: Real,
+    inv_s: Real,
+    c_prime: Real,
+    r_prime: Real,
 }
 
 impl Link {
@@ -530,6 +559,7 @@ impl Link {
             shared_with_next: None,
             positions: false,
             compliance: [0.0; MAX_ROWS],
+            scalar: ScalarEntries::default(),
             factor: [[0.0; MAX_ROWS]; MAX_ROWS],
             v: [[0.0; MAX_ROWS]; MAX_ROWS],
             y: [0.0; MAX_ROWS],
@@ -1462,7 +1492,7 @@ fn solve_scalar_path<'b>(
     let stale = first_stale(links, 1, start);
     // Forward sweep: c'ᵢ = cᵢ/sᵢ, r'ᵢ = (r̃ᵢ − cᵢ₋₁·r'ᵢ₋₁)/sᵢ with sᵢ = bᵢ − cᵢ₋₁·c'ᵢ₋₁ and r̃ the soft
     // right-hand side of `solve_path`; bᵢ is the row's regularised `K` (1 for a row not in the system).
-    // Link i − 1 holds cᵢ₋₁ (`c_block`), c'ᵢ₋₁ (`v`) and r'ᵢ₋₁ (`y`); `lambda_prev` is λᵢ₋₁.
+    // Link i − 1 holds cᵢ₋₁, c'ᵢ₋₁ and r'ᵢ₋₁ (`scalar`); `lambda_prev` is λᵢ₋₁.
     // The sweep starts at link `start` (see [`Resume`]).
     let mut lambda_prev = start
         .checked_sub(1)
@@ -1482,26 +1512,31 @@ fn solve_scalar_path<'b>(
             };
             let mut s = diagonal;
             if let Some(prev) = i.checked_sub(1).and_then(|p| links.get(p)) {
-                s -= prev.c_block[0][0] * prev.v[0][0];
+                s -= prev.scalar.c * prev.scalar.c_prime;
             }
             let scale = Real::from(link.rows.mass_a.mass.max(link.rows.mass_b.mass));
-            // A vanishing pivot is kept as s = 0 (never a pivot that passes the test: |s| > MIN_POSITIVE).
-            let (s, c_prime) = if s.abs() <= (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE) {
-                (0.0, 0.0)
+            // A vanishing pivot gets 1/s = 0 (never a pivot that passes the test: |s| > MIN_POSITIVE). The
+            // reciprocal is kept so that the sweeps multiply: the forward sweep's chain from link to link is
+            // then a multiply-add, not a division (some 15 cycles of latency each, 500 in a row for a chain).
+            let inv_s = if s.abs() <= (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE) {
+                0.0
             } else {
-                (s, c / s)
+                1.0 / s
             };
             let link = &mut links[i];
-            link.b_block[0][0] = diagonal;
-            link.c_block[0][0] = c;
-            link.factor[0][0] = s;
-            link.v[0][0] = c_prime;
+            link.scalar = ScalarEntries {
+                b: diagonal,
+                c,
+                inv_s,
+                c_prime: c * inv_s,
+                r_prime: link.scalar.r_prime,
+            };
             link.factored = Some(FactorKey::of(link, 1));
         }
         let link = &links[i];
         let active = link.rows.count == 1 && link.active[0];
         let lambda = link.active_lambda()[0];
-        let (diagonal, c) = (link.b_block[0][0], link.c_block[0][0]);
+        let (diagonal, c) = (link.scalar.b, link.scalar.c);
         let prev = i.checked_sub(1).and_then(|p| links.get(p));
         let mut r = if active {
             let row = &link.rows.rows[0];
@@ -1517,7 +1552,7 @@ fn solve_scalar_path<'b>(
                         k_lambda += c * next.active_lambda()[0];
                     }
                     if let Some(prev) = prev {
-                        k_lambda += prev.c_block[0][0] * lambda_prev;
+                        k_lambda += prev.scalar.c * lambda_prev;
                     }
                     rhs += Real::from(softness.impulse_scale) * k_lambda;
                 }
@@ -1527,17 +1562,15 @@ fn solve_scalar_path<'b>(
             0.0
         };
         if let Some(prev) = prev {
-            r -= prev.c_block[0][0] * prev.y[0];
+            r -= prev.scalar.c * prev.scalar.r_prime;
         }
-        let s = link.factor[0][0];
-        let r_prime = if s == 0.0 { 0.0 } else { r / s };
-        links[i].y[0] = r_prime;
+        links[i].scalar.r_prime = r * link.scalar.inv_s;
         lambda_prev = lambda;
     }
     // Back substitution.
     let mut next = 0.0;
     for i in (0..links.len()).rev() {
-        let x = links[i].y[0] - links[i].v[0][0] * next;
+        let x = links[i].scalar.r_prime - links[i].scalar.c_prime * next;
         out[i] = links[i].finish([x, 0.0, 0.0, 0.0, 0.0], uniform);
         next = x;
     }
