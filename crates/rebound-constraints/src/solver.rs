@@ -199,6 +199,9 @@ pub struct JointSolver {
     /// How far (rad) the bodies of a hinge on a path may turn before a velocity pass builds its rows again
     /// instead of carrying them ([`Link::carry`]); 0 builds them at every new pose.
     carry_angle: f32,
+    /// Relax passes since [`JointSolver::prepare`]: the last one of a step (the `substep_count`-th) builds
+    /// every path's rows at the final pose, where the position projection starts.
+    relax_passes: u32,
 }
 
 impl Default for JointSolver {
@@ -222,6 +225,7 @@ impl Default for JointSolver {
             joint_softness: Softness::RIGID,
             h: 0.0,
             carry_angle: CARRY_ANGLE,
+            relax_passes: 0,
         }
     }
 }
@@ -287,6 +291,7 @@ impl JointSolver {
         ctx: &StepContext,
     ) -> usize {
         self.joints.clear();
+        self.relax_passes = 0;
         self.joint_softness = self.settings.joint_softness(ctx);
         self.h = ctx.h;
         let body_count = solver_bodies.len().min(params.len());
@@ -582,6 +587,17 @@ impl JointSolver {
             Bias::On => self.settings.solve_iterations,
             Bias::Off => self.settings.relax_iterations,
         };
+        // The last relax pass of the step builds the paths' rows at the final pose instead of carrying them:
+        // the position projection ([`JointSolver::project_positions`]) starts at that pose and then reuses
+        // the rows and, for paths whose rows all stay in the system (hinges, ball joints, taut ropes), their
+        // factorisation — one factorisation of every such path a step fewer than building them there.
+        let mut carry_angle = self.carry_angle;
+        if bias == Bias::Off {
+            self.relax_passes += 1;
+            if self.relax_passes >= ctx.substep_count {
+                carry_angle = 0.0;
+            }
+        }
         for _ in 0..iterations {
             // Joints on a direct path are solved below, all but a hinge's limit, motor and spring rows (they
             // are not in `iterated`).
@@ -613,7 +629,7 @@ impl JointSolver {
                 }
             }
             for path in 0..self.paths.len() {
-                self.solve_path(path, solver_bodies, &stage);
+                self.solve_path(path, solver_bodies, &stage, carry_angle);
             }
             for t in &mut self.tethers {
                 let Some((mut a, mut b)) = t.pair.load(solver_bodies) else {
@@ -771,7 +787,13 @@ impl JointSolver {
     /// others are built again. The solve keeps each link's factorisation while that link and its neighbours
     /// have the rows, and the rows in the system, it was made for ([`solve_path`]). Both give the bits a
     /// rebuild would.
-    fn solve_path(&mut self, path: usize, solver_bodies: &mut [SolverBody], stage: &Stage) {
+    fn solve_path(
+        &mut self,
+        path: usize,
+        solver_bodies: &mut [SolverBody],
+        stage: &Stage,
+        carry_angle: f32,
+    ) {
         let Some(range) = self.paths.get(path).cloned() else {
             return;
         };
@@ -780,7 +802,6 @@ impl JointSolver {
             path_joints,
             links,
             solution,
-            carry_angle,
             ..
         } = self;
         // `prepare` sized the links to the path members; a solver never prepared has no paths.
@@ -794,10 +815,10 @@ impl JointSolver {
             // The bodies in place serve the rows and the activation.
             match j.pair.bodies_mut(solver_bodies) {
                 Some([a, b]) => {
-                    link_rows(j, Some((&*a, &*b)), stage, link, *carry_angle);
+                    link_rows(j, Some((&*a, &*b)), stage, link, carry_angle);
                     link.activate(a, b);
                 }
-                None => link_rows(j, None, stage, link, *carry_angle),
+                None => link_rows(j, None, stage, link, carry_angle),
             }
         }
         solve_links(joints, members, links, solution, solver_bodies);
@@ -1413,6 +1434,57 @@ mod tests {
     #[test]
     fn passes_that_reuse_rows_and_factorisations_give_the_bits_of_passes_that_rebuild_them() {
         assert_eq!(steps(false), steps(true));
+    }
+
+    /// A deck of hinges between two fixed bodies, sagging under gravity: the relax passes of substeps 1 to 3
+    /// carry the hinges' rows (the planks turn by less than the carry angle a substep), the last relax pass
+    /// of the step builds them at the final pose, so that the projection finds every link's rows (and their
+    /// factorisation) made at its pose.
+    #[test]
+    fn the_last_relax_pass_builds_the_rows_the_projection_reuses() {
+        let mut bodies = vec![RigidBody::new(&BodyDesc::fixed()).unwrap()];
+        for k in 1..=4 {
+            let plank = BodyDesc::dynamic()
+                .with_position(Vec3::new(k as f32 - 0.5, 0.0, 0.0))
+                .with_mass_properties(
+                    MassProperties::new(1.0, Vec3::ZERO, Vec3::new(0.1, 0.2, 0.3)).unwrap(),
+                );
+            bodies.push(RigidBody::new(&plank).unwrap());
+        }
+        let right = BodyDesc::fixed().with_position(Vec3::new(3.9, 0.0, 0.0));
+        bodies.push(RigidBody::new(&right).unwrap());
+        let joints: Vec<Joint> = (0..5)
+            .map(|k| {
+                let a = if k == 0 { 0.0 } else { 0.5 };
+                let b = if k == 4 { 0.0 } else { -0.5 };
+                Joint::new(HingeJoint::new())
+                    .with_local_anchors(Vec3::new(a, 0.0, 0.0), Vec3::new(b, 0.0, 0.0))
+                    .unwrap()
+                    .with_local_axes(Vec3::Z, Vec3::Z)
+                    .unwrap()
+            })
+            .collect();
+        let pairs: Vec<JointBodies> = (0..5).map(|k| JointBodies { a: k, b: k + 1 }).collect();
+        let states = vec![JointState::default(); joints.len()];
+        let settings = SolverSettings::default();
+        let ctx = StepContext::new(1.0 / 60.0, &settings);
+        let mut solver = JointSolver::new();
+        let mut solver_bodies: Vec<SolverBody> = bodies.iter().map(SolverBody::from_body).collect();
+        let params: Vec<BodyParams> = bodies.iter().map(BodyParams::from_body).collect();
+        let skipped = solver.prepare(&joints, &states, &pairs, &solver_bodies, &params, &ctx);
+        assert_eq!((skipped, solver.paths.len()), (0, 1));
+        let mut after_relax = Vec::new();
+        for _ in 0..ctx.substep_count {
+            integrate_velocities(&mut solver_bodies, &params, &ctx);
+            solver.warm_start(&mut solver_bodies);
+            solver.solve(&mut solver_bodies, &ctx, Bias::On);
+            integrate_positions(&mut solver_bodies, &params, &ctx);
+            solver.solve(&mut solver_bodies, &ctx, Bias::Off);
+            after_relax.push(solver.reusable_links(&solver_bodies));
+        }
+        // Carried in the first relax passes (built at the step's first pass, not at their pose), built in the
+        // last one.
+        assert_eq!(after_relax, [0, 0, 0, 5]);
     }
 
     /// A hinge between two dynamic bodies, prepared, with its rows built in `link` at the bodies' pose; the
