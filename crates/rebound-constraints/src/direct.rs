@@ -299,6 +299,25 @@ impl Row {
         }
     }
 
+    /// [`Row::linear`] between the two centres of mass (`r_a = r_b = 0`): no angular parts, without the cross
+    /// products of zero lever arms.
+    #[inline]
+    pub fn between_centres(axis: Vec3, target: RowTarget) -> Self {
+        Self {
+            a: Side {
+                linear: -axis,
+                angular: Vec3::ZERO,
+            },
+            b: Side {
+                linear: axis,
+                angular: Vec3::ZERO,
+            },
+            target,
+            lower: f32::NEG_INFINITY,
+            upper: f32::INFINITY,
+        }
+    }
+
     /// An angular row about `axis` (world): `Ċ = axis·(ω_b − ω_a)`.
     #[inline]
     pub fn angular(axis: Vec3, target: RowTarget) -> Self {
@@ -383,6 +402,22 @@ impl JointRows {
     /// row is written where it goes rather than built and copied (every row of every rebuilt link).
     #[inline]
     pub fn push(&mut self, row: Row, c: f32, rule: TargetRule) {
+        let turned = [
+            self.mass_a.inertia * row.a.angular,
+            self.mass_b.inertia * row.b.angular,
+        ];
+        self.push_turned(row, c, rule, turned);
+    }
+
+    /// [`JointRows::push`] of a row without angular parts ([`Row::between_centres`]): nothing to turn.
+    #[inline]
+    pub fn push_linear(&mut self, row: Row, c: f32, rule: TargetRule) {
+        self.push_turned(row, c, rule, [Vec3::ZERO; 2]);
+    }
+
+    /// [`JointRows::push`] with the row's turned angular parts `[I_a⁻¹·J_a,angular, I_b⁻¹·J_b,angular]`.
+    #[inline]
+    fn push_turned(&mut self, row: Row, c: f32, rule: TargetRule, turned_parts: [Vec3; 2]) {
         if let (Some(slot), Some(turned), Some(error), Some(coupling)) = (
             self.rows.get_mut(self.count),
             self.turned.get_mut(self.count),
@@ -391,10 +426,7 @@ impl JointRows {
         ) {
             *slot = row;
             *error = (c, rule);
-            *turned = [
-                self.mass_a.inertia * row.a.angular,
-                self.mass_b.inertia * row.b.angular,
-            ];
+            *turned = turned_parts;
             *coupling = (row.upper == 0.0 || row.lower == 0.0)
                 .then(|| row_self_coupling(&row, *turned, &self.mass_a, &self.mass_b));
             self.count += 1;
@@ -435,6 +467,16 @@ impl JointRows {
     fn apply(&self, k: usize, a: &mut SolverBody, b: &mut SolverBody, lambda: f32) {
         if let (Some(row), true) = (self.rows.get(k), lambda != 0.0) {
             let [ta, tb] = self.turned(k);
+            row.a.apply(&self.mass_a, ta, a, lambda);
+            row.b.apply(&self.mass_b, tb, b, lambda);
+        }
+    }
+
+    /// [`JointRows::apply`] of row 0, for a link known to have it.
+    #[inline]
+    fn apply_first(&self, a: &mut SolverBody, b: &mut SolverBody, lambda: f32) {
+        if lambda != 0.0 {
+            let (row, [ta, tb]) = (&self.rows[0], self.turned[0]);
             row.a.apply(&self.mass_a, ta, a, lambda);
             row.b.apply(&self.mass_b, tb, b, lambda);
         }
@@ -749,6 +791,27 @@ impl Link {
     /// on one side (a rope, a limit) takes part if, without its own impulse, the bodies would violate it this
     /// substep (`Ċ + bias` on the wrong side); equality rows always take part.
     pub fn activate(&mut self, a: &mut SolverBody, b: &mut SolverBody) {
+        // A one-row link bounded at 0 (a rope, a rod's limit): the loop below for its one row, with the
+        // coupling stored when it was pushed.
+        if self.rows.count == 1
+            && let Some(coupling) = self.rows.bounded_couplings[0]
+        {
+            let row = &self.rows.rows[0];
+            let lambda = self.lambda[0];
+            let own = coupling * lambda;
+            let free = row.velocity(a, b) - own + row.target.bias;
+            let active = if row.upper == 0.0 {
+                free > 0.0
+            } else {
+                free < 0.0
+            };
+            self.active[0] = active;
+            if !active {
+                self.rows.apply_first(a, b, -lambda);
+                self.lambda[0] = 0.0;
+            }
+            return;
+        }
         let rows = &self.rows;
         for (i, ((row, lambda), active)) in rows
             .rows()
@@ -1090,6 +1153,17 @@ impl Link {
 
     /// Step 4: the soft update of each active row from the solution `x`, clamped; applies the increments.
     pub fn apply_solution(&mut self, x: &[Real; MAX_ROWS], a: &mut SolverBody, b: &mut SolverBody) {
+        // A one-row link of a velocity pass (every rope of a chain): the loop below for its one row.
+        if self.rows.count == 1 && !self.positions {
+            if self.active[0] {
+                let row = &self.rows.rows[0];
+                let lambda = self.lambda[0];
+                let new = (lambda - x[0] as f32).max(row.lower).min(row.upper);
+                self.rows.apply_first(a, b, new - lambda);
+                self.lambda[0] = new;
+            }
+            return;
+        }
         let rows = &self.rows;
         for (i, (((row, &x), lambda), &active)) in rows
             .rows()

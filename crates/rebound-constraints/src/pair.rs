@@ -147,7 +147,16 @@ impl BodyPair {
     #[inline(always)]
     #[must_use]
     pub fn distance(&self, a: &SolverBody, b: &SolverBody, fallback_axis: Vec3) -> Distance {
-        let anchors = self.anchors(a, b);
+        let anchors = if self.is_between_centres() {
+            // No lever arm to turn, and `r_b − r_a` would add zeros.
+            Anchors {
+                r_a: Vec3::ZERO,
+                r_b: Vec3::ZERO,
+                d: self.delta_center + (b.delta_position - a.delta_position),
+            }
+        } else {
+            self.anchors(a, b)
+        };
         let length = anchors.d.length();
         let axis = if length > MIN_AXIS_LENGTH {
             anchors.d / length
@@ -159,6 +168,14 @@ impl BodyPair {
             axis,
             length,
         }
+    }
+
+    /// Whether both anchors are the bodies' centres of mass (a rope between the centres of two balls): the
+    /// anchors then never turn and a distance row has no angular parts.
+    #[inline]
+    #[must_use]
+    pub fn is_between_centres(&self) -> bool {
+        self.anchor_a == Vec3::ZERO && self.anchor_b == Vec3::ZERO
     }
 
     /// The current world orientations of the joint frames of A and B.

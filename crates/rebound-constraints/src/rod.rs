@@ -103,11 +103,15 @@ impl PreparedRod {
         let (c, rule) = (dist.length - self.length, TargetRule::Equality);
         // RowTarget::equality(C, bias, joint softness)
         let target = rule.target(c, stage);
-        out.push(
-            Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target),
-            c,
-            rule,
-        );
+        if pair.is_between_centres() {
+            out.push_linear(Row::between_centres(dist.axis, target), c, rule);
+        } else {
+            out.push(
+                Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target),
+                c,
+                rule,
+            );
+        }
     }
 
     pub(crate) fn solve(

@@ -186,9 +186,14 @@ impl PreparedRope {
         let (c, rule) = (dist.length - self.rope.max_length, TargetRule::UpperLimit);
         // RowTarget::upper_limit(C, bias, joint softness, inv_h)
         let target = rule.target(c, stage);
-        let row = Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
-            .clamped(f32::NEG_INFINITY, 0.0);
-        out.push(row, c, rule);
+        if pair.is_between_centres() {
+            let row = Row::between_centres(dist.axis, target).clamped(f32::NEG_INFINITY, 0.0);
+            out.push_linear(row, c, rule);
+        } else {
+            let row = Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
+                .clamped(f32::NEG_INFINITY, 0.0);
+            out.push(row, c, rule);
+        }
     }
 
     /// Records that the rope pulled (for restitution), after a direct solve.
