@@ -264,6 +264,15 @@ impl MassProperties {
         self.local_inertia
     }
 
+    /// Whether the inertia tensor is a multiple of the identity (every axis principal, equal moments: a ball,
+    /// a cube): then it, and its inverse, are the same in every frame.
+    #[inline]
+    #[must_use]
+    pub fn is_isotropic(&self) -> bool {
+        let d = self.local_inertia.x_axis.x;
+        self.local_inertia == Mat3::from_diagonal(Vec3::splat(d))
+    }
+
     /// Inverse inertia tensor in the body frame (1/(kg·m²)). A diagonal tensor inverts per axis with a zero
     /// moment giving a zero inverse (a locked axis); a full tensor inverts as a matrix, or gives zero where
     /// singular.
