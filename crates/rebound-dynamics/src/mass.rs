@@ -315,6 +315,44 @@ mod tests {
         assert!(MassProperties::cylinder(1.0, 0.5, 1.0).is_ok());
     }
 
+    /// Balls and cubes are isotropic; a box with unequal sides, or a tensor with products of inertia, is not.
+    /// The world inverse inertia of an isotropic body, taken as its local tensor, is `R·I⁻¹·Rᵀ` to rounding
+    /// for any rotation; an anisotropic body's is that product exactly.
+    #[test]
+    fn an_isotropic_tensor_is_the_same_in_every_frame() {
+        let ball = MassProperties::ball(3.0, 0.4).unwrap();
+        let cube = MassProperties::cuboid(2.0, Vec3::splat(0.5)).unwrap();
+        let plank = MassProperties::cuboid(1.0, Vec3::new(0.25, 0.1, 1.0)).unwrap();
+        assert!(ball.is_isotropic() && cube.is_isotropic());
+        assert!(!plank.is_isotropic());
+        let rotation = Quat::from_axis_angle(Vec3::new(1.0, 2.0, -0.5).normalize(), 1.1);
+        for props in [ball, cube] {
+            let body = crate::RigidBody::new(
+                &crate::BodyDesc::dynamic()
+                    .with_rotation(rotation)
+                    .with_mass_properties(props),
+            )
+            .unwrap();
+            let local = props.local_inv_inertia();
+            assert_eq!(body.inv_inertia_world(), local);
+            let rotated = inertia::rotate_inertia(rotation, local);
+            let scale = local.x_axis.x;
+            for (got, want) in local.to_cols_array().iter().zip(rotated.to_cols_array()) {
+                assert!((got - want).abs() <= 1e-6 * scale, "{got} vs {want}");
+            }
+        }
+        let body = crate::RigidBody::new(
+            &crate::BodyDesc::dynamic()
+                .with_rotation(rotation)
+                .with_mass_properties(plank),
+        )
+        .unwrap();
+        assert_eq!(
+            body.inv_inertia_world(),
+            inertia::rotate_inertia(rotation, plank.local_inv_inertia())
+        );
+    }
+
     #[test]
     fn invalid_input_is_rejected_with_the_field_named() {
         let err = MassProperties::ball(-1.0, 1.0).unwrap_err();
