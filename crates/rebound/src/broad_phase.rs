@@ -83,7 +83,7 @@ pub(crate) fn ordered<T: Ord>(a: T, b: T) -> (T, T) {
 pub(crate) struct BroadPhase {
     bvh: Bvh,
     workspace: BvhWorkspace,
-    /// Whether every leaf holds the collider's box at its body's current pose.
+    /// Whether every leaf holds (contains) the collider's box at its body's current pose.
     query_ready: bool,
     /// Candidate pairs of the last step, sorted, lower handle first.
     pub(crate) pairs: Vec<(ColliderHandle, ColliderHandle)>,
@@ -184,21 +184,40 @@ impl BroadPhase {
         self.pairs.dedup();
     }
 
-    /// Puts the tight box of every collider at its body's current pose into the tree (end of a step, after
-    /// a restore, on request).
+    /// Makes every leaf of the tree hold the box of its collider at its body's current pose (end of a step,
+    /// after a restore, on request): a leaf that already contains that box — the fattened box of the step's
+    /// pair search, which a body rarely leaves within the step — is kept, the others get the tight box, and
+    /// the tree is refitted only if a leaf changed. Queries test their candidates exactly, so a leaf larger
+    /// than its collider only adds a candidate; keeping the pair search's boxes saved the SCENES.md chain a
+    /// refit of the whole tree every step.
     pub(crate) fn refresh(&mut self, colliders: &ColliderSet, bodies: &BodySet) {
+        let mut changed = false;
         for (handle, collider) in colliders.iter() {
             let slot = handle.0.index;
             match bodies.get(collider.body) {
                 Some(body) => {
-                    let _ =
-                        self.bvh
-                            .insert_or_update_partially(world_aabb(collider, body), slot, 0.0);
+                    let aabb = world_aabb(collider, body);
+                    if self
+                        .bvh
+                        .leaf_node(slot)
+                        .is_some_and(|leaf| leaf.contains_aabb(&aabb))
+                    {
+                        continue;
+                    }
+                    let _ = self.bvh.insert_or_update_partially(aabb, slot, 0.0);
+                    changed = true;
                 }
-                None => self.bvh.remove(slot),
+                None => {
+                    if self.bvh.leaf_node(slot).is_some() {
+                        self.bvh.remove(slot);
+                        changed = true;
+                    }
+                }
             }
         }
-        self.bvh.refit(&mut self.workspace);
+        if changed {
+            self.bvh.refit(&mut self.workspace);
+        }
         self.query_ready = true;
     }
 
@@ -240,8 +259,10 @@ impl BroadPhase {
         self.query_ready = false;
     }
 
-    /// The colliders whose current box passes `test`, sorted by handle (so results never depend on the
-    /// tree's shape).
+    /// The colliders whose box passes `test`, sorted by handle (so results never depend on the tree's
+    /// shape): a superset of those whose current box does — the tree's leaves contain the current boxes
+    /// ([`BroadPhase::refresh`]) — for the caller to test exactly; without a refreshed tree, the current boxes
+    /// themselves.
     pub(crate) fn candidates(
         &self,
         colliders: &ColliderSet,
