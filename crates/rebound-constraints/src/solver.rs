@@ -367,6 +367,7 @@ impl JointSolver {
         for link in &mut self.links {
             link.forget();
         }
+        self.link_paths();
         self.list_iterated();
         self.analyse_graph(params);
         skipped
@@ -455,6 +456,37 @@ impl JointSolver {
             for (link, &index) in range.clone().zip(&self.path_joints[range.clone()]) {
                 self.joints[index].path = Some(path);
                 self.joints[index].link = Some(link);
+            }
+        }
+    }
+
+    /// Links each path's consecutive members through the body they share (which side of each it is), and
+    /// leaves its last member unlinked: the shape every pass of the step solves ([`Link::shared_with_next`]),
+    /// set once here rather than before each solve.
+    fn link_paths(&mut self) {
+        let Self {
+            joints,
+            paths,
+            path_joints,
+            links,
+            ..
+        } = self;
+        for range in paths.iter() {
+            let (Some(members), Some(links)) =
+                (path_joints.get(range.clone()), links.get_mut(range.clone()))
+            else {
+                continue;
+            };
+            for (slot, link) in links.iter_mut().enumerate() {
+                link.shared_with_next = members.get(slot + 1).map(|&next| {
+                    let (this, next) = (&joints[members[slot]].pair, &joints[next].pair);
+                    let shared = if this.index_a == next.index_a || this.index_a == next.index_b {
+                        this.index_a
+                    } else {
+                        this.index_b
+                    };
+                    (this.index_b == shared, next.index_b == shared)
+                });
             }
         }
     }
@@ -1240,8 +1272,8 @@ fn restore_bodies(saved: &[(usize, SolverBody)], solver_bodies: &mut [SolverBody
     }
 }
 
-/// Links consecutive members through their shared body, then solves the path (with the active-set rounds
-/// that drop rows which would push) into `solution`.
+/// Solves the path (with the active-set rounds that drop rows which would push) into `solution`; its links
+/// are linked through their shared bodies ([`JointSolver::prepare`], `link_paths`).
 fn solve_links(
     joints: &[PreparedJoint],
     members: &[usize],
@@ -1249,15 +1281,6 @@ fn solve_links(
     solution: &mut Vec<[Real; MAX_ROWS]>,
     solver_bodies: &mut [SolverBody],
 ) {
-    for (slot, pair) in members.windows(2).enumerate() {
-        let (this, next) = (&joints[pair[0]].pair, &joints[pair[1]].pair);
-        let shared = if this.index_a == next.index_a || this.index_a == next.index_b {
-            this.index_a
-        } else {
-            this.index_b
-        };
-        links[slot].shared_with_next = Some((this.index_b == shared, next.index_b == shared));
-    }
     // Active set: a rope the solution would make push is released, a rope left out that the solution would
     // stretch is added, and the system solved again; the last round's solution is the one applied.
     // A round after the first sweeps again only from the link before the first one it changed ([`Resume`]).
