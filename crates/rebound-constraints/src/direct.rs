@@ -554,6 +554,11 @@ pub(crate) struct Link {
     scalar: ScalarEntries,
     /// The pose the rows were built at ([`PoseKey`]); `None` when the rows are to be built.
     pose: Option<PoseKey>,
+    /// The pose the rows were last carried to ([`Link::carry`]) and each row's position error there, `C₀ + J·Δ`:
+    /// the next pass at that pose (the solve pass after a relax pass) recomputes only the targets
+    /// ([`Link::recarry`]). `None` when the rows were built since.
+    carried_at: Option<PoseKey>,
+    carried: [f32; MAX_ROWS],
     pub rows: JointRows,
     /// Each row's compliance in a position projection (1/kg, added to its diagonal of `K`): that of the rows
     /// that stiffen a pulled rope or rod against turning ([`Link::stiffen`]), 0 for every other row. Set by
@@ -612,6 +617,8 @@ impl Link {
             lanes: [[Vec4::ZERO; 3]; 4],
             factored: None,
             pose: None,
+            carried_at: None,
+            carried: [0.0; MAX_ROWS],
         }
     }
 
@@ -638,6 +645,7 @@ impl Link {
     /// builds the rows and factorises again.
     pub fn forget(&mut self) {
         self.pose = None;
+        self.carried_at = None;
         self.factored = None;
     }
 
@@ -670,7 +678,14 @@ impl Link {
     /// exactly at the new pose but solved with the old rows have a component `K` cannot reach, which the
     /// regularisation turns into impulses a million times too large (the SCENES.md bridge blew up within
     /// 40 steps).
-    pub fn carry(&mut self, a: &SolverBody, b: &SolverBody, stage: &Stage, max_angle: f32) -> bool {
+    pub fn carry(
+        &mut self,
+        a: &SolverBody,
+        b: &SolverBody,
+        now: &PoseKey,
+        stage: &Stage,
+        max_angle: f32,
+    ) -> bool {
         let (Some(built), true) = (self.pose, max_angle > 0.0) else {
             return false;
         };
@@ -694,10 +709,42 @@ impl Link {
             count,
             ..
         } = &mut self.rows;
-        for (row, &(c, rule)) in rows.iter_mut().zip(errors.iter()).take(*count) {
+        for ((row, &(c, rule)), carried) in rows
+            .iter_mut()
+            .zip(errors.iter())
+            .zip(&mut self.carried)
+            .take(*count)
+        {
             let moved = (row.a.linear.dot(da) + row.a.angular.dot(ta))
                 + (row.b.linear.dot(db) + row.b.angular.dot(tb));
-            row.target = rule.target(c + moved, stage);
+            *carried = c + moved;
+            row.target = rule.target(*carried, stage);
+        }
+        self.carried_at = Some(*now);
+        true
+    }
+
+    /// Starts a pass of `stage` at the pose `now` the rows were last carried to ([`Link::carry`]), from the
+    /// errors carried there: the targets [`Link::carry`] would compute again, bit for bit, without measuring
+    /// the turn and the displacement again. Returns `false`, changing nothing, at any other pose.
+    pub fn recarry(&mut self, now: &PoseKey, stage: &Stage) -> bool {
+        if !self.carried_at.as_ref().is_some_and(|at| at == now) {
+            return false;
+        }
+        self.restart();
+        let JointRows {
+            rows,
+            errors,
+            count,
+            ..
+        } = &mut self.rows;
+        for ((row, &(_, rule)), &carried) in rows
+            .iter_mut()
+            .zip(errors.iter())
+            .zip(&self.carried)
+            .take(*count)
+        {
+            row.target = rule.target(carried, stage);
         }
         true
     }

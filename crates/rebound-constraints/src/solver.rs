@@ -1075,8 +1075,9 @@ fn link_rows(
     if pose.as_ref().is_some_and(|pose| link.is_built_at(pose)) {
         link.reuse(stage);
         link.lambda = state_lambda(j);
-    } else if matches!(j.kind, Prepared::Hinge(_))
-        && bodies.is_some_and(|(a, b)| link.carry(a, b, stage, carry_angle))
+    } else if let (Prepared::Hinge(_), Some((a, b)), Some(now)) = (&j.kind, bodies, &pose)
+        && carry_angle > 0.0
+        && (link.recarry(now, stage) || link.carry(a, b, now, stage, carry_angle))
     {
         link.lambda = state_lambda(j);
     } else {
@@ -1560,7 +1561,7 @@ mod tests {
             bodies[1].delta_rotation =
                 Quat::from_axis_angle(Vec3::new(axis.z, axis.x, axis.y), turn_b);
             let (a, b) = (&bodies[0], &bodies[1]);
-            assert!(link.carry(a, b, &stage, CARRY_ANGLE));
+            assert!(link.carry(a, b, &PoseKey::of(a, b), &stage, CARRY_ANGLE));
             // Jacobians and turned vectors kept, only the targets changed; the rows still count as built at
             // the first pose.
             for (carried, kept) in link.rows.rows().iter().zip(built.rows.rows()) {
@@ -1584,19 +1585,49 @@ mod tests {
         }
     }
 
+    /// A pass at the pose the rows were last carried to (the solve pass after a relax pass) takes the carried
+    /// errors as they are: the targets a second carry would compute, bit for bit, for another stage; at any
+    /// other pose, nothing.
+    #[test]
+    fn a_pass_at_the_pose_carried_to_recomputes_only_the_targets() {
+        let (_, mut bodies, mut link, relax) = built_hinge();
+        bodies[0].delta_position += Vec3::new(0.003, -0.001, 0.002);
+        bodies[1].delta_rotation = Quat::from_rotation_z(0.004);
+        let (a, b) = (&bodies[0], &bodies[1]);
+        let now = PoseKey::of(a, b);
+        assert!(link.carry(a, b, &now, &relax, CARRY_ANGLE));
+        let solve = Stage {
+            bias: Bias::On,
+            h: 1.0 / 240.0,
+            inv_h: 240.0,
+            joint_softness: JointSettings::default()
+                .joint_softness(&StepContext::new(1.0 / 60.0, &SolverSettings::default())),
+        };
+        let mut carried_again = link;
+        assert!(carried_again.carry(a, b, &now, &solve, CARRY_ANGLE));
+        assert!(link.recarry(&now, &solve));
+        assert_eq!(link, carried_again);
+        // Elsewhere it refuses and changes nothing.
+        bodies[1].delta_position.y += 1e-4;
+        let (a, b) = (&bodies[0], &bodies[1]);
+        let kept = link;
+        assert!(!link.recarry(&PoseKey::of(a, b), &solve));
+        assert_eq!(link, kept);
+    }
+
     #[test]
     fn a_hinge_turned_further_than_the_carry_angle_is_not_carried() {
         let (_, mut bodies, mut link, stage) = built_hinge();
         let built = link;
         bodies[1].delta_rotation = Quat::from_rotation_x(1.2 * CARRY_ANGLE);
         let (a, b) = (&bodies[0], &bodies[1]);
-        assert!(!link.carry(a, b, &stage, CARRY_ANGLE));
+        assert!(!link.carry(a, b, &PoseKey::of(a, b), &stage, CARRY_ANGLE));
         assert_eq!(link, built, "nothing changed");
         // Nor is any pose with a carry angle of 0, or a link holding no rows of this step.
         bodies[1].delta_rotation = Quat::IDENTITY;
         let (a, b) = (&bodies[0], &bodies[1]);
-        assert!(!link.carry(a, b, &stage, 0.0));
+        assert!(!link.carry(a, b, &PoseKey::of(a, b), &stage, 0.0));
         link.forget();
-        assert!(!link.carry(a, b, &stage, CARRY_ANGLE));
+        assert!(!link.carry(a, b, &PoseKey::of(a, b), &stage, CARRY_ANGLE));
     }
 }
