@@ -702,25 +702,15 @@ impl Link {
             return false;
         }
         let (da, db) = (a.delta_position - pa, b.delta_position - pb);
-        self.restart();
-        let JointRows {
-            rows,
-            errors,
-            count,
-            ..
-        } = &mut self.rows;
-        for ((row, &(c, rule)), carried) in rows
-            .iter_mut()
-            .zip(errors.iter())
-            .zip(&mut self.carried)
-            .take(*count)
+        let rows = &self.rows;
+        for ((row, &(c, _)), carried) in rows.rows().iter().zip(&rows.errors).zip(&mut self.carried)
         {
             let moved = (row.a.linear.dot(da) + row.a.angular.dot(ta))
                 + (row.b.linear.dot(db) + row.b.angular.dot(tb));
             *carried = c + moved;
-            row.target = rule.target(*carried, stage);
         }
         self.carried_at = Some(*now);
+        self.restart_carried(stage);
         true
     }
 
@@ -731,6 +721,12 @@ impl Link {
         if !self.carried_at.as_ref().is_some_and(|at| at == now) {
             return false;
         }
+        self.restart_carried(stage);
+        true
+    }
+
+    /// Starts a pass of `stage` with each row's target made from its carried error.
+    fn restart_carried(&mut self, stage: &Stage) {
         self.restart();
         let JointRows {
             rows,
@@ -746,7 +742,6 @@ impl Link {
         {
             row.target = rule.target(carried, stage);
         }
-        true
     }
 
     /// Records that the rows just built (after [`Link::reset`]) are those of the pose `pose`.
