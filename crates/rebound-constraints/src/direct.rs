@@ -363,7 +363,7 @@ fn row_self_coupling(row: &Row, turned: [Vec3; 2], mass_a: &InvMass, mass_b: &In
 ///
 /// Laid out in the order a pass reads it (`repr(C)`: the compiler would otherwise order fields by alignment):
 /// the masses, the per-row scalars, the turned vectors, then the rows. A one-row link (a rope of a chain)
-/// touches the first six cache lines and nothing after its first row; see [`Link`] for why that matters.
+/// reads nothing after its first row; see [`Link`] for why that matters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C)]
 pub(crate) struct JointRows {
@@ -534,9 +534,9 @@ pub(crate) fn equality_violation(errors: &[(f32, TargetRule)], stage: &Stage) ->
 /// ordered so) — and the 5 × 5 blocks of the block sweep last. A link is about 2 kB; a 500-rope chain's links
 /// are a megabyte, far more than the first-level cache, and each pass sweeps them several times (rows and
 /// activation, forward and back substitution, the active-set check, the update). With the blocks' `[0][0]`
-/// entries serving the scalar sweep and the compiler's field order, a one-row link spread its reads over
-/// some twenty cache lines; packed, about ten (`docs/performance.md`, tenth session: first-level misses of
-/// the SCENES.md chain).
+/// entries serving the scalar sweep and the compiler's field order, a one-row link's reads were spread over
+/// the whole record; packed, they sit in its first lines (first-level misses of the SCENES.md chain −11 %,
+/// `docs/performance.md`, tenth session).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C)]
 pub(crate) struct Link {
@@ -665,7 +665,8 @@ impl Link {
         }
     }
 
-    /// Starts a velocity pass of `stage` at the bodies' pose `a`, `b` with the rows built earlier in the step,
+    /// Starts a velocity pass of `stage` at the bodies' pose `a`, `b` (`now`, its key, recorded with the carried
+    /// errors for [`Link::recarry`]) with the rows built earlier in the step,
     /// if neither body has turned by more than `max_angle` (rad) since: the Jacobians, turned vectors and the
     /// factorisation stay, and each row's position error is carried to the current pose to first order,
     /// `C = C₀ + J·Δ`, with `Δ` the bodies' displacement and small rotation since the rows were built.
