@@ -363,10 +363,6 @@ impl RigidBody {
     /// Inverse inertia in world space, `R·I⁻¹·Rᵀ` (1/(kg·m²)).
     #[must_use]
     pub fn inv_inertia_world(&self) -> Mat3 {
-        // Isotropic: the same in every frame (as the solver takes it, `BodyParams::from_body`).
-        if self.mass_properties.is_isotropic() {
-            return self.local_inv_inertia();
-        }
         inertia::rotate_inertia(self.pose.rotation, self.local_inv_inertia())
     }
 

@@ -131,16 +131,10 @@ impl BodyParams {
         let mass = body.mass_properties();
         // Inverted once (it is not stored): `RigidBody::inv_inertia_world` would invert it again.
         let local_inv_inertia = body.local_inv_inertia();
-        // A multiple of the identity (a ball, a cube) is the same in every frame: `R·(s·1)·Rᵀ = s·1`, which
-        // the product would only round (and 110 flops for every such body every step).
-        let isotropic = mass.is_isotropic();
         Self {
             inv_mass: body.inv_mass(),
-            inv_inertia_world: if isotropic {
-                local_inv_inertia
-            } else {
-                inertia::rotate_inertia(body.rotation(), local_inv_inertia)
-            },
+            // An isotropic tensor (a ball, a cube) comes back as it is (`rotate_inertia`).
+            inv_inertia_world: inertia::rotate_inertia(body.rotation(), local_inv_inertia),
             local_inertia: mass.local_inertia(),
             local_inv_inertia,
             rotation: body.rotation(),
@@ -153,7 +147,7 @@ impl BodyParams {
             angular_damping: body.angular_damping(),
             motion,
             // ω × I·ω vanishes for an isotropic tensor (balls, cubes): skip the solve, not just the result.
-            gyroscopic: body.gyroscopic() && !isotropic,
+            gyroscopic: body.gyroscopic() && !mass.is_isotropic(),
         }
     }
 
