@@ -88,6 +88,7 @@
     reason = "dense block algebra (Thomas sweep, LDLᵀ factorisation) reads as the formulas with indices"
 )]
 
+use crate::pair::{BodyPair, Distance};
 use crate::part::{RowTarget, block_target};
 use crate::solver::Stage;
 use rebound_dynamics::{Softness, SolverBody};
@@ -409,10 +410,26 @@ impl JointRows {
         self.push_turned(row, c, rule, turned);
     }
 
-    /// [`JointRows::push`] of a row without angular parts ([`Row::between_centres`]): nothing to turn.
+    /// Pushes the row along `dist`'s axis between the joint's anchors (a rope's, a rod's), with the impulse
+    /// bounds `[lower, upper]`: [`Row::linear`], or for a joint between both centres of mass
+    /// ([`BodyPair::is_between_centres`]) [`Row::between_centres`], which has nothing to turn.
     #[inline]
-    pub fn push_linear(&mut self, row: Row, c: f32, rule: TargetRule) {
-        self.push_turned(row, c, rule, [Vec3::ZERO; 2]);
+    pub fn push_distance(
+        &mut self,
+        pair: &BodyPair,
+        dist: &Distance,
+        target: RowTarget,
+        (lower, upper): (f32, f32),
+        (c, rule): (f32, TargetRule),
+    ) {
+        if pair.is_between_centres() {
+            let row = Row::between_centres(dist.axis, target).clamped(lower, upper);
+            self.push_turned(row, c, rule, [Vec3::ZERO; 2]);
+        } else {
+            let row = Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
+                .clamped(lower, upper);
+            self.push(row, c, rule);
+        }
     }
 
     /// [`JointRows::push`] with the row's turned angular parts `[I_a⁻¹·J_a,angular, I_b⁻¹·J_b,angular]`.

@@ -1,7 +1,7 @@
 //! The rod: a fixed distance between two anchors (a massless rigid rod with ball ends; Box2D's rigid distance
 //! joint). Stages: *prepare*, *warm start*, *solve* and *relax*.
 
-use crate::direct::{JointRows, Row, TargetRule};
+use crate::direct::{JointRows, TargetRule};
 use crate::part::{AxisPart, RowTarget};
 use crate::solver::Stage;
 use crate::spring::initial_axis;
@@ -103,15 +103,13 @@ impl PreparedRod {
         let (c, rule) = (dist.length - self.length, TargetRule::Equality);
         // RowTarget::equality(C, bias, joint softness)
         let target = rule.target(c, stage);
-        if pair.is_between_centres() {
-            out.push_linear(Row::between_centres(dist.axis, target), c, rule);
-        } else {
-            out.push(
-                Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target),
-                c,
-                rule,
-            );
-        }
+        out.push_distance(
+            pair,
+            &dist,
+            target,
+            (f32::NEG_INFINITY, f32::INFINITY),
+            (c, rule),
+        );
     }
 
     pub(crate) fn solve(

@@ -2,7 +2,7 @@
 //! nothing; once the anchors would move farther apart than its length an impulse acts on both bodies, like a
 //! collision — a hard constraint. Stages: *prepare*, *warm start*, *solve* and *relax*, *restitution*.
 
-use crate::direct::{JointRows, Row, TargetRule};
+use crate::direct::{JointRows, TargetRule};
 use crate::error::check_in_range;
 use crate::part::{AxisPart, RowTarget};
 use crate::solver::Stage;
@@ -186,14 +186,7 @@ impl PreparedRope {
         let (c, rule) = (dist.length - self.rope.max_length, TargetRule::UpperLimit);
         // RowTarget::upper_limit(C, bias, joint softness, inv_h)
         let target = rule.target(c, stage);
-        if pair.is_between_centres() {
-            let row = Row::between_centres(dist.axis, target).clamped(f32::NEG_INFINITY, 0.0);
-            out.push_linear(row, c, rule);
-        } else {
-            let row = Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
-                .clamped(f32::NEG_INFINITY, 0.0);
-            out.push(row, c, rule);
-        }
+        out.push_distance(pair, &dist, target, (f32::NEG_INFINITY, 0.0), (c, rule));
     }
 
     /// Records that the rope pulled (for restitution), after a direct solve.
