@@ -1355,7 +1355,7 @@ pub(crate) fn solve_path<'b>(
     load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut Vec<[Real; MAX_ROWS]>,
     resume: &mut Resume,
-) {
+) -> Solved {
     // One solution per link. The back substitution of either sweep writes every one of them whole, so the
     // entries kept from the last solve are not cleared first (a 500-link chain's 20 kB per round).
     out.truncate(links.len());
@@ -1363,19 +1363,39 @@ pub(crate) fn solve_path<'b>(
     // With one softness along the path (a settled or straight chain, a bridge, every relax pass and
     // projection) the soft step splits into `K·x = r` and `y = mass_scale·x + impulse_scale·λ`: the same
     // result, without `K·λ`, and bit for bit that of the per-row form.
-    let (widest, uniform) = path_shape(links);
-    let shape = (widest, uniform.map(softness_bits));
-    let start = match resume.swept {
-        Some(swept) if swept == shape => resume.from.min(links.len()),
-        _ => 0,
+    // The factorisation keys are scanned from where a resumed sweep would start; if the shape changed, the
+    // sweep starts at the first link and (rarely) the keys are scanned again from there.
+    let resumable = resume.swept.map_or(0, |_| resume.from.min(links.len()));
+    let shape = path_shape(links, resumable);
+    let widest = shape.widest;
+    let key = (widest, shape.uniform.map(softness_bits));
+    let (start, stale) = match resume.swept {
+        Some(swept) if swept == key => (resumable, shape.first_stale()),
+        _ if resumable == 0 => (0, shape.first_stale()),
+        _ => (0, first_stale(links, widest.max(1), 0)),
     };
-    resume.swept = Some(shape);
+    resume.swept = Some(key);
     resume.from = links.len();
-    if widest <= 1 {
-        solve_scalar_path(links, load, out, uniform, start);
+    let released = if widest <= 1 {
+        solve_scalar_path(links, load, out, shape.uniform, start, stale)
     } else {
-        solve_block_path(links, load, out, widest, uniform, start);
+        solve_block_path(links, load, out, (widest, stale), shape.uniform, start)
+    };
+    Solved {
+        left_out: shape.left_out,
+        released,
     }
+}
+
+/// What a solve of a path tells the active-set step that follows it ([`activate_violations`],
+/// [`Link::would_deactivate`]), gathered by the scans the solve makes anyway: each step is a sweep over every
+/// link (a 500-rope chain's links are a megabyte), skipped when it has nothing to look at.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Solved {
+    /// Whether a row bounded at 0 was left out of the system (only then can one be activated).
+    pub left_out: bool,
+    /// Whether the solution would release a row (a rope that would push).
+    pub released: bool,
 }
 
 /// What the next active-set round's solve of a path can keep of the last one: the forward sweep of the links
@@ -1406,20 +1426,72 @@ fn softness_bits(s: Softness) -> u64 {
     (u64::from(s.mass_scale.to_bits()) << 32) | u64::from(s.impulse_scale.to_bits())
 }
 
-/// One scan of the path for what `solve_path` decides on: the largest row count of its links, and the
-/// softness every active row shares, if they all do (the first active row's, or rigid without one).
-fn path_shape(links: &[Link]) -> (usize, Option<Softness>) {
+/// What one scan of the path gives `solve_path` ([`path_shape`]).
+struct PathShape {
+    /// The largest row count of the links.
+    widest: usize,
+    /// The softness every active row shares, if they all do (the first active row's, or rigid without one).
+    uniform: Option<Softness>,
+    /// Whether a row bounded at 0 is left out of the system ([`Link::left_out`]).
+    left_out: bool,
+    /// From the scan's `start` on: the first link without a factorisation for its current active set and
+    /// link to the next one ([`FactorKey`] but its width), and the first whose factorisation's width differs
+    /// from that of the link at `start` (`None`: none).
+    first_unkeyed: usize,
+    first_width_change: usize,
+    start_width: Option<usize>,
+    /// Where the keys were first looked at.
+    start: usize,
+}
+
+impl PathShape {
+    /// [`first_stale`] from the scan's `start` for the sweep `solve_path` makes — scalar (keys of width 1)
+    /// up to one row, else blocks `widest` wide: the first link whose [`FactorKey`] differs, or the number of
+    /// links if there is none.
+    fn first_stale(&self) -> usize {
+        match self.start_width {
+            Some(width) if width == self.widest.max(1) => {
+                self.first_unkeyed.min(self.first_width_change)
+            }
+            // The link at `start` is keyed for another width (and `first_unkeyed` is past it).
+            Some(_) => self.start,
+            None => self.first_unkeyed,
+        }
+    }
+}
+
+/// One scan of the path for what `solve_path` decides on ([`PathShape`]), the factorisation keys looked at
+/// from `start` on — made in the same scan so that the links are swept once.
+fn path_shape(links: &[Link], start: usize) -> PathShape {
     let bits = softness_bits;
     let mut widest = 0;
     let mut common: Option<(Softness, u64)> = None;
     let mut uniform = true;
-    for link in links {
+    let mut left_out = false;
+    let (mut first_unkeyed, mut first_width_change) = (links.len(), links.len());
+    let mut start_width = None;
+    for (i, link) in links.iter().enumerate() {
         widest = widest.max(link.rows.count);
-        if !uniform {
-            continue;
+        if i >= start {
+            match link.factored {
+                Some(key) if key.active == link.active && key.shared == link.shared_with_next => {
+                    match start_width {
+                        None if i == start => start_width = Some(key.width),
+                        Some(width) if width != key.width => {
+                            first_width_change = first_width_change.min(i);
+                        }
+                        _ => {}
+                    }
+                }
+                _ => first_unkeyed = first_unkeyed.min(i),
+            }
         }
         for (row, &active) in link.rows.rows().iter().zip(&link.active) {
             if !active {
+                left_out |= row.upper == 0.0 || row.lower == 0.0;
+                continue;
+            }
+            if !uniform {
                 continue;
             }
             let s = row.target.softness;
@@ -1431,7 +1503,15 @@ fn path_shape(links: &[Link]) -> (usize, Option<Softness>) {
         }
     }
     let uniform = uniform.then(|| common.map_or(Softness::RIGID, |(s, _)| s));
-    (widest, uniform)
+    PathShape {
+        widest,
+        uniform,
+        left_out,
+        first_unkeyed,
+        first_width_change,
+        start_width,
+        start,
+    }
 }
 
 /// [`solve_path`] for paths with multi-row joints: the block Thomas algorithm, over blocks of the path's
@@ -1442,15 +1522,16 @@ fn solve_block_path<'b>(
     links: &mut [Link],
     load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
-    rows: usize,
+    (rows, stale): (usize, usize),
     uniform: Option<Softness>,
     start: usize,
-) {
+) -> bool {
+    let sweep = (start, stale);
     match rows {
-        0..=2 => block_sweep::<2>(links, load, out, uniform, start),
-        3 => block_sweep::<3>(links, load, out, uniform, start),
-        4 => block_sweep::<4>(links, load, out, uniform, start),
-        _ => block_sweep::<MAX_ROWS>(links, load, out, uniform, start),
+        0..=2 => block_sweep::<2>(links, load, out, uniform, sweep),
+        3 => block_sweep::<3>(links, load, out, uniform, sweep),
+        4 => block_sweep::<4>(links, load, out, uniform, sweep),
+        _ => block_sweep::<MAX_ROWS>(links, load, out, uniform, sweep),
     }
 }
 
@@ -1474,10 +1555,9 @@ fn block_sweep<'b, const N: usize>(
     load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
     uniform: Option<Softness>,
-    start: usize,
-) {
+    (start, stale): (usize, usize),
+) -> bool {
     let split = uniform.is_some();
-    let stale = first_stale(links, N, start);
     // Forward sweep from link `start` on (the links before it are as the last sweep left them, see
     // [`Resume`]). `lambda_prev` holds λᵢ₋₁; Cᵢ₋₁, Wᵢ₋₁, Vᵢ₋₁ and yᵢ₋₁ are stored in link i − 1.
     let mut lambda_prev = match start.checked_sub(1).and_then(|p| links.get(p)) {
@@ -1574,6 +1654,7 @@ fn block_sweep<'b, const N: usize>(
     }
     // Back substitution: xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁) (`V` of the last link is 0).
     let mut x_next = [0.0; MAX_ROWS];
+    let mut released = false;
     for (link, out) in links.iter().zip(out.iter_mut()).rev() {
         let mut x = [0.0; MAX_ROWS];
         for row in 0..N {
@@ -1585,8 +1666,10 @@ fn block_sweep<'b, const N: usize>(
         }
         back_substitute::<N>(&link.factor, &mut x);
         *out = link.finish(x, uniform);
+        released |= link.would_deactivate(out);
         x_next = x;
     }
+    released
 }
 
 /// The first link of the path whose stored factorisation is not for its current rows and active set in a
@@ -1620,9 +1703,9 @@ fn solve_scalar_path<'b>(
     out: &mut [[Real; MAX_ROWS]],
     uniform: Option<Softness>,
     start: usize,
-) {
+    stale: usize,
+) -> bool {
     let split = uniform.is_some();
-    let stale = first_stale(links, 1, start);
     // Forward sweep: c'ᵢ = cᵢ/sᵢ, r'ᵢ = (r̃ᵢ − cᵢ₋₁·r'ᵢ₋₁)/sᵢ with sᵢ = bᵢ − cᵢ₋₁·c'ᵢ₋₁ and r̃ the soft
     // right-hand side of `solve_path`; bᵢ is the row's regularised `K` (1 for a row not in the system).
     // Link i − 1 holds cᵢ₋₁, c'ᵢ₋₁ and r'ᵢ₋₁ (`scalar`); `lambda_prev` is λᵢ₋₁.
@@ -1702,11 +1785,14 @@ fn solve_scalar_path<'b>(
     }
     // Back substitution.
     let mut next = 0.0;
+    let mut released = false;
     for i in (0..links.len()).rev() {
         let x = links[i].scalar.r_prime - links[i].scalar.c_prime * next;
         out[i] = links[i].finish([x, 0.0, 0.0, 0.0, 0.0], uniform);
+        released |= links[i].would_deactivate(&out[i]);
         next = x;
     }
+    released
 }
 
 /// The rows whose residuals the block sweep computes four lanes wide ([`Link::residual`]).
@@ -1961,6 +2047,84 @@ mod tests {
             };
             assert_eq!(bits(&out_resumed), bits(&out_full), "width {width}");
             assert!(out_full.iter().any(|x| x[0] != 0.0), "width {width}");
+        }
+    }
+
+    #[test]
+    fn the_shape_scan_finds_the_first_stale_link_as_the_key_scan_does() {
+        // Paths of ropes, of hinges, and mixed (a rope between hinges: blocks 5 wide), factorised at one
+        // width; then links unkeyed, re-keyed at another width, their active set or link to the next changed.
+        let masses: [InvMass; 8] = core::array::from_fn(|k| InvMass {
+            mass: 0.5 + 0.25 * k as f32,
+            inertia: Mat3::from_diagonal(Vec3::new(2.0 + k as f32, 1.0, 0.5)),
+        });
+        let bodies: [SolverBody; 8] = core::array::from_fn(|k| SolverBody {
+            linear_velocity: Vec3::new(0.3 * k as f32, -1.0, 0.5),
+            ..SolverBody::STATIC
+        });
+        let load = |i: usize| Some((&bodies[i], &bodies[i + 1]));
+        let edits: [fn(&mut [Link]); 6] = [
+            |_| {},
+            |links| links[4].forget(),
+            |links| links[2].active[0] = false,
+            |links| links[5].shared_with_next = None,
+            |links| {
+                if let Some(key) = links[3].factored.as_mut() {
+                    key.width = 2;
+                }
+            },
+            |links| {
+                for link in links.iter_mut() {
+                    if let Some(key) = link.factored.as_mut() {
+                        key.width = 3;
+                    }
+                }
+            },
+        ];
+        for widths in [[1; 7], [MAX_ROWS; 7], [5, 5, 1, 5, 5, 5, 5]] {
+            for edit in edits {
+                for start in [0, 1, 3, 6, 7] {
+                    let mut links = soft_path(&widths, &masses);
+                    let _ = solve_path(&mut links, load, &mut Vec::new(), &mut Resume::default());
+                    edit(&mut links);
+                    let shape = path_shape(&links, start);
+                    let width = shape.widest.max(1);
+                    assert_eq!(
+                        shape.first_stale(),
+                        first_stale(&links, width, start),
+                        "widths {widths:?}, start {start}"
+                    );
+                    let left_out = links.iter().any(|link| link.left_out().contains(&true));
+                    assert_eq!(shape.left_out, left_out, "widths {widths:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_solve_reports_whether_its_solution_would_release_a_row() {
+        // A rope chain pulled together (every rope would push: all released) and pulled apart (none).
+        let masses: [InvMass; 6] = core::array::from_fn(|k| InvMass {
+            mass: 1.0 + k as f32,
+            inertia: Mat3::IDENTITY,
+        });
+        for (speed, released) in [(1.0, true), (-1.0, false)] {
+            let bodies: [SolverBody; 6] = core::array::from_fn(|k| SolverBody {
+                linear_velocity: Vec3::new(-speed * k as f32, 0.0, 0.0),
+                ..SolverBody::STATIC
+            });
+            let load = |i: usize| Some((&bodies[i], &bodies[i + 1]));
+            for widths in [[1; 5], [1, 1, 5, 1, 1]] {
+                let mut links = soft_path(&widths, &masses);
+                let mut out = Vec::new();
+                let solved = solve_path(&mut links, load, &mut out, &mut Resume::default());
+                let would = links
+                    .iter()
+                    .zip(&out)
+                    .any(|(link, x)| link.would_deactivate(x));
+                assert_eq!(solved.released, would, "speed {speed}, widths {widths:?}");
+                assert_eq!(would, released, "speed {speed}, widths {widths:?}");
+            }
         }
     }
 

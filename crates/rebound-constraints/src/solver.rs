@@ -1287,7 +1287,7 @@ fn solve_links(
     // A round after the first sweeps again only from the link before the first one it changed ([`Resume`]).
     let mut resume = Resume::default();
     for round in 0..ACTIVE_SET_ROUNDS {
-        solve_path(
+        let solved = solve_path(
             links,
             |slot| joints[members[slot]].pair.bodies(solver_bodies),
             solution,
@@ -1296,12 +1296,23 @@ fn solve_links(
         if round + 1 == ACTIVE_SET_ROUNDS {
             break;
         }
-        let activated = activate_violations(links, solution, |slot| {
-            joints[members[slot]].pair.bodies(solver_bodies)
-        });
+        // Each step below sweeps every link: skipped when the solve saw nothing for it to do.
+        let activated = if solved.left_out {
+            activate_violations(links, solution, |slot| {
+                joints[members[slot]].pair.bodies(solver_bodies)
+            })
+        } else {
+            None
+        };
         let mut changed = activated.is_some();
         if let Some(slot) = activated {
             resume.changed(slot);
+        }
+        if !solved.released {
+            if !changed {
+                break;
+            }
+            continue;
         }
         for (slot, ((link, x), &index)) in links
             .iter_mut()
