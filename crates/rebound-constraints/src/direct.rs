@@ -369,6 +369,10 @@ fn row_self_coupling(row: &Row, turned: [Vec3; 2], mass_a: &InvMass, mass_b: &In
 #[repr(C)]
 pub(crate) struct JointRows {
     pub count: usize,
+    /// Whether a row bounded at 0 (a rope, a limit) may be among the rows: set when one is pushed, cleared
+    /// when the rows are (a hinge's or ball joint's equality rows can never be released, and the checks for
+    /// a release skip them).
+    pub may_release: bool,
     pub mass_a: InvMass,
     pub mass_b: InvMass,
     /// `J·M⁻¹·Jᵀ` of each row bounded at 0 (a rope, a limit), computed once when the row is pushed: the
@@ -392,6 +396,7 @@ impl JointRows {
             errors: [(0.0, TargetRule::Equality); MAX_ROWS],
             bounded_couplings: [None; MAX_ROWS],
             count: 0,
+            may_release: false,
             mass_a,
             mass_b,
         }
@@ -446,6 +451,7 @@ impl JointRows {
             *turned = turned_parts;
             *coupling = (row.upper == 0.0 || row.lower == 0.0)
                 .then(|| row_self_coupling(&row, *turned, &self.mass_a, &self.mass_b));
+            self.may_release |= coupling.is_some();
             self.count += 1;
         }
     }
@@ -644,6 +650,7 @@ impl Link {
     /// links keeps a pass from copying 2-kilobyte records around.
     pub fn reset(&mut self, mass_a: InvMass, mass_b: InvMass) {
         self.rows.count = 0;
+        self.rows.may_release = false;
         self.rows.mass_a = mass_a;
         self.rows.mass_b = mass_b;
         self.forget();
@@ -1139,13 +1146,15 @@ impl Link {
     /// Whether [`Link::deactivate_violations`] would deactivate a row for the solution `x` (checked without
     /// the bodies, which only a row released needs).
     pub fn would_deactivate(&self, x: &[Real; MAX_ROWS]) -> bool {
-        self.rows
-            .rows()
-            .iter()
-            .zip(x)
-            .zip(&self.lambda)
-            .zip(&self.active)
-            .any(|(((row, &x), &lambda), &active)| active && crosses_zero(row, lambda, x))
+        self.rows.may_release
+            && self
+                .rows
+                .rows()
+                .iter()
+                .zip(x)
+                .zip(&self.lambda)
+                .zip(&self.active)
+                .any(|(((row, &x), &lambda), &active)| active && crosses_zero(row, lambda, x))
     }
 
     /// What active row `k` would get from its solution `x`: the clamped soft update of its impulse, as an
@@ -2126,6 +2135,33 @@ mod tests {
                 assert_eq!(would, released, "speed {speed}, widths {widths:?}");
             }
         }
+    }
+
+    #[test]
+    fn only_rows_bounded_at_zero_can_be_released() {
+        let mass = InvMass {
+            mass: 1.0,
+            inertia: Mat3::IDENTITY,
+        };
+        let (r_a, r_b) = (Vec3::new(0.5, 0.0, 0.0), Vec3::new(-0.5, 0.0, 0.0));
+        // A hinge's equality rows: no solution releases them, however it pushes.
+        let mut link = Link::new(hinge_rows(r_a, r_b, Vec3::Z, mass, mass), [1.0; MAX_ROWS]);
+        link.active = [true; MAX_ROWS];
+        assert!(!link.rows.may_release);
+        assert!(!link.would_deactivate(&[1e3; MAX_ROWS]));
+        // A rope's row (upper bound 0) pushed after them: a solution that would make it push releases it.
+        let rope =
+            Row::linear(Vec3::X, r_a, r_b, RowTarget::speed(0.0)).clamped(f32::NEG_INFINITY, 0.0);
+        let mut rows = JointRows::new(mass, mass);
+        rows.push(rope, 0.0, TargetRule::UpperLimit);
+        let mut link = Link::new(rows, [-1.0, 0.0, 0.0, 0.0, 0.0]);
+        link.active[0] = true;
+        assert!(link.rows.may_release);
+        assert!(link.would_deactivate(&[-2.0, 0.0, 0.0, 0.0, 0.0]));
+        assert!(!link.would_deactivate(&[0.5, 0.0, 0.0, 0.0, 0.0]));
+        // Emptied for another joint: nothing left to release.
+        link.reset(mass, mass);
+        assert!(!link.rows.may_release);
     }
 
     /// A hinge's five rows between bodies with anchors `r_a`, `r_b` and hinge axis `axis`.
