@@ -40,7 +40,8 @@ impl ParryBackend {
         self.colliders.get(handle)
     }
 
-    /// The candidate pairs of the last step (sorted, lower handle first).
+    /// The candidate pairs of the last step (sorted, lower handle first): overlapping fat boxes that pass the
+    /// filters, less pairs of balls too far apart to touch this step (see the broad phase).
     #[must_use]
     pub fn candidate_pairs(&self) -> &[(ColliderHandle, ColliderHandle)] {
         &self.broad_phase.pairs

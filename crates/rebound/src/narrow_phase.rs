@@ -161,14 +161,12 @@ impl NarrowPhase {
             let (Some(b1), Some(b2)) = (bodies.get(c1.body), bodies.get(c2.body)) else {
                 continue;
             };
-            let closing = (b1.linear_velocity() - b2.linear_velocity()).length()
-                + broad_phase.rotation_reach(h1)
-                + broad_phase.rotation_reach(h2);
-            let prediction = (speculative_margin + closing * dt).min(MAX_PREDICTION);
-            if let (ColliderShape::Ball { radius: r1 }, ColliderShape::Ball { radius: r2 }) =
-                (&c1.desc.shape, &c2.desc.shape)
-                && balls_clearly_apart(c1, b1, *r1, c2, b2, *r2, prediction)
-            {
+            let reaches = (
+                broad_phase.rotation_reach(h1),
+                broad_phase.rotation_reach(h2),
+            );
+            let prediction = prediction_distance(b1, b2, reaches, speculative_margin, dt);
+            if balls_clearly_apart((c1, b1), (c2, b2), prediction) {
                 // Most candidate pairs of a pile are apart: no poses to compose, nothing to convert.
                 continue;
             }
@@ -608,22 +606,38 @@ impl Seam<'_> {
 /// contact `ball_ball` would report.
 const BALL_SKIP_MARGIN: f32 = 1.0e-3;
 
-/// Whether two balls (radii `r1`, `r2`, m) on colliders `c1`, `c2` of bodies `b1`, `b2` are farther apart than
-/// `prediction` plus [`BALL_SKIP_MARGIN`]: their centres' world distance, without composing the poses that
-/// [`ball_ball`] needs. Most candidate pairs of a pile of balls are apart.
-fn balls_clearly_apart(
-    c1: &Collider,
-    b1: &RigidBody,
-    r1: f32,
-    c2: &Collider,
-    b2: &RigidBody,
-    r2: f32,
+/// Whether colliders `c1`, `c2` of bodies `b1`, `b2` are two balls farther apart than `prediction` plus
+/// [`BALL_SKIP_MARGIN`] (`false` for any other shapes): their centres' world distance, without composing the
+/// poses that [`ball_ball`] needs. Most candidate pairs of a pile of balls are apart; the broad phase drops
+/// them before they become candidates, and the narrow phase checks again for the pairs it is given.
+pub(crate) fn balls_clearly_apart(
+    (c1, b1): (&Collider, &RigidBody),
+    (c2, b2): (&Collider, &RigidBody),
     prediction: f32,
 ) -> bool {
+    let (ColliderShape::Ball { radius: r1 }, ColliderShape::Ball { radius: r2 }) =
+        (&c1.desc.shape, &c2.desc.shape)
+    else {
+        return false;
+    };
     let center1 = b1.pose().transform_point(c1.desc.local_pose.position);
     let center2 = b2.pose().transform_point(c2.desc.local_pose.position);
     let reach = r1 + r2 + prediction + BALL_SKIP_MARGIN;
     center1.distance_squared(center2) > reach * reach
+}
+
+/// How far apart (m) two colliders on bodies `b1` and `b2` may be and still get a (speculative) contact this
+/// step: the speculative margin plus how far they can close within `dt` — their relative speed and each one's
+/// rotation reach `|ω|·r` (m/s, [`BroadPhase::rotation_reach`]).
+pub(crate) fn prediction_distance(
+    b1: &RigidBody,
+    b2: &RigidBody,
+    (reach1, reach2): (f32, f32),
+    speculative_margin: f32,
+    dt: f32,
+) -> f32 {
+    let closing = (b1.linear_velocity() - b2.linear_velocity()).length() + reach1 + reach2;
+    (speculative_margin + closing * dt).min(MAX_PREDICTION)
 }
 
 /// The contact of two balls of radii `r1` and `r2` (m), ball 2 at `pos12` in ball 1's frame, for gaps up to

@@ -427,3 +427,57 @@ fn a_broken_joint_stops_disabling_contacts() {
         "the overlapping boxes collide again"
     );
 }
+
+#[test]
+fn balls_moving_together_are_no_candidates_but_closing_ones_are() {
+    // Three balls of radius 0.1 m in a row along x, 0.5 m apart, all moving at 30 m/s along z: each fat box
+    // (speculative margin + 30 m/s · dt = 0.52 m) overlaps the next one's, but balls that move together can
+    // close by no more than the margin (0.02 m) this step, and the 0.3 m gap stays. Then the middle ball
+    // moves toward the first at 30 m/s: it can close 0.5 m this step, so that pair is a candidate (and gets a
+    // speculative contact), the pair it leaves behind too (their relative speed is as large).
+    let settings = WorldSettings {
+        gravity: Vec3::ZERO,
+        sleep_enabled: false,
+        ..WorldSettings::default()
+    };
+    let mut world = PhysicsWorld::new(settings).unwrap();
+    let balls: Vec<BodyHandle> = (0..3)
+        .map(|i| {
+            let body = world
+                .insert_body(
+                    BodyDesc::dynamic()
+                        .with_position(Vec3::new(0.5 * i as f32, 0.0, 0.0))
+                        .with_linear_velocity(Vec3::new(0.0, 0.0, 30.0)),
+                )
+                .unwrap();
+            world
+                .insert_collider(ColliderDesc::ball(0.1), body)
+                .unwrap();
+            body
+        })
+        .collect();
+    world.step(DT);
+    let pairs = world.world().backend().candidate_pairs();
+    assert!(pairs.is_empty(), "balls moving together: {pairs:?}");
+    assert!(world.contacts().is_empty());
+
+    world
+        .body_mut(balls[1])
+        .unwrap()
+        .set_linear_velocity(Vec3::new(-30.0, 0.0, 30.0))
+        .unwrap();
+    world.step(DT);
+    let pairs = world.world().backend().candidate_pairs().len();
+    assert_eq!(
+        pairs, 2,
+        "the middle ball closing on the first and leaving the last"
+    );
+    assert!(
+        world
+            .contacts()
+            .iter()
+            .any(|m| [m.body_a, m.body_b] == [balls[0], balls[1]]
+                || [m.body_a, m.body_b] == [balls[1], balls[0]]),
+        "the closing pair has a speculative contact"
+    );
+}
