@@ -30,7 +30,7 @@
 
 use crate::narrow_phase::{balls_clearly_apart, prediction_distance};
 use crate::shape::to_parry_pose;
-use crate::{Collider, ColliderHandle, ColliderSet};
+use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use parry3d::partitioning::{Bvh, BvhWorkspace};
 use rebound_dynamics::{BodyType, RigidBody};
@@ -183,6 +183,15 @@ impl BroadPhase {
                     && (is_mover(c1, b1) || is_mover(c2, b2))
                     && can_collide(c1, b1, c2, b2, disabled_pairs)
                 {
+                    let balls = matches!(
+                        (&c1.desc.shape, &c2.desc.shape),
+                        (ColliderShape::Ball { .. }, ColliderShape::Ball { .. })
+                    );
+                    // Only two balls are tested (the other pairs pay nothing for the test).
+                    if !balls {
+                        pairs.push(ordered(h1, h2));
+                        return;
+                    }
                     let reaches = (reach(slot1), reach(slot2));
                     let prediction = prediction_distance(b1, b2, reaches, speculative_margin, dt);
                     if !balls_clearly_apart((c1, b1), (c2, b2), prediction) {
