@@ -620,10 +620,22 @@ pub(crate) fn balls_clearly_apart(
     else {
         return false;
     };
-    let center1 = b1.pose().transform_point(c1.desc.local_pose.position);
-    let center2 = b2.pose().transform_point(c2.desc.local_pose.position);
+    let center1 = ball_center(c1, b1);
+    let center2 = ball_center(c2, b2);
     let reach = r1 + r2 + prediction + BALL_SKIP_MARGIN;
     center1.distance_squared(center2) > reach * reach
+}
+
+/// The world position of the centre of ball collider `c` on body `b`: the body's origin for a ball at it (the
+/// common case: no rotation to apply), else the collider's offset carried by the body's pose.
+#[inline]
+fn ball_center(c: &Collider, b: &RigidBody) -> Vec3 {
+    let offset = c.desc.local_pose.position;
+    if offset == Vec3::ZERO {
+        b.position()
+    } else {
+        b.pose().transform_point(offset)
+    }
 }
 
 /// How far apart (m) two colliders on bodies `b1` and `b2` may be and still get a (speculative) contact this
