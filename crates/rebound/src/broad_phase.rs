@@ -1,32 +1,42 @@
 //! The broad phase (first half of the collide stage) and the spatial index queries use: parry3d's incremental
 //! [`Bvh`] over every collider's bounding box.
 //!
-//! **At the start of a step** every leaf gets the collider's box at the current pose, fattened by the
-//! speculative margin of its body:
+//! **At the start of a step** every collider's box at the current pose is fattened by the speculative margin
+//! of its body:
 //!
 //! ```text
 //! margin = settings.speculative_margin + (|v| + |ω|·r)·dt      (awake, non-fixed bodies; 0 otherwise)
 //! ```
 //!
 //! where `r` bounds the distance from the centre of mass to the box, so the box covers everything the body can
-//! reach during the step (rotation included). The tree is refitted and traversed against itself once (every
-//! pair of overlapping boxes; a query per moving collider found the same pairs with 12 % more instructions
-//! on the balls scene), and the candidate pairs with at least one moving collider that pass the filters
-//! (same body, enabled, sensor, groups, disabled body pairs, at least one dynamic body) are sorted by collider
-//! handle: the order never depends on the tree's shape. Two balls whose centres are farther apart than their
-//! radii plus the narrow phase's prediction distance (which counts their *relative* speed, where the boxes
-//! count each one's own) are dropped here: they can get no contact this step. Balls moving together — a
-//! swinging chain, a falling pile — have boxes fattened by their speed that overlap many neighbours they
-//! cannot reach (the SCENES.md chain: some 2,000 such pairs a step for 500 balls).
+//! reach during the step (rotation included). A leaf that already contains its collider's fat box is kept;
+//! the others get the fat box — loosened by half the speculative margin for a slow body, so that a resting
+//! body's jitter does not change its leaf every step. If any leaf changed, the tree is refitted and traversed
+//! against itself once (every pair of overlapping leaves; a query per moving collider found the same pairs
+//! with 12 % more instructions on the balls scene). If none did, the overlapping leaves are the last
+//! traversal's, kept sorted (when few leaves changed, as in a pile coming to rest, that traversal keeps them):
+//! a resting pyramid does no traversal at all. The overlaps with at least one moving collider that pass the
+//! filters (same body, enabled, sensor, groups, disabled body pairs, at least one dynamic body) are the
+//! candidate pairs, sorted by collider handle: the order never depends on the tree's shape. Two balls whose
+//! centres are farther apart than their radii plus the narrow phase's prediction distance (which counts
+//! their *relative* speed, where the boxes count each one's own) are dropped here: they can get no contact
+//! this step. Balls moving together — a swinging chain, a falling pile — have boxes fattened by their speed
+//! that overlap many neighbours they cannot reach (the SCENES.md chain: some 2,000 such pairs a step for 500
+//! balls).
 //!
-//! **At the end of a step** (and whenever the world is edited through the facade) the leaves get the tight
-//! boxes of the new poses, so queries between steps see the current state. After `body_mut` the tree may be
-//! stale; queries then test every collider's current box instead (slower, always correct) until the next
-//! step or [`crate::PhysicsWorld::refresh_queries`].
+//! **At the end of a step** (and whenever the world is edited through the facade) the leaves are made to hold
+//! the tight boxes of the new poses (a leaf that contains its box is kept), so queries between steps see the
+//! current state. After `body_mut` the tree may be stale; queries then test every collider's current box
+//! instead (slower, always correct) until the next step or [`crate::PhysicsWorld::refresh_queries`].
 //!
-//! The boxes are recomputed from the poses every step rather than kept while they still contain the shape
-//! (rapier's change detection): the candidate pairs are then a function of the current state alone, which
-//! is what makes a restored snapshot step like the world that never stopped.
+//! **Determinism.** Kept leaves are larger than the current fat boxes, so the candidate pairs depend on the
+//! history of the tree (a restored snapshot starts from a new tree of tight boxes) — but only by pairs whose
+//! current fat boxes do not overlap, and those can get no contact: the narrow phase's prediction distance for
+//! a pair, `speculative_margin + (|v₁ − v₂| + |ω₁|·r₁ + |ω₂|·r₂)·dt`, is at most the sum of the two margins,
+//! and shapes whose fattened boxes are apart are farther apart than that. The narrow phase treats each pair
+//! on its own (a pair's persistent cache forgets its history, a box pair is recycled from last step's
+//! *contacts* only), so the contacts — and the step — are a function of the current state alone, which is
+//! what makes a restored snapshot step like the world that never stopped.
 
 use crate::narrow_phase::{balls_clearly_apart, prediction_distance};
 use crate::shape::to_parry_pose;
@@ -37,6 +47,17 @@ use rebound_dynamics::{BodyType, RigidBody};
 use rebound_math::Pose;
 use rebound_world::{BodyHandle, BodySet};
 use std::collections::BTreeSet;
+
+/// A slow body's new leaf is its fat box loosened by this fraction of the speculative margin, so that it
+/// holds the body's fat box for many steps of resting jitter (see the module docs).
+const LEAF_SLACK: f32 = 0.5;
+
+/// A body counts as slow while the speed part of its margin, `(|v| + |ω|·r)·dt`, is below this fraction of
+/// the speculative margin; a faster body's leaf would not hold its next fat box anyway.
+const LEAF_SLACK_BELOW: f32 = 0.5;
+
+/// The overlapping leaves are kept for the next steps when at most one leaf in this many changed this step.
+const KEEP_OVERLAPS_BELOW: usize = 8;
 
 /// The largest fattening margin (m). A margin beyond this (absurd velocities or steps) already makes every
 /// box overlap every other; capping it keeps the tree's arithmetic finite.
@@ -92,6 +113,11 @@ pub(crate) struct BroadPhase {
     query_ready: bool,
     /// Candidate pairs of the last step, sorted, lower handle first.
     pub(crate) pairs: Vec<(ColliderHandle, ColliderHandle)>,
+    /// Every pair of overlapping leaves (sorted, lower handle first, before any filter) as the last traversal
+    /// of the tree found them, and whether the leaves are still the ones it traversed: a step whose leaves all
+    /// still hold their colliders' fat boxes filters this list again instead of traversing the tree.
+    overlaps: Vec<(ColliderHandle, ColliderHandle)>,
+    overlaps_current: bool,
     /// Whether any collider of a moving body took part in the last pair search (without one there are no
     /// pairs to find).
     any_mover: bool,
@@ -124,10 +150,14 @@ impl BroadPhase {
     ) {
         self.any_mover = false;
         self.rotation_reach.clear();
+        let mut changed = 0;
         for (handle, collider) in colliders.iter() {
             let slot = handle.0.index;
             let Some(body) = bodies.get(collider.body) else {
-                self.bvh.remove(slot);
+                if self.bvh.leaf_node(slot).is_some() {
+                    self.bvh.remove(slot);
+                    changed += 1;
+                }
                 continue;
             };
             let aabb = world_aabb(collider, body);
@@ -147,56 +177,81 @@ impl BroadPhase {
                 0.0
             };
             let fat = aabb.loosened(margin);
-            let _ = self.bvh.insert_or_update_partially(fat, slot, 0.0);
             if active && collider.desc.enabled && !collider.desc.is_sensor {
                 self.any_mover = true;
             }
+            // A leaf that holds the fat box stays (see the module docs); a new one gets some slack if the
+            // body is slow, so that a resting body's jitter does not change its leaf every step.
+            if self
+                .bvh
+                .leaf_node(slot)
+                .is_some_and(|leaf| leaf.contains_aabb(&fat))
+            {
+                continue;
+            }
+            let slack = if margin - speculative_margin < LEAF_SLACK_BELOW * speculative_margin {
+                LEAF_SLACK * speculative_margin
+            } else {
+                0.0
+            };
+            let _ = self
+                .bvh
+                .insert_or_update_partially(fat.loosened(slack), slot, 0.0);
+            changed += 1;
         }
-        self.bvh.refit(&mut self.workspace);
-        // Moving leaves degrade the tree; parry rebuilds a few subtrees per call (rapier does this per step).
-        self.bvh.optimize_incremental(&mut self.workspace);
         self.query_ready = false;
+        if changed > 0 {
+            self.bvh.refit(&mut self.workspace);
+            // Moving leaves degrade the tree; parry rebuilds a few subtrees per call (rapier does this per
+            // step).
+            self.bvh.optimize_incremental(&mut self.workspace);
+            self.overlaps_current = false;
+        }
 
         self.pairs.clear();
         if !self.any_mover {
             return;
         }
-        let is_mover =
-            |c: &Collider, b: &RigidBody| is_active(b) && c.desc.enabled && !c.desc.is_sensor;
-        // One traversal of the tree against itself yields every pair of overlapping fat boxes (cheaper than a
-        // query per moving collider); pairs of two colliders that do not move are dropped, and so are two
-        // balls the narrow phase would find farther apart than their prediction distance (a swinging chain's
-        // fat boxes overlap four times as many neighbours as can touch this step).
-        let (pairs, reach) = (&mut self.pairs, &self.rotation_reach);
-        let reach = |slot: u32| reach.get(slot as usize).copied().unwrap_or(0.0);
+        let filter = PairFilter {
+            bodies,
+            disabled_pairs,
+            rotation_reach: &self.rotation_reach,
+            speculative_margin,
+            dt,
+        };
+        // Few leaves changed (a pile coming to rest): the overlaps are traversed and kept, for the steps
+        // after, in which no leaf changes, to filter again. Many changed (bodies on the move): the traversal
+        // filters as it goes and keeps nothing, as the next step traverses again anyway.
+        if self.overlaps_current || changed * KEEP_OVERLAPS_BELOW <= self.bvh.leaf_count() as usize
+        {
+            if !self.overlaps_current {
+                find_overlaps(
+                    &mut self.bvh,
+                    &mut self.workspace,
+                    colliders,
+                    &mut self.overlaps,
+                    &mut self.sort_scratch,
+                );
+                self.overlaps_current = true;
+            }
+            self.pairs
+                .extend(self.overlaps.iter().copied().filter(|&(h1, h2)| {
+                    matches!(
+                        (colliders.get(h1), colliders.get(h2)),
+                        (Some(c1), Some(c2)) if filter.keeps(c1, h1, c2, h2)
+                    )
+                }));
+            return;
+        }
+        let pairs = &mut self.pairs;
         self.bvh
             .traverse_bvtt_single_tree::<false>(&mut self.workspace, &mut |slot1, slot2| {
-                let (Some((h1, c1)), Some((h2, c2))) =
-                    (colliders.at_slot(slot1), colliders.at_slot(slot2))
-                else {
-                    return;
-                };
-                let (Some(b1), Some(b2)) = (bodies.get(c1.body), bodies.get(c2.body)) else {
-                    return;
-                };
                 if slot1 != slot2
-                    && (is_mover(c1, b1) || is_mover(c2, b2))
-                    && can_collide(c1, b1, c2, b2, disabled_pairs)
+                    && let (Some((h1, c1)), Some((h2, c2))) =
+                        (colliders.at_slot(slot1), colliders.at_slot(slot2))
+                    && filter.keeps(c1, h1, c2, h2)
                 {
-                    let balls = matches!(
-                        (&c1.desc.shape, &c2.desc.shape),
-                        (ColliderShape::Ball { .. }, ColliderShape::Ball { .. })
-                    );
-                    // Only two balls are tested (the other pairs pay nothing for the test).
-                    if !balls {
-                        pairs.push(ordered(h1, h2));
-                        return;
-                    }
-                    let reaches = (reach(slot1), reach(slot2));
-                    let prediction = prediction_distance(b1, b2, reaches, speculative_margin, dt);
-                    if !balls_clearly_apart((c1, b1), (c2, b2), prediction) {
-                        pairs.push(ordered(h1, h2));
-                    }
+                    pairs.push(ordered(h1, h2));
                 }
             });
         // Sorted by the two slot indices: the same order as the handles' (live colliders have distinct
@@ -238,6 +293,7 @@ impl BroadPhase {
         }
         if changed {
             self.bvh.refit(&mut self.workspace);
+            self.overlaps_current = false;
         }
         self.query_ready = true;
     }
@@ -245,6 +301,7 @@ impl BroadPhase {
     /// A new tree holding every collider (after a restore): same leaves, whatever the old tree's shape.
     pub(crate) fn rebuild(&mut self, colliders: &ColliderSet, bodies: &BodySet) {
         self.bvh = Bvh::new();
+        self.overlaps_current = false;
         self.pairs.clear();
         self.rotation_reach.clear();
         self.refresh(colliders, bodies);
@@ -267,11 +324,13 @@ impl BroadPhase {
     ) {
         self.bvh
             .insert(aabb_at(collider, body_pose), handle.0.index);
+        self.overlaps_current = false;
     }
 
     /// Removes one collider's leaf.
     pub(crate) fn remove_leaf(&mut self, handle: ColliderHandle) {
         self.bvh.remove(handle.0.index);
+        self.overlaps_current = false;
     }
 
     /// Marks the boxes as possibly stale (a body may have moved): queries test every collider until the next
@@ -310,6 +369,78 @@ impl BroadPhase {
         out.sort_unstable();
         out.dedup();
     }
+}
+
+/// The filters a pair of overlapping leaves passes to become a candidate: at least one of the two colliders
+/// moves, [`can_collide`], and two balls are not farther apart than the narrow phase's prediction distance (a
+/// swinging chain's fat boxes overlap four times as many neighbours as can touch this step).
+struct PairFilter<'a> {
+    bodies: &'a BodySet,
+    disabled_pairs: &'a BTreeSet<(BodyHandle, BodyHandle)>,
+    /// |ω|·r per collider slot (m/s).
+    rotation_reach: &'a [f32],
+    speculative_margin: f32,
+    dt: f32,
+}
+
+impl PairFilter<'_> {
+    /// Whether colliders `c1` (handle `h1`) and `c2` (`h2`) are a candidate pair.
+    fn keeps(&self, c1: &Collider, h1: ColliderHandle, c2: &Collider, h2: ColliderHandle) -> bool {
+        let is_mover =
+            |c: &Collider, b: &RigidBody| is_active(b) && c.desc.enabled && !c.desc.is_sensor;
+        let (Some(b1), Some(b2)) = (self.bodies.get(c1.body), self.bodies.get(c2.body)) else {
+            return false;
+        };
+        if !((is_mover(c1, b1) || is_mover(c2, b2))
+            && can_collide(c1, b1, c2, b2, self.disabled_pairs))
+        {
+            return false;
+        }
+        // Only two balls are tested for distance (the other pairs pay nothing for the test).
+        if !matches!(
+            (&c1.desc.shape, &c2.desc.shape),
+            (ColliderShape::Ball { .. }, ColliderShape::Ball { .. })
+        ) {
+            return true;
+        }
+        let reach = |h: ColliderHandle| {
+            self.rotation_reach
+                .get(h.0.index as usize)
+                .copied()
+                .unwrap_or(0.0)
+        };
+        let prediction = prediction_distance(
+            b1,
+            b2,
+            (reach(h1), reach(h2)),
+            self.speculative_margin,
+            self.dt,
+        );
+        !balls_clearly_apart((c1, b1), (c2, b2), prediction)
+    }
+}
+
+/// One traversal of `bvh` against itself: every pair of overlapping leaves into `overlaps` (cleared first),
+/// sorted by the two slot indices — the same order as the handles' (live colliders have distinct slots, and
+/// a handle orders by slot first) — whatever the tree's shape.
+fn find_overlaps(
+    bvh: &mut Bvh,
+    workspace: &mut BvhWorkspace,
+    colliders: &ColliderSet,
+    overlaps: &mut Vec<(ColliderHandle, ColliderHandle)>,
+    scratch: &mut Vec<(ColliderHandle, ColliderHandle)>,
+) {
+    overlaps.clear();
+    bvh.traverse_bvtt_single_tree::<false>(workspace, &mut |slot1, slot2| {
+        if slot1 != slot2
+            && let (Some((h1, _)), Some((h2, _))) =
+                (colliders.at_slot(slot1), colliders.at_slot(slot2))
+        {
+            overlaps.push(ordered(h1, h2));
+        }
+    });
+    radix_sort_pairs(overlaps, scratch);
+    overlaps.dedup();
 }
 
 /// Bits per digit of the pair sort: 2,048 buckets, so a pile of 16,384 colliders (28-bit keys) sorts in three
@@ -367,7 +498,81 @@ fn radix_sort_pairs(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::prelude::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn a_resting_stack_keeps_its_leaves_and_overlaps_and_a_moved_box_traverses_again() {
+        let settings = WorldSettings {
+            sleep_enabled: false,
+            ..WorldSettings::default()
+        };
+        let mut world = PhysicsWorld::new(settings).unwrap();
+        let ground = world
+            .insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -0.5, 0.0)))
+            .unwrap();
+        world
+            .insert_collider(ColliderDesc::cuboid(Vec3::new(10.0, 0.5, 10.0)), ground)
+            .unwrap();
+        let boxes: Vec<BodyHandle> = (0..3)
+            .map(|k| {
+                let body = world
+                    .insert_body(BodyDesc::dynamic().with_position(Vec3::new(
+                        0.0,
+                        0.5 + k as f32,
+                        0.0,
+                    )))
+                    .unwrap();
+                world
+                    .insert_collider(ColliderDesc::cuboid(Vec3::splat(0.5)), body)
+                    .unwrap();
+                body
+            })
+            .collect();
+        for _ in 0..120 {
+            world.step(1.0 / 60.0);
+        }
+        // At rest: a step changes no leaf, so it filters the kept overlaps without traversing the tree.
+        world
+            .world
+            .backend_mut()
+            .broad_phase
+            .overlaps
+            .push((ColliderHandle::invalid(), ColliderHandle::invalid()));
+        world.step(1.0 / 60.0);
+        let broad_phase = &world.world().backend().broad_phase;
+        assert!(broad_phase.overlaps_current);
+        assert_eq!(
+            broad_phase.overlaps.last(),
+            Some(&(ColliderHandle::invalid(), ColliderHandle::invalid())),
+            "the kept overlaps were filtered again, not traversed"
+        );
+        // The candidate pairs hold every touching pair: ground–box 0, box 0–1, box 1–2.
+        assert_eq!(broad_phase.pairs.len(), 3, "{:?}", broad_phase.pairs);
+        assert_eq!(world.contacts().len(), 3);
+
+        // A box teleported into the air leaves its leaf: the next step traverses again (one leaf in four changed:
+        // filtering as it goes, keeping nothing) and drops its pairs; the step after, with no leaf changed,
+        // traverses once more and keeps the overlaps.
+        world
+            .body_mut(boxes[2])
+            .unwrap()
+            .set_position(Vec3::new(5.0, 3.0, 0.0))
+            .unwrap();
+        world.step(1.0 / 60.0);
+        let broad_phase = &world.world().backend().broad_phase;
+        assert!(!broad_phase.overlaps_current);
+        assert_eq!(broad_phase.pairs.len(), 2, "{:?}", broad_phase.pairs);
+        world.step(1.0 / 60.0);
+        let broad_phase = &world.world().backend().broad_phase;
+        assert!(broad_phase.overlaps_current);
+        assert_ne!(
+            broad_phase.overlaps.last(),
+            Some(&(ColliderHandle::invalid(), ColliderHandle::invalid())),
+            "traversed again"
+        );
+        assert_eq!(broad_phase.pairs.len(), 2, "{:?}", broad_phase.pairs);
+    }
 
     proptest! {
         /// The radix sort orders pairs as a comparison sort of the handles does, for slot indices of any size
