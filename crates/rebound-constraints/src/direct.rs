@@ -2020,20 +2020,29 @@ mod tests {
             .collect()
     }
 
+    /// The inverse masses of eight bodies for [`soft_path`]: unequal, with unequal inertias.
+    fn path_masses() -> [InvMass; 8] {
+        core::array::from_fn(|k| InvMass {
+            mass: 0.5 + 0.25 * k as f32,
+            inertia: Mat3::from_diagonal(Vec3::new(2.0 + k as f32, 1.0, 0.5)),
+        })
+    }
+
+    /// Eight bodies moving and turning, each differently.
+    fn path_bodies() -> [SolverBody; 8] {
+        core::array::from_fn(|k| SolverBody {
+            linear_velocity: Vec3::new(0.3 * k as f32, -1.0, 0.5),
+            angular_velocity: Vec3::new(0.2, 0.1 * k as f32, -0.4),
+            ..SolverBody::STATIC
+        })
+    }
+
     #[test]
     fn a_resumed_sweep_gives_the_bits_of_a_full_one() {
         // Rope chains (the scalar sweep) and hinge decks (the block sweep): solve, take a row out of the
         // system at link 3 as an active-set round does, then solve again resuming from link 2 and from
         // scratch.
-        let masses: [InvMass; 8] = core::array::from_fn(|k| InvMass {
-            mass: 0.5 + 0.25 * k as f32,
-            inertia: Mat3::from_diagonal(Vec3::new(2.0 + k as f32, 1.0, 0.5)),
-        });
-        let bodies: [SolverBody; 8] = core::array::from_fn(|k| SolverBody {
-            linear_velocity: Vec3::new(0.3 * k as f32, -1.0, 0.5),
-            angular_velocity: Vec3::new(0.2, 0.1 * k as f32, -0.4),
-            ..SolverBody::STATIC
-        });
+        let (masses, bodies) = (path_masses(), path_bodies());
         let load = |i: usize| Some((&bodies[i], &bodies[i + 1]));
         for width in [1, MAX_ROWS] {
             let mut resumed = soft_path(&[width; 7], &masses);
@@ -2063,14 +2072,7 @@ mod tests {
     fn the_shape_scan_finds_the_first_stale_link_as_the_key_scan_does() {
         // Paths of ropes, of hinges, and mixed (a rope between hinges: blocks 5 wide), factorised at one
         // width; then links unkeyed, re-keyed at another width, their active set or link to the next changed.
-        let masses: [InvMass; 8] = core::array::from_fn(|k| InvMass {
-            mass: 0.5 + 0.25 * k as f32,
-            inertia: Mat3::from_diagonal(Vec3::new(2.0 + k as f32, 1.0, 0.5)),
-        });
-        let bodies: [SolverBody; 8] = core::array::from_fn(|k| SolverBody {
-            linear_velocity: Vec3::new(0.3 * k as f32, -1.0, 0.5),
-            ..SolverBody::STATIC
-        });
+        let (masses, bodies) = (path_masses(), path_bodies());
         let load = |i: usize| Some((&bodies[i], &bodies[i + 1]));
         let edits: [fn(&mut [Link]); 6] = [
             |_| {},

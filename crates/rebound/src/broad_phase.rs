@@ -532,46 +532,34 @@ mod tests {
         for _ in 0..120 {
             world.step(1.0 / 60.0);
         }
-        // At rest: a step changes no leaf, so it filters the kept overlaps without traversing the tree.
-        world
-            .world
-            .backend_mut()
-            .broad_phase
-            .overlaps
-            .push((ColliderHandle::invalid(), ColliderHandle::invalid()));
-        world.step(1.0 / 60.0);
-        let broad_phase = &world.world().backend().broad_phase;
-        assert!(broad_phase.overlaps_current);
-        assert_eq!(
-            broad_phase.overlaps.last(),
-            Some(&(ColliderHandle::invalid(), ColliderHandle::invalid())),
-            "the kept overlaps were filtered again, not traversed"
-        );
-        // The candidate pairs hold every touching pair: ground–box 0, box 0–1, box 1–2.
-        assert_eq!(broad_phase.pairs.len(), 3, "{:?}", broad_phase.pairs);
+        // A pair no traversal finds, appended to the kept overlaps: still last after a step means the step
+        // filtered them again without traversing the tree.
+        let marker = (ColliderHandle::invalid(), ColliderHandle::invalid());
+        world.world.backend_mut().broad_phase.overlaps.push(marker);
+        // (overlaps kept for the next step, marker still last, candidate pairs) after one more step.
+        let step = |world: &mut PhysicsWorld| {
+            world.step(1.0 / 60.0);
+            let broad_phase = &world.world().backend().broad_phase;
+            (
+                broad_phase.overlaps_current,
+                broad_phase.overlaps.last() == Some(&marker),
+                broad_phase.pairs.len(),
+            )
+        };
+        // At rest no leaf changes: the kept overlaps are filtered again, into every touching pair (ground–box
+        // 0, box 0–1, box 1–2).
+        assert_eq!(step(&mut world), (true, true, 3));
         assert_eq!(world.contacts().len(), 3);
-
-        // A box teleported into the air leaves its leaf: the next step traverses again (one leaf in four changed:
-        // filtering as it goes, keeping nothing) and drops its pairs; the step after, with no leaf changed,
-        // traverses once more and keeps the overlaps.
+        // A box teleported into the air leaves its leaf: the next step traverses again (one leaf in four
+        // changed: filtering as it goes, keeping nothing) and drops its pairs; the step after, with no leaf
+        // changed, traverses once more and keeps the overlaps.
         world
             .body_mut(boxes[2])
             .unwrap()
             .set_position(Vec3::new(5.0, 3.0, 0.0))
             .unwrap();
-        world.step(1.0 / 60.0);
-        let broad_phase = &world.world().backend().broad_phase;
-        assert!(!broad_phase.overlaps_current);
-        assert_eq!(broad_phase.pairs.len(), 2, "{:?}", broad_phase.pairs);
-        world.step(1.0 / 60.0);
-        let broad_phase = &world.world().backend().broad_phase;
-        assert!(broad_phase.overlaps_current);
-        assert_ne!(
-            broad_phase.overlaps.last(),
-            Some(&(ColliderHandle::invalid(), ColliderHandle::invalid())),
-            "traversed again"
-        );
-        assert_eq!(broad_phase.pairs.len(), 2, "{:?}", broad_phase.pairs);
+        assert_eq!(step(&mut world), (false, true, 2));
+        assert_eq!(step(&mut world), (true, false, 2));
     }
 
     proptest! {
