@@ -38,13 +38,13 @@
 //! *contacts* only), so the contacts — and the step — are a function of the current state alone, which is
 //! what makes a restored snapshot step like the world that never stopped.
 
-use crate::narrow_phase::{balls_clearly_apart, prediction_distance};
+use crate::narrow_phase::{ball_center, centres_clearly_apart, prediction_from_velocities};
 use crate::shape::to_parry_pose;
-use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape};
+use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use parry3d::partitioning::{Bvh, BvhWorkspace};
 use rebound_dynamics::{BodyType, RigidBody};
-use rebound_math::Pose;
+use rebound_math::{Pose, Vec3};
 use rebound_world::{BodyHandle, BodySet};
 use std::collections::BTreeSet;
 
@@ -82,21 +82,60 @@ pub(crate) fn aabb_at(collider: &Collider, body_pose: Pose) -> Aabb {
 
 /// Whether two colliders (on existing bodies) may touch: different bodies, both enabled, neither a sensor,
 /// groups that accept each other, contacts not disabled by a joint, and at least one dynamic body.
-pub(crate) fn can_collide(
-    c1: &Collider,
-    b1: &RigidBody,
-    c2: &Collider,
-    b2: &RigidBody,
+fn can_collide(
+    x: &Candidate,
+    y: &Candidate,
     disabled_pairs: &BTreeSet<(BodyHandle, BodyHandle)>,
 ) -> bool {
-    c1.body != c2.body
-        && c1.desc.enabled
-        && c2.desc.enabled
-        && !c1.desc.is_sensor
-        && !c2.desc.is_sensor
-        && c1.desc.groups.interacts_with(c2.desc.groups)
-        && (b1.is_dynamic() || b2.is_dynamic())
-        && !disabled_pairs.contains(&ordered(c1.body, c2.body))
+    x.body != y.body
+        && x.collides
+        && y.collides
+        && x.groups.interacts_with(y.groups)
+        && (x.dynamic || y.dynamic)
+        && !disabled_pairs.contains(&ordered(x.body, y.body))
+}
+
+/// What the pair filter reads of one collider and its body, gathered once a step in a dense array by collider
+/// slot ([`BroadPhase::find_pairs`]): every overlapping pair reads two of these instead of looking both
+/// colliders and both bodies up in their arenas.
+#[derive(Debug, Clone, Copy)]
+struct Candidate {
+    /// The collider (a pair of handles from an older traversal must still name it).
+    handle: ColliderHandle,
+    body: BodyHandle,
+    /// Enabled and not a sensor.
+    collides: bool,
+    /// Collides, and its body is awake and not fixed.
+    mover: bool,
+    /// Its body is dynamic.
+    dynamic: bool,
+    groups: CollisionGroups,
+    /// A ball's world centre and radius (m).
+    ball: Option<(Vec3, f32)>,
+    /// The body's linear velocity (m/s) and the collider's rotation reach `|ω|·r` (m/s).
+    velocity: Vec3,
+    reach: f32,
+}
+
+impl Candidate {
+    /// The record of `collider` (`handle`) on `body`, with its rotation reach (m/s).
+    fn of(handle: ColliderHandle, collider: &Collider, body: &RigidBody, reach: f32) -> Self {
+        let collides = collider.desc.enabled && !collider.desc.is_sensor;
+        Self {
+            handle,
+            body: collider.body,
+            collides,
+            mover: collides && is_active(body),
+            dynamic: body.is_dynamic(),
+            groups: collider.desc.groups,
+            ball: match collider.desc.shape {
+                ColliderShape::Ball { radius } => Some((ball_center(collider, body), radius)),
+                _ => None,
+            },
+            velocity: body.linear_velocity(),
+            reach,
+        }
+    }
 }
 
 /// A pair in ascending order.
@@ -118,6 +157,8 @@ pub(crate) struct BroadPhase {
     /// still hold their colliders' fat boxes filters this list again instead of traversing the tree.
     overlaps: Vec<(ColliderHandle, ColliderHandle)>,
     overlaps_current: bool,
+    /// This step's [`Candidate`] of each collider slot (`None`: no collider, or its body is gone).
+    candidates: Vec<Option<Candidate>>,
     /// Whether any collider of a moving body took part in the last pair search (without one there are no
     /// pairs to find).
     any_mover: bool,
@@ -150,6 +191,7 @@ impl BroadPhase {
     ) {
         self.any_mover = false;
         self.rotation_reach.clear();
+        self.candidates.clear();
         let mut changed = 0;
         for (handle, collider) in colliders.iter() {
             let slot = handle.0.index;
@@ -177,9 +219,14 @@ impl BroadPhase {
                 0.0
             };
             let fat = aabb.loosened(margin);
-            if active && collider.desc.enabled && !collider.desc.is_sensor {
-                self.any_mover = true;
+            let reach = self.rotation_reach(handle);
+            let candidate = Candidate::of(handle, collider, body, reach);
+            self.any_mover |= candidate.mover;
+            let slot_index = slot as usize;
+            if self.candidates.len() <= slot_index {
+                self.candidates.resize(slot_index + 1, None);
             }
+            self.candidates[slot_index] = Some(candidate);
             // A leaf that holds the fat box stays (see the module docs); a new one gets some slack if the
             // body is slow, so that a resting body's jitter does not change its leaf every step.
             if self
@@ -213,9 +260,8 @@ impl BroadPhase {
             return;
         }
         let filter = PairFilter {
-            bodies,
+            candidates: &self.candidates,
             disabled_pairs,
-            rotation_reach: &self.rotation_reach,
             speculative_margin,
             dt,
         };
@@ -234,24 +280,25 @@ impl BroadPhase {
                 );
                 self.overlaps_current = true;
             }
-            self.pairs
-                .extend(self.overlaps.iter().copied().filter(|&(h1, h2)| {
-                    matches!(
-                        (colliders.get(h1), colliders.get(h2)),
-                        (Some(c1), Some(c2)) if filter.keeps(c1, h1, c2, h2)
-                    )
-                }));
+            self.pairs.extend(
+                self.overlaps
+                    .iter()
+                    .copied()
+                    .filter(|&(h1, h2)| filter.keeps(h1, h2)),
+            );
             return;
         }
         let pairs = &mut self.pairs;
         self.bvh
             .traverse_bvtt_single_tree::<false>(&mut self.workspace, &mut |slot1, slot2| {
                 if slot1 != slot2
-                    && let (Some((h1, c1)), Some((h2, c2))) =
+                    && let (Some((h1, _)), Some((h2, _))) =
                         (colliders.at_slot(slot1), colliders.at_slot(slot2))
-                    && filter.keeps(c1, h1, c2, h2)
                 {
-                    pairs.push(ordered(h1, h2));
+                    let (h1, h2) = ordered(h1, h2);
+                    if filter.keeps(h1, h2) {
+                        pairs.push((h1, h2));
+                    }
                 }
             });
         // Sorted by the two slot indices: the same order as the handles' (live colliders have distinct
@@ -373,50 +420,40 @@ impl BroadPhase {
 
 /// The filters a pair of overlapping leaves passes to become a candidate: at least one of the two colliders
 /// moves, [`can_collide`], and two balls are not farther apart than the narrow phase's prediction distance (a
-/// swinging chain's fat boxes overlap four times as many neighbours as can touch this step).
+/// swinging chain's fat boxes overlap four times as many neighbours as can touch this step) — the narrow
+/// phase's own test ([`centres_clearly_apart`]) on the same values.
 struct PairFilter<'a> {
-    bodies: &'a BodySet,
+    candidates: &'a [Option<Candidate>],
     disabled_pairs: &'a BTreeSet<(BodyHandle, BodyHandle)>,
-    /// |ω|·r per collider slot (m/s).
-    rotation_reach: &'a [f32],
     speculative_margin: f32,
     dt: f32,
 }
 
 impl PairFilter<'_> {
-    /// Whether colliders `c1` (handle `h1`) and `c2` (`h2`) are a candidate pair.
-    fn keeps(&self, c1: &Collider, h1: ColliderHandle, c2: &Collider, h2: ColliderHandle) -> bool {
-        let is_mover =
-            |c: &Collider, b: &RigidBody| is_active(b) && c.desc.enabled && !c.desc.is_sensor;
-        let (Some(b1), Some(b2)) = (self.bodies.get(c1.body), self.bodies.get(c2.body)) else {
-            return false;
-        };
-        if !((is_mover(c1, b1) || is_mover(c2, b2))
-            && can_collide(c1, b1, c2, b2, self.disabled_pairs))
-        {
-            return false;
-        }
-        // Only two balls are tested for distance (the other pairs pay nothing for the test).
-        if !matches!(
-            (&c1.desc.shape, &c2.desc.shape),
-            (ColliderShape::Ball { .. }, ColliderShape::Ball { .. })
-        ) {
-            return true;
-        }
-        let reach = |h: ColliderHandle| {
-            self.rotation_reach
+    /// Whether colliders `h1` < `h2` are a candidate pair.
+    fn keeps(&self, h1: ColliderHandle, h2: ColliderHandle) -> bool {
+        let candidate = |h: ColliderHandle| {
+            self.candidates
                 .get(h.0.index as usize)
-                .copied()
-                .unwrap_or(0.0)
+                .and_then(Option::as_ref)
+                .filter(|c| c.handle == h)
         };
-        let prediction = prediction_distance(
-            b1,
-            b2,
-            (reach(h1), reach(h2)),
+        let (Some(x), Some(y)) = (candidate(h1), candidate(h2)) else {
+            return false;
+        };
+        if !((x.mover || y.mover) && can_collide(x, y, self.disabled_pairs)) {
+            return false;
+        }
+        let (Some(ball1), Some(ball2)) = (x.ball, y.ball) else {
+            return true;
+        };
+        let prediction = prediction_from_velocities(
+            (x.velocity, y.velocity),
+            (x.reach, y.reach),
             self.speculative_margin,
             self.dt,
         );
-        !balls_clearly_apart((c1, b1), (c2, b2), prediction)
+        !centres_clearly_apart(ball1, ball2, prediction)
     }
 }
 

@@ -620,8 +620,20 @@ pub(crate) fn balls_clearly_apart(
     else {
         return false;
     };
-    let center1 = ball_center(c1, b1);
-    let center2 = ball_center(c2, b2);
+    centres_clearly_apart(
+        (ball_center(c1, b1), *r1),
+        (ball_center(c2, b2), *r2),
+        prediction,
+    )
+}
+
+/// [`balls_clearly_apart`] from the balls' world centres and radii (m).
+#[inline]
+pub(crate) fn centres_clearly_apart(
+    (center1, r1): (Vec3, f32),
+    (center2, r2): (Vec3, f32),
+    prediction: f32,
+) -> bool {
     let reach = r1 + r2 + prediction + BALL_SKIP_MARGIN;
     center1.distance_squared(center2) > reach * reach
 }
@@ -629,7 +641,7 @@ pub(crate) fn balls_clearly_apart(
 /// The world position of the centre of ball collider `c` on body `b`: the body's origin for a ball at it (the
 /// common case: no rotation to apply), else the collider's offset carried by the body's pose.
 #[inline]
-fn ball_center(c: &Collider, b: &RigidBody) -> Vec3 {
+pub(crate) fn ball_center(c: &Collider, b: &RigidBody) -> Vec3 {
     let offset = c.desc.local_pose.position;
     if offset == Vec3::ZERO {
         b.position()
@@ -644,11 +656,27 @@ fn ball_center(c: &Collider, b: &RigidBody) -> Vec3 {
 pub(crate) fn prediction_distance(
     b1: &RigidBody,
     b2: &RigidBody,
+    reaches: (f32, f32),
+    speculative_margin: f32,
+    dt: f32,
+) -> f32 {
+    prediction_from_velocities(
+        (b1.linear_velocity(), b2.linear_velocity()),
+        reaches,
+        speculative_margin,
+        dt,
+    )
+}
+
+/// [`prediction_distance`] from the two bodies' linear velocities (m/s).
+#[inline]
+pub(crate) fn prediction_from_velocities(
+    (v1, v2): (Vec3, Vec3),
     (reach1, reach2): (f32, f32),
     speculative_margin: f32,
     dt: f32,
 ) -> f32 {
-    let closing = (b1.linear_velocity() - b2.linear_velocity()).length() + reach1 + reach2;
+    let closing = (v1 - v2).length() + reach1 + reach2;
     (speculative_margin + closing * dt).min(MAX_PREDICTION)
 }
 
