@@ -38,7 +38,7 @@
 //! *contacts* only), so the contacts — and the step — are a function of the current state alone, which is
 //! what makes a restored snapshot step like the world that never stopped.
 
-use crate::narrow_phase::{ball_center, centres_clearly_apart, prediction_from_velocities};
+use crate::narrow_phase::{ball_center, centres_clearly_apart, prediction_distance};
 use crate::shape::to_parry_pose;
 use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
@@ -164,9 +164,6 @@ pub(crate) struct BroadPhase {
     any_mover: bool,
     /// Scratch of the pair sort (reused: no allocation per step).
     sort_scratch: Vec<(ColliderHandle, ColliderHandle)>,
-    /// Per collider slot, how far rotation can move the collider's surface per second this step: |ω|·r (m/s;
-    /// 0 for colliders of inactive bodies). Read by the narrow phase's prediction distance.
-    pub(crate) rotation_reach: Vec<f32>,
 }
 
 impl core::fmt::Debug for BroadPhase {
@@ -190,7 +187,6 @@ impl BroadPhase {
         dt: f32,
     ) {
         self.any_mover = false;
-        self.rotation_reach.clear();
         self.candidates.clear();
         let mut changed = 0;
         for (handle, collider) in colliders.iter() {
@@ -204,22 +200,22 @@ impl BroadPhase {
             };
             let aabb = world_aabb(collider, body);
             let active = is_active(body);
-            let margin = if active {
+            // How far rotation can move the collider's surface per second this step, |ω|·r (m/s; 0 for a
+            // body that does not move), with `r` bounding the box's distance from the centre of mass.
+            let reach = if active {
                 let r =
                     (aabb.center() - body.center_of_mass()).length() + aabb.half_extents().length();
-                let reach = body.angular_velocity().length() * r;
-                let slot_index = slot as usize;
-                if self.rotation_reach.len() <= slot_index {
-                    self.rotation_reach.resize(slot_index + 1, 0.0);
-                }
-                self.rotation_reach[slot_index] = reach;
+                body.angular_velocity().length() * r
+            } else {
+                0.0
+            };
+            let margin = if active {
                 let speed = body.linear_velocity().length() + reach;
                 (speculative_margin + speed * dt).min(MAX_MARGIN)
             } else {
                 0.0
             };
             let fat = aabb.loosened(margin);
-            let reach = self.rotation_reach(handle);
             let candidate = Candidate::of(handle, collider, body, reach);
             self.any_mover |= candidate.mover;
             let slot_index = slot as usize;
@@ -350,16 +346,17 @@ impl BroadPhase {
         self.bvh = Bvh::new();
         self.overlaps_current = false;
         self.pairs.clear();
-        self.rotation_reach.clear();
+        self.candidates.clear();
         self.refresh(colliders, bodies);
     }
 
-    /// |ω|·r of the collider in `slot` this step (m/s).
+    /// |ω|·r of collider `handle` this step (m/s; 0 for one this step's pair search did not see).
     pub(crate) fn rotation_reach(&self, handle: ColliderHandle) -> f32 {
-        self.rotation_reach
+        self.candidates
             .get(handle.0.index as usize)
-            .copied()
-            .unwrap_or(0.0)
+            .and_then(Option::as_ref)
+            .filter(|c| c.handle == handle)
+            .map_or(0.0, |c| c.reach)
     }
 
     /// Adds or updates one collider's leaf, keeping the tree valid for queries.
@@ -447,7 +444,7 @@ impl PairFilter<'_> {
         let (Some(ball1), Some(ball2)) = (x.ball, y.ball) else {
             return true;
         };
-        let prediction = prediction_from_velocities(
+        let prediction = prediction_distance(
             (x.velocity, y.velocity),
             (x.reach, y.reach),
             self.speculative_margin,

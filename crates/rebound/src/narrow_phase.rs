@@ -161,15 +161,17 @@ impl NarrowPhase {
             let (Some(b1), Some(b2)) = (bodies.get(c1.body), bodies.get(c2.body)) else {
                 continue;
             };
-            let reaches = (
-                broad_phase.rotation_reach(h1),
-                broad_phase.rotation_reach(h2),
+            // Two balls farther apart than this were dropped by the broad phase, with the same test on the
+            // same values (`centres_clearly_apart`).
+            let prediction = prediction_distance(
+                (b1.linear_velocity(), b2.linear_velocity()),
+                (
+                    broad_phase.rotation_reach(h1),
+                    broad_phase.rotation_reach(h2),
+                ),
+                speculative_margin,
+                dt,
             );
-            let prediction = prediction_distance(b1, b2, reaches, speculative_margin, dt);
-            if balls_clearly_apart((c1, b1), (c2, b2), prediction) {
-                // Most candidate pairs of a pile are apart: no poses to compose, nothing to convert.
-                continue;
-            }
             // Composed with our scalar rotations, not parry's `Pose::inv_mul` (see `rebound_math::rotate`); only
             // where a generator runs (a recycled box pair needs none).
             let pos12 = || {
@@ -601,33 +603,15 @@ impl Seam<'_> {
 }
 
 /// How much farther apart (m) than the prediction distance two balls' surfaces must be, measured in world
-/// space, for [`balls_clearly_apart`] to skip the pair: far more than the rounding that separates the
+/// space, for [`centres_clearly_apart`] to skip the pair: far more than the rounding that separates the
 /// world-space distance from the one `ball_ball` measures in ball 1's frame, so the skip never drops a
 /// contact `ball_ball` would report.
 const BALL_SKIP_MARGIN: f32 = 1.0e-3;
 
-/// Whether colliders `c1`, `c2` of bodies `b1`, `b2` are two balls farther apart than `prediction` plus
-/// [`BALL_SKIP_MARGIN`] (`false` for any other shapes): their centres' world distance, without composing the
-/// poses that [`ball_ball`] needs. Most candidate pairs of a pile of balls are apart; the broad phase drops
-/// them before they become candidates, and the narrow phase checks again for the pairs it is given.
-pub(crate) fn balls_clearly_apart(
-    (c1, b1): (&Collider, &RigidBody),
-    (c2, b2): (&Collider, &RigidBody),
-    prediction: f32,
-) -> bool {
-    let (ColliderShape::Ball { radius: r1 }, ColliderShape::Ball { radius: r2 }) =
-        (&c1.desc.shape, &c2.desc.shape)
-    else {
-        return false;
-    };
-    centres_clearly_apart(
-        (ball_center(c1, b1), *r1),
-        (ball_center(c2, b2), *r2),
-        prediction,
-    )
-}
-
-/// [`balls_clearly_apart`] from the balls' world centres and radii (m).
+/// Whether two balls of world centres `center1`, `center2` and radii `r1`, `r2` (m) are farther apart than
+/// `prediction` plus [`BALL_SKIP_MARGIN`]: their centres' world distance, without composing the poses that
+/// [`ball_ball`] needs. Most overlapping boxes of a pile of balls hold balls this far apart; the broad phase
+/// drops them before they become candidates.
 #[inline]
 pub(crate) fn centres_clearly_apart(
     (center1, r1): (Vec3, f32),
@@ -650,27 +634,11 @@ pub(crate) fn ball_center(c: &Collider, b: &RigidBody) -> Vec3 {
     }
 }
 
-/// How far apart (m) two colliders on bodies `b1` and `b2` may be and still get a (speculative) contact this
-/// step: the speculative margin plus how far they can close within `dt` — their relative speed and each one's
-/// rotation reach `|ω|·r` (m/s, [`BroadPhase::rotation_reach`]).
-pub(crate) fn prediction_distance(
-    b1: &RigidBody,
-    b2: &RigidBody,
-    reaches: (f32, f32),
-    speculative_margin: f32,
-    dt: f32,
-) -> f32 {
-    prediction_from_velocities(
-        (b1.linear_velocity(), b2.linear_velocity()),
-        reaches,
-        speculative_margin,
-        dt,
-    )
-}
-
-/// [`prediction_distance`] from the two bodies' linear velocities (m/s).
+/// How far apart (m) two colliders on bodies of linear velocities `v1` and `v2` (m/s) may be and still get a
+/// (speculative) contact this step: the speculative margin plus how far they can close within `dt` — their
+/// relative speed and each one's rotation reach `|ω|·r` (m/s, [`BroadPhase::rotation_reach`]).
 #[inline]
-pub(crate) fn prediction_from_velocities(
+pub(crate) fn prediction_distance(
     (v1, v2): (Vec3, Vec3),
     (reach1, reach2): (f32, f32),
     speculative_margin: f32,
