@@ -345,6 +345,12 @@ impl Row {
         self
     }
 
+    /// Whether an impulse bound is 0 (a rope, a limit): the row can leave the system, and be released.
+    #[inline]
+    fn is_bounded_at_zero(&self) -> bool {
+        self.upper == 0.0 || self.lower == 0.0
+    }
+
     /// `Ċ` (m/s or rad/s).
     #[inline]
     fn velocity(&self, a: &SolverBody, b: &SolverBody) -> f32 {
@@ -449,7 +455,8 @@ impl JointRows {
             *slot = row;
             *error = (c, rule);
             *turned = turned_parts;
-            *coupling = (row.upper == 0.0 || row.lower == 0.0)
+            *coupling = row
+                .is_bounded_at_zero()
                 .then(|| row_self_coupling(&row, *turned, &self.mass_a, &self.mass_b));
             self.may_release |= coupling.is_some();
             self.count += 1;
@@ -1018,7 +1025,7 @@ impl Link {
     fn left_out(&self) -> [bool; MAX_ROWS] {
         let mut out = [false; MAX_ROWS];
         for ((out, row), &active) in out.iter_mut().zip(self.rows.rows()).zip(&self.active) {
-            *out = !active && (row.upper == 0.0 || row.lower == 0.0);
+            *out = !active && row.is_bounded_at_zero();
         }
         out
     }
@@ -1497,7 +1504,7 @@ fn path_shape(links: &[Link], start: usize) -> PathShape {
         }
         for (row, &active) in link.rows.rows().iter().zip(&link.active) {
             if !active {
-                left_out |= row.upper == 0.0 || row.lower == 0.0;
+                left_out |= row.is_bounded_at_zero();
                 continue;
             }
             if !uniform {
