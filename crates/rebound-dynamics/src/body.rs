@@ -582,10 +582,14 @@ impl RigidBody {
     /// Only dynamic bodies respond.
     ///
     /// # Errors
-    /// Non-finite `impulse`.
+    /// Non-finite `impulse`, or an impulse that would make the velocity non-finite (a huge impulse on a tiny
+    /// mass: `linear_velocity` is named); nothing is changed.
     pub fn apply_impulse(&mut self, impulse: Vec3) -> Result<(), DynamicsError> {
         check_finite_vec3("impulse", impulse)?;
-        self.linear_velocity += impulse * self.inv_mass();
+        self.linear_velocity = check_finite_vec3(
+            "linear_velocity",
+            self.linear_velocity + impulse * self.inv_mass(),
+        )?;
         self.sleeping = false;
         Ok(())
     }
@@ -593,7 +597,8 @@ impl RigidBody {
     /// Applies a linear impulse `J` (N·s) at `world_point` (m): `Δv = J/m`, `Δω = I⁻¹·((p − c) × J)`.
     ///
     /// # Errors
-    /// Non-finite `impulse` or `world_point`.
+    /// Non-finite `impulse` or `world_point`, or an impulse that would make a velocity non-finite
+    /// (`linear_velocity` or `angular_velocity` is named); nothing is changed.
     pub fn apply_impulse_at_point(
         &mut self,
         impulse: Vec3,
@@ -602,8 +607,15 @@ impl RigidBody {
         check_finite_vec3("impulse", impulse)?;
         check_finite_vec3("world_point", world_point)?;
         let r = world_point - self.center_of_mass();
-        self.linear_velocity += impulse * self.inv_mass();
-        self.angular_velocity += self.inv_inertia_world() * r.cross(impulse);
+        let linear = check_finite_vec3(
+            "linear_velocity",
+            self.linear_velocity + impulse * self.inv_mass(),
+        )?;
+        let angular = check_finite_vec3(
+            "angular_velocity",
+            self.angular_velocity + self.inv_inertia_world() * r.cross(impulse),
+        )?;
+        (self.linear_velocity, self.angular_velocity) = (linear, angular);
         self.sleeping = false;
         Ok(())
     }
@@ -611,10 +623,14 @@ impl RigidBody {
     /// Applies an angular impulse (N·m·s, world space): `Δω = I⁻¹·L`.
     ///
     /// # Errors
-    /// Non-finite `impulse`.
+    /// Non-finite `impulse`, or one that would make the angular velocity non-finite (`angular_velocity` is
+    /// named); nothing is changed.
     pub fn apply_angular_impulse(&mut self, impulse: Vec3) -> Result<(), DynamicsError> {
         check_finite_vec3("angular_impulse", impulse)?;
-        self.angular_velocity += self.inv_inertia_world() * impulse;
+        self.angular_velocity = check_finite_vec3(
+            "angular_velocity",
+            self.angular_velocity + self.inv_inertia_world() * impulse,
+        )?;
         self.sleeping = false;
         Ok(())
     }

@@ -119,3 +119,26 @@ fn bad_input_is_refused_and_changes_nothing() {
     );
     assert!(RigidBody::new(&BodyDesc::dynamic().with_position(Vec3::splat(f32::NAN))).is_err());
 }
+
+#[test]
+fn an_impulse_that_would_overflow_the_velocity_is_refused_and_changes_nothing() {
+    // A finite impulse on a tiny mass (1e-20 kg): J/m = 1e30 / 1e-20 overflows f32. Found by the facade's
+    // API fuzz test (an impulse of 1e30 N·s on a body of density 1e-20).
+    let tiny = MassProperties::cuboid(1e-20, Vec3::splat(0.5)).expect("valid");
+    let mut body = RigidBody::new(&BodyDesc::dynamic().with_mass_properties(tiny)).unwrap();
+    let before = body.clone();
+    let huge = Vec3::new(0.0, 1e30, 0.0);
+    let err = body.apply_impulse(huge).unwrap_err();
+    assert!(err.to_string().contains("`linear_velocity`"), "{err}");
+    assert!(body.apply_impulse_at_point(huge, Vec3::X).is_err());
+    assert!(body.apply_angular_impulse(huge).is_err());
+    assert_eq!(body, before);
+    // A large impulse that stays finite is applied: Δv = J/m exactly as before the check.
+    body.apply_impulse(Vec3::new(0.0, 1e-3, 0.0)).unwrap();
+    let expected = 1e-3 / tiny.mass();
+    assert!(
+        (body.linear_velocity().y - expected).abs() <= 1e-6 * expected,
+        "{} vs {expected}",
+        body.linear_velocity().y
+    );
+}
