@@ -611,6 +611,12 @@ pub(crate) struct Link {
     /// residuals read them ([`Link::residual`]); they are made with the blocks ([`Link::fill_lanes`]),
     /// which are made again whenever the rows are.
     lanes: [[Vec4; 3]; 4],
+    /// `M⁻¹·Jᵀ` of each row four lanes wide (w = 0), in the order `[m_a⁻¹·J_a,linear, I_a⁻¹·J_a,angular,
+    /// m_b⁻¹·J_b,linear, I_b⁻¹·J_b,angular]`, zero for a row not in the system: the velocity change of a unit
+    /// impulse along the row. Made with the blocks ([`Link::fill_blocks`]), whose `C` and `B` it serves;
+    /// a velocity pass's update sums the rows' increments through it and changes each body once
+    /// ([`Link::apply_solution`]).
+    impulse: [[Vec4; 4]; MAX_ROWS],
 }
 
 /// The entries of the scalar Thomas sweep of a one-row link ([`solve_scalar_path`]): its row's regularised
@@ -645,6 +651,7 @@ impl Link {
             w: [[0.0; MAX_ROWS]; MAX_ROWS],
             inv_pivot: [0.0; MAX_ROWS],
             lanes: [[Vec4::ZERO; 3]; 4],
+            impulse: [[Vec4::ZERO; 4]; MAX_ROWS],
             factored: None,
             pose: None,
             carried_at: None,
@@ -885,6 +892,13 @@ impl Link {
             }
             return;
         }
+        // Equality rows only (a hinge's, a ball joint's): all take part, whatever the velocities.
+        if !self.rows.may_release {
+            for (k, active) in self.active.iter_mut().enumerate() {
+                *active = k < self.rows.count;
+            }
+            return;
+        }
         let rows = &self.rows;
         for (i, ((row, lambda), active)) in rows
             .rows()
@@ -1068,6 +1082,7 @@ impl Link {
                 inverse[k] = [row.a.linear * ma.mass, ta, row.b.linear * mb.mass, tb].map(lanes);
             }
         }
+        self.impulse = inverse;
         // Bᵢⱼ = Jᵢ·M⁻¹·Jⱼᵀ over both bodies, i ≤ j;   Bᵢᵢ·(1 + ε)
         for i in 0..N {
             if !live[i] {
@@ -1240,25 +1255,41 @@ impl Link {
             return;
         }
         let rows = &self.rows;
-        for (i, (((row, &x), lambda), &active)) in rows
+        if self.positions {
+            for (i, ((row, &x), &active)) in rows.rows().iter().zip(x).zip(&self.active).enumerate()
+            {
+                if active {
+                    let p = (self.lambda[i] - x as f32).max(row.lower).min(row.upper);
+                    rows.displace(i, a, b, p);
+                }
+            }
+            return;
+        }
+        // The rows' increments summed through `M⁻¹·Jᵀ` (made with the blocks this sweep used: the rows in the
+        // system now are those they were made for), then each body changed once.
+        let mut change = [Vec4::ZERO; 4];
+        for ((((row, &x), lambda), &active), impulse) in rows
             .rows()
             .iter()
             .zip(x)
             .zip(&mut self.lambda)
             .zip(&self.active)
-            .enumerate()
+            .zip(&self.impulse)
         {
             if !active {
                 continue;
             }
             let new = (*lambda - x as f32).max(row.lower).min(row.upper);
-            if self.positions {
-                rows.displace(i, a, b, new);
-                continue;
+            let increment = new - *lambda;
+            for (change, &unit) in change.iter_mut().zip(impulse) {
+                *change += unit * increment;
             }
-            rows.apply(i, a, b, new - *lambda);
             *lambda = new;
         }
+        a.linear_velocity += change[0].truncate();
+        a.angular_velocity += change[1].truncate();
+        b.linear_velocity += change[2].truncate();
+        b.angular_velocity += change[3].truncate();
     }
 }
 
