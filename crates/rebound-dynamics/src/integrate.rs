@@ -112,16 +112,18 @@ pub fn solve_gyroscopic(
     local_inv_inertia: &Mat3,
     h: f32,
 ) -> Vec3 {
-    let momentum = rotate(
-        rotation,
-        *local_inertia * rotate_inverse(rotation, angular_velocity),
-    );
-    let mut omega = angular_velocity;
+    // In the body frame of `q` (vectors `x_b = q*·x·q`): the update `q' = normalise(q + ½·h·(ω, 0)·q)` is
+    // `q' = q·Δ` with `Δ = normalise(1, ½·h·ω_b)`, so `I_w(q')⁻¹·L` is `q·(Δ·I⁻¹·(Δ*·L_b·Δ)·Δ*)·q*` — the
+    // same iteration with one rotation by `q` in and one out, and only `Δ` to turn by within it.
+    let mut omega = rotate_inverse(rotation, angular_velocity);
+    let momentum = *local_inertia * omega;
+    let half_h = 0.5 * h;
     for _ in 0..GYROSCOPIC_ITERATIONS {
-        let next = integrate_rotation(rotation, omega, h, RotationIntegrator::FirstOrder);
-        omega = rotate(next, *local_inv_inertia * rotate_inverse(next, momentum));
+        let v = omega * half_h;
+        let turn = Quat::from_xyzw(v.x, v.y, v.z, 1.0) * (1.0 + v.length_squared()).sqrt().recip();
+        omega = rotate(turn, *local_inv_inertia * rotate_inverse(turn, momentum));
     }
-    omega
+    rotate(rotation, omega)
 }
 
 #[cfg(test)]
