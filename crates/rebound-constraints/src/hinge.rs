@@ -180,18 +180,21 @@ impl PreparedHinge {
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) {
+        // The impulses of the angle rows (about the axis), the alignment rows (about `b₁ × a`, `b₂ × a`) and
+        // the point rows (`P` at the anchors) summed into one torque per body, turned by its inverse inertia
+        // once: what `AnglePart`, `AlignPart` and `PointPart` would apply one after another.
         let (fa, fb) = pair.frames(a, b);
         let axis = fa * Vec3::X;
-        AnglePart::new(pair, axis).apply(a, b, CoordinateRows::accumulated(state));
-        AlignPart::apply_about(
-            pair,
-            axis,
-            [fb * Vec3::Y, fb * Vec3::Z],
-            a,
-            b,
-            state.angular_impulse.truncate(),
-        );
-        ball::warm_start(pair, state, a, b);
+        let align = state.angular_impulse;
+        let twist = axis * CoordinateRows::accumulated(state)
+            + (fb * Vec3::Y).cross(axis) * align.x
+            + (fb * Vec3::Z).cross(axis) * align.y;
+        let anchors = pair.anchors(a, b);
+        let p = state.linear_impulse;
+        a.linear_velocity -= p * pair.inv_mass_a;
+        a.angular_velocity -= pair.inv_inertia_a * (twist + anchors.r_a.cross(p));
+        b.linear_velocity += p * pair.inv_mass_b;
+        b.angular_velocity += pair.inv_inertia_b * (twist + anchors.r_b.cross(p));
     }
 
     /// The point rows and the two alignment rows for the direct solve of a chain ([`crate::direct`]) at the
