@@ -1255,19 +1255,39 @@ impl Link {
             return;
         }
         let rows = &self.rows;
-        if self.positions {
-            for (i, ((row, &x), &active)) in rows.rows().iter().zip(x).zip(&self.active).enumerate()
-            {
-                if active {
-                    let p = (self.lambda[i] - x as f32).max(row.lower).min(row.upper);
-                    rows.displace(i, a, b, p);
-                }
+        // A one-row link of a projection (a rope chain's, solved by the scalar sweep, which makes no map).
+        if self.positions && rows.count == 1 {
+            if self.active[0] {
+                let row = &rows.rows[0];
+                let p = (self.lambda[0] - x[0] as f32).max(row.lower).min(row.upper);
+                rows.displace(0, a, b, p);
             }
             return;
         }
-        // The rows' increments summed through `M⁻¹·Jᵀ` (made with the blocks this sweep used: the rows in the
-        // system now are those they were made for), then each body changed once.
+        // The rows' increments (position impulses in a projection) summed through `M⁻¹·Jᵀ` (made with the
+        // blocks this sweep used: the rows in the system now are those they were made for), then each body
+        // changed once.
         let mut change = [Vec4::ZERO; 4];
+        if self.positions {
+            for ((((row, &x), &lambda), &active), impulse) in rows
+                .rows()
+                .iter()
+                .zip(x)
+                .zip(&self.lambda)
+                .zip(&self.active)
+                .zip(&self.impulse)
+            {
+                if active {
+                    let p = (lambda - x as f32).max(row.lower).min(row.upper);
+                    for (change, &unit) in change.iter_mut().zip(impulse) {
+                        *change += unit * p;
+                    }
+                }
+            }
+            displace_body(a, change[0].truncate(), change[1].truncate());
+            displace_body(b, change[2].truncate(), change[3].truncate());
+            return;
+        }
         for ((((row, &x), lambda), &active), impulse) in rows
             .rows()
             .iter()
@@ -1290,6 +1310,21 @@ impl Link {
         a.angular_velocity += change[1].truncate();
         b.linear_velocity += change[2].truncate();
         b.angular_velocity += change[3].truncate();
+    }
+}
+
+/// Moves `body` by `shift` (m) and turns it by the small rotation vector `turn` (rad): a position impulse's
+/// `M⁻¹·Jᵀ·p`, as [`Side::displace`] moves a body for one row.
+#[inline]
+fn displace_body(body: &mut SolverBody, shift: Vec3, turn: Vec3) {
+    body.delta_position += shift;
+    if turn != Vec3::ZERO {
+        body.delta_rotation = integrate_rotation(
+            body.delta_rotation,
+            turn,
+            1.0,
+            RotationIntegrator::FirstOrder,
+        );
     }
 }
 
