@@ -82,6 +82,16 @@
 //! always builds its rows at the pose (its Newton steps need the pose's Jacobians). Ball joints are not
 //! carried: at the whip of the SCENES.md `chain_spherical` (balls turning with their links) carrying at
 //! 0.01 rad let the worst link stretch 4.8 % against 0.045 %.
+//!
+//! The rows outlive the step, too. The last relax pass of a step builds every hinge's rows at the step's
+//! final pose for the projection; the next step's passes carry those rows (and their factorisation) from
+//! there instead of building them again at the step's first pass, measuring the turn and the displacement
+//! in world terms (`BuiltAt`: both joint frames and the vector between the centres of mass at the build).
+//! A path keeps its rows only whole (same joints, same bodies, same inverse masses) and every link of it
+//! keeps the inverse inertias its rows were turned with until the last relax pass builds them all again:
+//! `K` must use one inverse inertia per body — a link built with the new step's next to links kept with
+//! the last step's made the SCENES.md bridge's singular `K` inconsistent, and the regularisation blew it up
+//! within 18 steps. The kept rows are state: a snapshot holds them ([`crate::KeptRows`]).
 
 #![allow(
     clippy::needless_range_loop,
@@ -106,6 +116,7 @@ pub(crate) type Real = f64;
 
 /// One body's side of a row's Jacobian: `Ċ` gains `linear·v + angular·ω`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Side {
     pub linear: Vec3,
     pub angular: Vec3,
@@ -113,6 +124,7 @@ pub(crate) struct Side {
 
 /// A body's inverse mass (1/kg) and world inverse inertia (1/(kg·m²)) at the start of the step.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct InvMass {
     pub mass: f32,
     pub inertia: Mat3,
@@ -122,6 +134,7 @@ pub(crate) struct InvMass {
 /// unchanged pose recomputes the targets alone ([`JointRows::retarget`]) from the errors stored when the rows
 /// were built — with the very functions that built them, so the targets are the same bits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) enum TargetRule {
     /// A component of an equality block (the point rows of ball joints and hinges): [`block_target`],
     /// `bias = bias_rate·C` with the joint softness in the bias pass, `bias = 0`, rigid, in the relax pass.
@@ -185,18 +198,6 @@ impl PoseKey {
             *key = field.to_bits();
         }
         Self(key)
-    }
-
-    /// The displacements (m) and rotations since the step began of the two bodies the key was made of.
-    fn poses(&self) -> [(Vec3, Quat); 2] {
-        let f = |k: usize| f32::from_bits(self.0[k]);
-        let pose = |o: usize| {
-            (
-                Vec3::new(f(o), f(o + 1), f(o + 2)),
-                Quat::from_xyzw(f(o + 3), f(o + 4), f(o + 5), f(o + 6)),
-            )
-        };
-        [pose(0), pose(7)]
     }
 }
 
@@ -272,11 +273,14 @@ impl Side {
 
 /// One row: its Jacobian on bodies A and B, what it drives toward, and its impulse bounds.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Row {
     pub a: Side,
     pub b: Side,
     pub target: RowTarget,
+    #[cfg_attr(feature = "serde", serde(with = "crate::joint::unbounded_below"))]
     pub lower: f32,
+    #[cfg_attr(feature = "serde", serde(with = "crate::joint::unbounded"))]
     pub upper: f32,
 }
 
@@ -372,6 +376,7 @@ fn row_self_coupling(row: &Row, turned: [Vec3; 2], mass_a: &InvMass, mass_b: &In
 /// the masses, the per-row scalars, the turned vectors, then the rows. A one-row link (a rope of a chain)
 /// reads nothing after its first row; see [`Link`] for why that matters.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(C)]
 pub(crate) struct JointRows {
     pub count: usize,
@@ -522,6 +527,30 @@ impl JointRows {
         }
     }
 
+    /// Whether the rows, their turned vectors, errors and the masses are finite (the bounds not NaN) and the
+    /// row count in range: what rows restored from a snapshot must be.
+    pub fn is_valid(&self) -> bool {
+        let finite_side = |s: &Side| s.linear.is_finite() && s.angular.is_finite();
+        let finite_mass = |m: &InvMass| m.mass.is_finite() && m.inertia.is_finite();
+        self.count <= MAX_ROWS
+            && finite_mass(&self.mass_a)
+            && finite_mass(&self.mass_b)
+            && self.rows.iter().all(|row| {
+                finite_side(&row.a)
+                    && finite_side(&row.b)
+                    && row.target.bias.is_finite()
+                    && !row.lower.is_nan()
+                    && !row.upper.is_nan()
+            })
+            && self.turned.iter().flatten().all(|v| v.is_finite())
+            && self.errors.iter().all(|(c, _)| c.is_finite())
+            && self
+                .bounded_couplings
+                .iter()
+                .flatten()
+                .all(|c| c.is_finite())
+    }
+
     /// The rows in use.
     pub fn rows(&self) -> &[Row] {
         &self.rows[..self.count.min(MAX_ROWS)]
@@ -577,6 +606,10 @@ pub(crate) struct Link {
     /// Whether this is a position projection: the rows' biases hold their position errors `C`, the solve is
     /// `K·x = C` and the result moves the bodies instead of changing their velocities.
     positions: bool,
+    /// Whether the rows were kept from the last step ([`Link::new_step`]): rows built again in this step
+    /// before its last relax pass take the inverse masses of the kept ones, so that every link of the path
+    /// turns by the same inverse inertia of a body.
+    pub from_last_step: bool,
     /// What the factorisation (`scalar`, or `factor`, `v`, `w`, `inv_pivot` and the blocks) was made for;
     /// `None` when it is stale.
     factored: Option<FactorKey>,
@@ -617,6 +650,25 @@ pub(crate) struct Link {
     /// a velocity pass's update sums the rows' increments through it and changes each body once
     /// ([`Link::apply_solution`]).
     impulse: [[Vec4; 4]; MAX_ROWS],
+    /// Where the rows were built, in world terms ([`BuiltAt`]): what [`Link::carry`] measures the turn and
+    /// the displacement from, in this step or a later one. `None` for rows that are not carried (a rope's,
+    /// a ball joint's): the solver sets it where it builds a hinge's rows and clears it where a link starts
+    /// from nothing ([`Link::drop_built`]); last, so that a rope's passes never touch it.
+    pub built: Option<BuiltAt>,
+}
+
+/// Where a link's rows were built, in world terms, and for which joint: what carries them to a later pose of
+/// the same step or of a later one ([`Link::carry`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct BuiltAt {
+    /// Both bodies' joint frames (world orientation) at the build.
+    pub frames: (Quat, Quat),
+    /// `c_b − c_a`, the vector between the bodies' centres of mass at the build (m, world).
+    pub relative: Vec3,
+    /// The joint (its index in the slice given to [`crate::JointSolver::prepare`]) and its bodies' solver
+    /// indices: rows are kept into a step only for the same joint between the same bodies.
+    pub owner: (usize, usize, usize),
 }
 
 /// The entries of the scalar Thomas sweep of a one-row link ([`solve_scalar_path`]): its row's regularised
@@ -656,6 +708,8 @@ impl Link {
             pose: None,
             carried_at: None,
             carried: [0.0; MAX_ROWS],
+            built: None,
+            from_last_step: false,
         }
     }
 
@@ -663,10 +717,15 @@ impl Link {
     /// impulses, nothing kept from an earlier pass but the link to the next one (the path's shape). Reusing
     /// links keeps a pass from copying 2-kilobyte records around.
     pub fn reset(&mut self, mass_a: InvMass, mass_b: InvMass) {
-        self.rows.count = 0;
-        self.rows.may_release = false;
         self.rows.mass_a = mass_a;
         self.rows.mass_b = mass_b;
+        self.clear();
+    }
+
+    /// [`Link::reset`] keeping the inverse masses the link has.
+    pub fn clear(&mut self) {
+        self.rows.count = 0;
+        self.rows.may_release = false;
         self.forget();
         self.restart();
     }
@@ -687,6 +746,34 @@ impl Link {
         self.factored = None;
     }
 
+    /// Forgets everything kept ([`Link::forget`]), from the last step too ([`Link::end_last_step`]), and
+    /// where the rows were built: a link that starts from nothing.
+    pub fn drop_built(&mut self) {
+        self.forget();
+        self.end_last_step();
+        self.built = None;
+    }
+
+    /// Starts a new step with the rows of the last one, kept to be carried ([`Link::carry`]) with the inverse
+    /// masses they were built with: the poses of this step ([`PoseKey`], displacements since the step began)
+    /// are unrelated to the last step's, so neither the build pose nor a carried one is reused as is.
+    pub fn new_step(&mut self) {
+        self.pose = None;
+        self.carried_at = None;
+        self.from_last_step = true;
+    }
+
+    /// Ends what [`Link::new_step`] started: rows built from now on take this step's inverse masses, and
+    /// kept rows are built again at the next pass (the solver calls it for every link of a path at once:
+    /// before the step's last relax pass, and for a path it does not keep).
+    pub fn end_last_step(&mut self) {
+        if self.from_last_step {
+            self.pose = None;
+            self.carried_at = None;
+            self.from_last_step = false;
+        }
+    }
+
     /// Whether the rows were built at the pose `pose`, as recorded by [`Link::built_at`] (never when none
     /// was, or it was forgotten). Compares in place: the key is 56 bytes, checked for every link of every pass.
     #[inline]
@@ -703,14 +790,16 @@ impl Link {
         }
     }
 
-    /// Starts a velocity pass of `stage` at the bodies' pose `a`, `b` (`now`, its key, recorded with the carried
-    /// errors for [`Link::recarry`]) with the rows built earlier in the step,
-    /// if neither body has turned by more than `max_angle` (rad) since: the Jacobians, turned vectors and the
+    /// Starts a velocity pass of `stage` at the bodies' current pose — their joint `frames` (world) and the
+    /// vector `relative` between their centres of mass; `now`, its key, is recorded with the carried errors
+    /// for [`Link::recarry`] — with the rows built earlier (in this step or, kept, in the last one), if
+    /// neither body has turned by more than `max_angle` (rad) since: the Jacobians, turned vectors and the
     /// factorisation stay, and each row's position error is carried to the current pose to first order,
-    /// `C = C₀ + J·Δ`, with `Δ` the bodies' displacement and small rotation since the rows were built.
-    /// Returns `false`, changing nothing, when the link holds no rows of this step, `max_angle` is not
-    /// positive or a body turned further. For rows whose Jacobians depend on the rotations alone (a hinge's,
-    /// a ball joint's): the solver carries hinges ([`CARRY_ANGLE`]).
+    /// `C = C₀ + J·Δ`, with `Δ` the bodies' relative displacement and small rotations since the build
+    /// ([`BuiltAt`]). Returns `false`, changing nothing, when the link holds no carried rows, `max_angle` is
+    /// not positive or a body turned further. For rows whose Jacobians depend on the rotations alone and
+    /// whose linear parts are opposite on the two bodies (a hinge's, a ball joint's: `J·Δ` then needs only
+    /// the relative displacement): the solver carries hinges ([`CARRY_ANGLE`]).
     ///
     /// Carried to first order, the errors stay in the range of the rows' `J`: a bridge hung between two
     /// anchors has redundant rows (a singular `K`, kept solvable by [`REGULARIZATION`]), and errors measured
@@ -719,33 +808,34 @@ impl Link {
     /// 40 steps).
     pub fn carry(
         &mut self,
-        a: &SolverBody,
-        b: &SolverBody,
+        frames: (Quat, Quat),
+        relative: Vec3,
         now: &PoseKey,
         stage: &Stage,
         max_angle: f32,
     ) -> bool {
-        let (Some(built), true) = (self.pose, max_angle > 0.0) else {
+        let (Some(built), true) = (self.built, max_angle > 0.0) else {
             return false;
         };
-        let [(pa, qa), (pb, qb)] = built.poses();
         // The small rotation (rad, world) from the build pose: 2·vec(q·q₀*), with the sign of its w.
         let turn = |now: Quat, then: Quat| {
             let d = now * then.conjugate();
             let v = Vec3::new(d.x, d.y, d.z) * 2.0;
             if d.w < 0.0 { -v } else { v }
         };
-        let (ta, tb) = (turn(a.delta_rotation, qa), turn(b.delta_rotation, qb));
+        let (ta, tb) = (
+            turn(frames.0, built.frames.0),
+            turn(frames.1, built.frames.1),
+        );
         let limit = max_angle * max_angle;
         if ta.length_squared() > limit || tb.length_squared() > limit {
             return false;
         }
-        let (da, db) = (a.delta_position - pa, b.delta_position - pb);
+        let d = relative - built.relative;
         let rows = &self.rows;
         for ((row, &(c, _)), carried) in rows.rows().iter().zip(&rows.errors).zip(&mut self.carried)
         {
-            let moved = (row.a.linear.dot(da) + row.a.angular.dot(ta))
-                + (row.b.linear.dot(db) + row.b.angular.dot(tb));
+            let moved = row.b.linear.dot(d) + (row.a.angular.dot(ta) + row.b.angular.dot(tb));
             *carried = c + moved;
         }
         self.carried_at = Some(*now);

@@ -585,18 +585,33 @@ mod tests {
     }
 }
 
-/// Serialises a limit that may be +∞ (unbreakable) as `null`, which JSON can carry (it has no infinity), and
-/// reads `null` back as +∞.
+/// Serialises a limit that may be +∞ (unbreakable, an upper impulse bound) as `null`, which JSON can carry
+/// (it has no infinity), and reads `null` back as +∞.
 #[cfg(feature = "serde")]
-mod unbounded {
+pub(crate) mod unbounded {
     use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-    pub(super) fn serialize<S: Serializer>(value: &f32, serializer: S) -> Result<S::Ok, S::Error> {
+    pub(crate) fn serialize<S: Serializer>(value: &f32, serializer: S) -> Result<S::Ok, S::Error> {
         let finite = value.is_finite().then_some(*value);
         finite.serialize(serializer)
     }
 
-    pub(super) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f32, D::Error> {
+    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f32, D::Error> {
         Ok(Option::<f32>::deserialize(deserializer)?.unwrap_or(f32::INFINITY))
+    }
+}
+
+/// [`unbounded`] for a lower impulse bound: −∞ as `null`, and back.
+#[cfg(feature = "serde")]
+pub(crate) mod unbounded_below {
+    use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    pub(crate) fn serialize<S: Serializer>(value: &f32, serializer: S) -> Result<S::Ok, S::Error> {
+        let finite = value.is_finite().then_some(*value);
+        finite.serialize(serializer)
+    }
+
+    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f32, D::Error> {
+        Ok(Option::<f32>::deserialize(deserializer)?.unwrap_or(f32::NEG_INFINITY))
     }
 }

@@ -40,6 +40,6 @@ pub use rod::Rod;
 pub use rope::Rope;
 pub use settings::JointSettings;
 pub use soft_spring::{JointSpring, SoftSpring};
-pub use solver::JointSolver;
+pub use solver::{JointSolver, KeptRows};
 pub use spring::{Spring, SpringModel};
 pub use wheel::WheelJoint;

@@ -26,8 +26,8 @@
 
 use crate::coordinate::CoordinateRows;
 use crate::direct::{
-    CARRY_ANGLE, InvMass, JointRows, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations,
-    equality_violation, solve_path,
+    BuiltAt, CARRY_ANGLE, InvMass, JointRows, Link, MAX_ROWS, PoseKey, Real, Resume,
+    activate_violations, equality_violation, solve_path,
 };
 use crate::fixed::PreparedFixed;
 use crate::hinge::PreparedHinge;
@@ -159,6 +159,41 @@ struct PreparedJoint {
     link: Option<usize>,
 }
 
+/// The rows a [`JointSolver`] keeps from one step to the next — a directly solved path's hinge rows, which
+/// the next step carries instead of building them again (see [`crate::direct`]) — as a snapshot holds
+/// them. Restored into a solver ([`JointSolver::restore_kept_rows`]) before the next step, they make that
+/// step the one the solver they were taken from would have taken, bit for bit.
+#[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct KeptRows {
+    /// Per link of the paths, in path order: its rows and where they were built (`None`: none kept).
+    links: Vec<Option<(JointRows, BuiltAt)>>,
+}
+
+impl KeptRows {
+    /// The number of links whose rows are kept.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.links.iter().flatten().count()
+    }
+
+    /// Whether no rows are kept.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Whether every number is finite (impulse bounds may be infinite, never NaN) and every row count in
+    /// range: what a solver restoring them trusts. A snapshot that was deserialised is checked with it.
+    #[must_use]
+    pub fn is_valid(&self) -> bool {
+        self.links.iter().flatten().all(|(rows, built)| {
+            let (a, b) = built.frames;
+            rows.is_valid() && a.is_finite() && b.is_finite() && built.relative.is_finite()
+        })
+    }
+}
+
 /// The joint solver. Holds the prepared joints between stages and reuses its buffer from step to step.
 ///
 /// See the crate README for a complete step loop.
@@ -187,6 +222,8 @@ pub struct JointSolver {
     /// range), kept from pass to pass: a pass at the pose a link's rows were built at reuses them, and their
     /// factorisation if the rows in the system are also the same (see [`crate::direct`]).
     links: Vec<Link>,
+    /// How many of `links` belong to the paths of the last prepared step (or of the restored [`KeptRows`]).
+    path_links: usize,
     solution: Vec<[Real; MAX_ROWS]>,
     /// Scratch of the position projection: the path's bodies before a Newton step, and a link to measure
     /// errors with.
@@ -219,6 +256,7 @@ impl Default for JointSolver {
             incident: Vec::new(),
             visited: Vec::new(),
             links: Vec::new(),
+            path_links: 0,
             solution: Vec::new(),
             saved: Vec::new(),
             probe: Vec::new(),
@@ -235,6 +273,33 @@ impl JointSolver {
     #[must_use]
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// The rows this solver keeps for the next step ([`KeptRows`]), for a snapshot.
+    #[must_use]
+    pub fn kept_rows(&self) -> KeptRows {
+        let links = self.links.get(..self.path_links).unwrap_or_default();
+        KeptRows {
+            links: links
+                .iter()
+                .map(|link| link.built.map(|built| (link.rows, built)))
+                .collect(),
+        }
+    }
+
+    /// Replaces the rows kept for the next step with `kept` (taken by [`JointSolver::kept_rows`]); rows kept
+    /// for joints or bodies other than the next step's are dropped by it. Check a deserialised value with
+    /// [`KeptRows::is_valid`] first.
+    pub fn restore_kept_rows(&mut self, kept: &KeptRows) {
+        resize_links(&mut self.links, kept.links.len());
+        for (k, link) in self.links.iter_mut().enumerate() {
+            link.drop_built();
+            if let Some(&Some((rows, built))) = kept.links.get(k) {
+                link.rows = rows;
+                link.built = Some(built);
+            }
+        }
+        self.path_links = kept.links.len();
     }
 
     /// A solver with `settings`.
@@ -361,11 +426,38 @@ impl JointSolver {
         }
         // The paths first: the graph search leaves out the tethers they make redundant.
         self.find_paths(body_count);
-        // One link per path member, none kept from the last step (its rows were built at other poses, for
-        // other bodies and masses).
+        // One link per path member. A path whose links all hold carried rows of the last step for the same
+        // joint, bodies and inverse masses keeps them ([`Link::new_step`]; see `crate::direct`, "Rows carried
+        // through the step"); any other path starts from nothing.
         resize_links(&mut self.links, self.path_joints.len());
-        for link in &mut self.links {
-            link.forget();
+        self.path_links = self.path_joints.len();
+        for range in &self.paths {
+            let keeps = |k: usize| {
+                let (Some(j), Some(link)) = (
+                    self.path_joints
+                        .get(k)
+                        .and_then(|&index| self.joints.get(index)),
+                    self.links.get(k),
+                ) else {
+                    return false;
+                };
+                link.built.is_some_and(|built| {
+                    built.owner == (j.source, j.pair.index_a, j.pair.index_b)
+                        && link.rows.mass_a.mass.to_bits() == j.pair.inv_mass_a.to_bits()
+                        && link.rows.mass_b.mass.to_bits() == j.pair.inv_mass_b.to_bits()
+                })
+            };
+            let keep = range.clone().all(keeps);
+            for link in self.links.get_mut(range.clone()).into_iter().flatten() {
+                if keep {
+                    link.new_step();
+                } else {
+                    link.drop_built();
+                }
+            }
+        }
+        for link in self.links.iter_mut().skip(self.path_joints.len()) {
+            link.drop_built();
         }
         self.link_paths();
         self.list_iterated();
@@ -628,6 +720,10 @@ impl JointSolver {
             self.relax_passes += 1;
             if self.relax_passes >= ctx.substep_count {
                 carry_angle = 0.0;
+                // Every link is built again at the final pose, and with this step's inverse inertias.
+                for link in &mut self.links {
+                    link.end_last_step();
+                }
             }
         }
         for _ in 0..iterations {
@@ -1025,24 +1121,31 @@ fn direct_rows(
     link: &mut Link,
 ) -> [f32; MAX_ROWS] {
     let bodies = j.pair.bodies(solver_bodies);
-    rows_at(j, bodies, stage, link)
+    rows_at(j, bodies, stage, link, false)
 }
 
-/// [`direct_rows`] with the joint's bodies already loaded (`None`: no rows).
+/// [`direct_rows`] with the joint's bodies already loaded (`None`: no rows), with the joint's inverse masses
+/// or, if `keep_masses`, those the link has (a link of a path kept from the last step: `K` must turn each
+/// body by one inverse inertia until the last relax pass builds every link again, see `crate::direct`).
 fn rows_at(
     j: &mut PreparedJoint,
     bodies: Option<(&SolverBody, &SolverBody)>,
     stage: &Stage,
     link: &mut Link,
+    keep_masses: bool,
 ) -> [f32; MAX_ROWS] {
     let mass = |inv_mass, inertia| InvMass {
         mass: inv_mass,
         inertia,
     };
-    link.reset(
-        mass(j.pair.inv_mass_a, j.pair.inv_inertia_a),
-        mass(j.pair.inv_mass_b, j.pair.inv_inertia_b),
-    );
+    if keep_masses {
+        link.clear();
+    } else {
+        link.reset(
+            mass(j.pair.inv_mass_a, j.pair.inv_inertia_a),
+            mass(j.pair.inv_mass_b, j.pair.inv_inertia_b),
+        );
+    }
     let rows = &mut link.rows;
     let Some((a, b)) = bodies else {
         return [0.0; MAX_ROWS];
@@ -1060,8 +1163,9 @@ fn rows_at(
 /// The rows of joint `j` in `link` for a pass of `stage` at its bodies' current pose, and its accumulated
 /// impulses: the rows already there if they were built at this very pose ([`PoseKey`]: the same bits of
 /// both bodies' displacements and rotations) — only their targets recomputed for `stage`
-/// ([`Link::reuse`]); a hinge's rows built earlier in the step if neither body has turned by more than
-/// `carry_angle` (rad) since — their errors carried to this pose ([`Link::carry`]); else built again
+/// ([`Link::reuse`]); a hinge's rows built earlier in the step (or kept from the last) if neither body has
+/// turned by more than `carry_angle` (rad) since — their errors carried to this pose ([`Link::carry`]); else
+/// built again
 /// ([`rows_at`]). `bodies` are the joint's bodies (`None`: no rows). The position projection passes
 /// `carry_angle` = 0: its Newton steps need the Jacobians of the pose.
 fn link_rows(
@@ -1075,15 +1179,48 @@ fn link_rows(
     if pose.as_ref().is_some_and(|pose| link.is_built_at(pose)) {
         link.reuse(stage);
         link.lambda = state_lambda(j);
-    } else if let (Prepared::Hinge(_), Some((a, b)), Some(now)) = (&j.kind, bodies, &pose)
-        && carry_angle > 0.0
-        && (link.recarry(now, stage) || link.carry(a, b, now, stage, carry_angle))
-    {
-        link.lambda = state_lambda(j);
-    } else {
-        link.lambda = rows_at(j, bodies, stage, link);
-        link.built_at(pose);
+        return;
     }
+    if let (Prepared::Hinge(_), Some((a, b)), Some(now)) = (&j.kind, bodies, &pose) {
+        if carry_angle > 0.0
+            && (link.recarry(now, stage) || carry(j, link, (a, b), now, stage, carry_angle))
+        {
+            link.lambda = state_lambda(j);
+            return;
+        }
+        // Built again: carried from here, in this step or the next; with the kept rows' inverse masses on a
+        // path kept from the last step.
+        let keep_masses = link.from_last_step;
+        link.lambda = rows_at(j, bodies, stage, link, keep_masses);
+        link.built_at(pose);
+        link.built = Some(build_site(j, a, b));
+        return;
+    }
+    link.lambda = rows_at(j, bodies, stage, link, false);
+    link.built_at(pose);
+}
+
+/// Where joint `j`'s rows are when its bodies are at `a`, `b`, in world terms ([`BuiltAt`]).
+fn build_site(j: &PreparedJoint, a: &SolverBody, b: &SolverBody) -> BuiltAt {
+    BuiltAt {
+        frames: j.pair.frames(a, b),
+        relative: j.pair.delta_center + (b.delta_position - a.delta_position),
+        owner: (j.source, j.pair.index_a, j.pair.index_b),
+    }
+}
+
+/// [`Link::carry`] of joint `j`'s rows in `link` to its bodies' pose `a`, `b` (`now`, its key).
+#[inline(never)]
+fn carry(
+    j: &PreparedJoint,
+    link: &mut Link,
+    (a, b): (&SolverBody, &SolverBody),
+    now: &PoseKey,
+    stage: &Stage,
+    max_angle: f32,
+) -> bool {
+    let site = build_site(j, a, b);
+    link.carry(site.frames, site.relative, now, stage, max_angle)
 }
 
 /// The accumulated impulses of joint `j`'s direct rows, in row order (0 for a joint without direct rows).
@@ -1475,14 +1612,14 @@ mod tests {
     /// carry the hinges' rows (the planks turn by less than the carry angle a substep), the last relax pass
     /// of the step builds them at the final pose, so that the projection finds every link's rows (and their
     /// factorisation) made at its pose.
-    #[test]
-    fn the_last_relax_pass_builds_the_rows_the_projection_reuses() {
+    /// Four planks hinged between two fixed bodies 3.9 m apart (4 m of deck): its bodies, joints and pairs.
+    fn hinge_deck(plank_mass: f32) -> (Vec<RigidBody>, Vec<Joint>, Vec<JointBodies>) {
         let mut bodies = vec![RigidBody::new(&BodyDesc::fixed()).unwrap()];
         for k in 1..=4 {
             let plank = BodyDesc::dynamic()
                 .with_position(Vec3::new(k as f32 - 0.5, 0.0, 0.0))
                 .with_mass_properties(
-                    MassProperties::new(1.0, Vec3::ZERO, Vec3::new(0.1, 0.2, 0.3)).unwrap(),
+                    MassProperties::new(plank_mass, Vec3::ZERO, Vec3::new(0.1, 0.2, 0.3)).unwrap(),
                 );
             bodies.push(RigidBody::new(&plank).unwrap());
         }
@@ -1500,6 +1637,90 @@ mod tests {
             })
             .collect();
         let pairs: Vec<JointBodies> = (0..5).map(|k| JointBodies { a: k, b: k + 1 }).collect();
+        (bodies, joints, pairs)
+    }
+
+    /// A deck's hinge rows are kept into the next step — for the same joints, between the same bodies, with
+    /// the same inverse masses — and dropped for a path with any of them changed.
+    #[test]
+    fn a_path_keeps_its_rows_into_the_next_step_only_unchanged() {
+        let (mut bodies, joints, pairs) = hinge_deck(1.0);
+        let mut states = vec![JointState::default(); joints.len()];
+        let settings = SolverSettings::default();
+        let ctx = StepContext::new(1.0 / 60.0, &settings);
+        let mut solver = JointSolver::new();
+        let mut broken = Vec::new();
+        let prepare = |solver: &mut JointSolver,
+                       bodies: &[RigidBody],
+                       (joints, pairs): (&[Joint], &[JointBodies]),
+                       states: &[JointState]| {
+            let solver_bodies: Vec<SolverBody> = bodies.iter().map(SolverBody::from_body).collect();
+            let params: Vec<BodyParams> = bodies.iter().map(BodyParams::from_body).collect();
+            let skipped = solver.prepare(joints, states, pairs, &solver_bodies, &params, &ctx);
+            assert_eq!(skipped, 0);
+            (solver_bodies, params)
+        };
+        let deck = (&joints[..], &pairs[..]);
+        let kept = |solver: &JointSolver| {
+            solver.links[..solver.path_links]
+                .iter()
+                .filter(|l| l.from_last_step)
+                .count()
+        };
+        // A fresh solver keeps nothing; after a step every link is kept.
+        let (mut solver_bodies, params) = prepare(&mut solver, &bodies, deck, &states);
+        assert_eq!(kept(&solver), 0);
+        for _ in 0..ctx.substep_count {
+            integrate_velocities(&mut solver_bodies, &params, &ctx);
+            solver.warm_start(&mut solver_bodies);
+            solver.solve(&mut solver_bodies, &ctx, Bias::On);
+            integrate_positions(&mut solver_bodies, &params, &ctx);
+            solver.solve(&mut solver_bodies, &ctx, Bias::Off);
+        }
+        solver.project_positions(&mut solver_bodies, &ctx);
+        solver.store_impulses(&mut states, &mut broken);
+        for (body, (state, params)) in bodies.iter_mut().zip(solver_bodies.iter().zip(&params)) {
+            assert!(params.write_back(state, body));
+        }
+        assert_eq!(solver.kept_rows().len(), 5);
+        let before = solver.kept_rows();
+        let _ = prepare(&mut solver, &bodies, deck, &states);
+        assert_eq!(kept(&solver), 5);
+        // The same rows from a snapshot: kept alike.
+        let mut restored = JointSolver::new();
+        restored.restore_kept_rows(&before);
+        let _ = prepare(&mut restored, &bodies, deck, &states);
+        assert_eq!(kept(&restored), 5);
+        // A heavier plank (other inverse masses), or the joints given in another order (each link of the path
+        // another joint's): nothing kept.
+        let mut heavier = JointSolver::new();
+        heavier.restore_kept_rows(&before);
+        let mut changed = bodies.clone();
+        changed[2].set_mass_properties(
+            MassProperties::new(2.0, Vec3::ZERO, Vec3::new(0.1, 0.2, 0.3)).unwrap(),
+        );
+        let _ = prepare(&mut heavier, &changed, deck, &states);
+        assert_eq!(kept(&heavier), 0);
+        let mut reordered = JointSolver::new();
+        reordered.restore_kept_rows(&before);
+        let (joints_back, pairs_back): (Vec<Joint>, Vec<JointBodies>) = joints
+            .iter()
+            .rev()
+            .copied()
+            .zip(pairs.iter().rev().copied())
+            .unzip();
+        let _ = prepare(
+            &mut reordered,
+            &bodies,
+            (&joints_back, &pairs_back),
+            &states,
+        );
+        assert_eq!(kept(&reordered), 0);
+    }
+
+    #[test]
+    fn the_last_relax_pass_builds_the_rows_the_projection_reuses() {
+        let (bodies, joints, pairs) = hinge_deck(1.0);
         let states = vec![JointState::default(); joints.len()];
         let settings = SolverSettings::default();
         let ctx = StepContext::new(1.0 / 60.0, &settings);
@@ -1554,8 +1775,9 @@ mod tests {
         let mut link = empty_link();
         let j = &mut solver.joints[0];
         let (a, b) = (&solver_bodies[0], &solver_bodies[1]);
-        let _ = rows_at(j, Some((a, b)), &stage, &mut link);
+        let _ = rows_at(j, Some((a, b)), &stage, &mut link, false);
         link.built_at(Some(PoseKey::of(a, b)));
+        link.built = Some(build_site(j, a, b));
         (solver, solver_bodies, link, stage)
     }
 
@@ -1572,7 +1794,15 @@ mod tests {
             bodies[1].delta_rotation =
                 Quat::from_axis_angle(Vec3::new(axis.z, axis.x, axis.y), turn_b);
             let (a, b) = (&bodies[0], &bodies[1]);
-            assert!(link.carry(a, b, &PoseKey::of(a, b), &stage, CARRY_ANGLE));
+            let j = &solver.joints[0];
+            assert!(carry(
+                j,
+                &mut link,
+                (a, b),
+                &PoseKey::of(a, b),
+                &stage,
+                CARRY_ANGLE
+            ));
             // Jacobians and turned vectors kept, only the targets changed; the rows still count as built at
             // the first pose.
             for (carried, kept) in link.rows.rows().iter().zip(built.rows.rows()) {
@@ -1601,12 +1831,13 @@ mod tests {
     /// other pose, nothing.
     #[test]
     fn a_pass_at_the_pose_carried_to_recomputes_only_the_targets() {
-        let (_, mut bodies, mut link, relax) = built_hinge();
+        let (solver, mut bodies, mut link, relax) = built_hinge();
+        let j = &solver.joints[0];
         bodies[0].delta_position += Vec3::new(0.003, -0.001, 0.002);
         bodies[1].delta_rotation = Quat::from_rotation_z(0.004);
         let (a, b) = (&bodies[0], &bodies[1]);
         let now = PoseKey::of(a, b);
-        assert!(link.carry(a, b, &now, &relax, CARRY_ANGLE));
+        assert!(carry(j, &mut link, (a, b), &now, &relax, CARRY_ANGLE));
         let solve = Stage {
             bias: Bias::On,
             h: 1.0 / 240.0,
@@ -1615,7 +1846,14 @@ mod tests {
                 .joint_softness(&StepContext::new(1.0 / 60.0, &SolverSettings::default())),
         };
         let mut carried_again = link;
-        assert!(carried_again.carry(a, b, &now, &solve, CARRY_ANGLE));
+        assert!(carry(
+            j,
+            &mut carried_again,
+            (a, b),
+            &now,
+            &solve,
+            CARRY_ANGLE
+        ));
         assert!(link.recarry(&now, &solve));
         assert_eq!(link, carried_again);
         // Elsewhere it refuses and changes nothing.
@@ -1628,17 +1866,39 @@ mod tests {
 
     #[test]
     fn a_hinge_turned_further_than_the_carry_angle_is_not_carried() {
-        let (_, mut bodies, mut link, stage) = built_hinge();
+        let (solver, mut bodies, mut link, stage) = built_hinge();
+        let j = &solver.joints[0];
         let built = link;
         bodies[1].delta_rotation = Quat::from_rotation_x(1.2 * CARRY_ANGLE);
         let (a, b) = (&bodies[0], &bodies[1]);
-        assert!(!link.carry(a, b, &PoseKey::of(a, b), &stage, CARRY_ANGLE));
+        assert!(!carry(
+            j,
+            &mut link,
+            (a, b),
+            &PoseKey::of(a, b),
+            &stage,
+            CARRY_ANGLE
+        ));
         assert_eq!(link, built, "nothing changed");
         // Nor is any pose with a carry angle of 0, or a link holding no rows of this step.
         bodies[1].delta_rotation = Quat::IDENTITY;
         let (a, b) = (&bodies[0], &bodies[1]);
-        assert!(!link.carry(a, b, &PoseKey::of(a, b), &stage, 0.0));
-        link.forget();
-        assert!(!link.carry(a, b, &PoseKey::of(a, b), &stage, CARRY_ANGLE));
+        assert!(!carry(
+            j,
+            &mut link,
+            (a, b),
+            &PoseKey::of(a, b),
+            &stage,
+            0.0
+        ));
+        link.drop_built();
+        assert!(!carry(
+            j,
+            &mut link,
+            (a, b),
+            &PoseKey::of(a, b),
+            &stage,
+            CARRY_ANGLE
+        ));
     }
 }

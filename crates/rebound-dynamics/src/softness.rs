@@ -20,6 +20,7 @@ use core::f32::consts::TAU;
 
 /// The three coefficients of a soft constraint for one substep length `h`.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Softness {
     /// Velocity bias per unit of position error (1/s).
     pub bias_rate: f32,

@@ -53,7 +53,7 @@ pub(crate) struct Scratch {
     joint_handles: Vec<JointHandle>,
     broken: Vec<usize>,
     contact_solver: ContactSolver,
-    joint_solver: JointSolver,
+    pub(crate) joint_solver: JointSolver,
     touching: Vec<(BodyHandle, BodyHandle)>,
     /// For each manifold of this step, the approach speed before the step (m/s), for contact events.
     approach_speeds: Vec<f32>,

@@ -8,7 +8,7 @@ use crate::{
     AdvanceReport, BodyHandle, BodySet, CollisionBackend, ContactManifold, Event, JointHandle,
     NoCollision, StepReport, WorldError, WorldSettings,
 };
-use rebound_constraints::{Joint, JointState};
+use rebound_constraints::{Joint, JointState, KeptRows};
 use rebound_dynamics::{BodyDesc, BodyType, RigidBody};
 use rebound_math::Pose;
 use rebound_math::validity::{check_finite, check_non_negative};
@@ -58,9 +58,21 @@ pub struct WorldSnapshot {
     /// Format version, checked on restore.
     version: u32,
     state: WorldState,
+    /// The joint solver's rows kept for the next step (directly solved hinge paths carry their rows across
+    /// the step boundary: see `rebound_constraints::direct`).
+    joint_rows: KeptRows,
 }
 
-const SNAPSHOT_VERSION: u32 = 1;
+/// 2: the joint solver's kept rows were added.
+const SNAPSHOT_VERSION: u32 = 2;
+
+impl WorldSnapshot {
+    /// The joint solver's rows kept for the next step (see [`KeptRows`]).
+    #[must_use]
+    pub fn kept_joint_rows(&self) -> &KeptRows {
+        &self.joint_rows
+    }
+}
 
 /// What [`World::remove_body`] took out.
 #[derive(Debug, Clone, PartialEq)]
@@ -523,14 +535,16 @@ impl<B: CollisionBackend> World<B> {
 
     // ---- snapshots and determinism ----
 
-    /// Captures everything needed to continue: bodies, joints and their warm-start impulses, contacts, sleep
-    /// timers and islands, handle free lists, the advance accumulator. Not the collision backend's own state
-    /// (the facade snapshots its colliders itself).
+    /// Captures everything needed to continue: bodies, joints and their warm-start impulses, the joint
+    /// solver's rows kept for the next step, contacts, sleep timers and islands, handle free lists, the
+    /// advance accumulator. Not the collision backend's own state (the facade snapshots its colliders
+    /// itself).
     #[must_use]
     pub fn snapshot(&self) -> WorldSnapshot {
         WorldSnapshot {
             version: SNAPSHOT_VERSION,
             state: self.state.clone(),
+            joint_rows: self.scratch.joint_solver.kept_rows(),
         }
     }
 
@@ -562,7 +576,13 @@ impl<B: CollisionBackend> World<B> {
         if snapshot.state.bodies.iter().any(|(_, b)| !body_is_valid(b)) {
             return Err(WorldError::BadSnapshot("invalid body"));
         }
+        if !snapshot.joint_rows.is_valid() {
+            return Err(WorldError::BadSnapshot("invalid kept joint rows"));
+        }
         self.state = snapshot.state.clone();
+        self.scratch
+            .joint_solver
+            .restore_kept_rows(&snapshot.joint_rows);
         self.events.clear();
         self.woken.clear();
         Ok(())

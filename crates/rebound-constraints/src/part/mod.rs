@@ -127,6 +127,7 @@ impl Row for AnglePart {
 
 /// What one row drives toward in one iteration: a velocity bias and the softness to do it with.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct RowTarget {
     /// Velocity bias added to `Ċ` (m/s or rad/s): `bias_rate·C` for a soft correction, `C/h` for a
     /// speculative limit, `−v_target` for a motor.
