@@ -657,6 +657,14 @@ pub(crate) struct Link {
     pub built: Option<BuiltAt>,
 }
 
+/// The small rotation (rad, world) from `then` to `now`: `2·vec(now·then*)`, with the sign of its w.
+#[inline]
+pub(crate) fn turn(now: Quat, then: Quat) -> Vec3 {
+    let d = now * then.conjugate();
+    let v = Vec3::new(d.x, d.y, d.z) * 2.0;
+    if d.w < 0.0 { -v } else { v }
+}
+
 /// Where a link's rows were built, in world terms, and for which joint: what carries them to a later pose of
 /// the same step or of a later one ([`Link::carry`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -741,9 +749,14 @@ impl Link {
     /// Drops what is kept from earlier passes (the pose of the rows, the factorisation): the next pass
     /// builds the rows and factorises again.
     pub fn forget(&mut self) {
+        self.forget_poses();
+        self.factored = None;
+    }
+
+    /// Forgets the poses the rows were built and carried at (they are rebuilt or carried at the next pass).
+    fn forget_poses(&mut self) {
         self.pose = None;
         self.carried_at = None;
-        self.factored = None;
     }
 
     /// Forgets everything kept ([`Link::forget`]), from the last step too ([`Link::end_last_step`]), and
@@ -758,8 +771,7 @@ impl Link {
     /// masses they were built with: the poses of this step ([`PoseKey`], displacements since the step began)
     /// are unrelated to the last step's, so neither the build pose nor a carried one is reused as is.
     pub fn new_step(&mut self) {
-        self.pose = None;
-        self.carried_at = None;
+        self.forget_poses();
         self.from_last_step = true;
     }
 
@@ -768,8 +780,7 @@ impl Link {
     /// before the step's last relax pass, and for a path it does not keep).
     pub fn end_last_step(&mut self) {
         if self.from_last_step {
-            self.pose = None;
-            self.carried_at = None;
+            self.forget_poses();
             self.from_last_step = false;
         }
     }
@@ -816,12 +827,6 @@ impl Link {
     ) -> bool {
         let (Some(built), true) = (self.built, max_angle > 0.0) else {
             return false;
-        };
-        // The small rotation (rad, world) from the build pose: 2·vec(q·q₀*), with the sign of its w.
-        let turn = |now: Quat, then: Quat| {
-            let d = now * then.conjugate();
-            let v = Vec3::new(d.x, d.y, d.z) * 2.0;
-            if d.w < 0.0 { -v } else { v }
         };
         let (ta, tb) = (
             turn(frames.0, built.frames.0),

@@ -604,12 +604,8 @@ pub(crate) mod unbounded {
 /// [`unbounded`] for a lower impulse bound: −∞ as `null`, and back.
 #[cfg(feature = "serde")]
 pub(crate) mod unbounded_below {
-    use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
-    pub(crate) fn serialize<S: Serializer>(value: &f32, serializer: S) -> Result<S::Ok, S::Error> {
-        let finite = value.is_finite().then_some(*value);
-        finite.serialize(serializer)
-    }
+    pub(crate) use super::unbounded::serialize;
+    use serde::{Deserialize, Deserializer};
 
     pub(crate) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f32, D::Error> {
         Ok(Option::<f32>::deserialize(deserializer)?.unwrap_or(f32::NEG_INFINITY))

@@ -27,7 +27,7 @@
 use crate::coordinate::CoordinateRows;
 use crate::direct::{
     BuiltAt, CARRY_ANGLE, InvMass, JointRows, Link, MAX_ROWS, PoseKey, Real, Resume,
-    activate_violations, equality_violation, solve_path,
+    activate_violations, equality_violation, solve_path, turn,
 };
 use crate::fixed::PreparedFixed;
 use crate::hinge::PreparedHinge;
@@ -441,10 +441,15 @@ impl JointSolver {
                 ) else {
                     return false;
                 };
+                // Turned by less than the carry angle since the build, so that the inverse inertias the
+                // rows keep until the last relax pass are those of a rotation at most that far off.
+                let limit = self.carry_angle * self.carry_angle;
                 link.built.is_some_and(|built| {
                     built.owner == (j.source, j.pair.index_a, j.pair.index_b)
                         && link.rows.mass_a.mass.to_bits() == j.pair.inv_mass_a.to_bits()
                         && link.rows.mass_b.mass.to_bits() == j.pair.inv_mass_b.to_bits()
+                        && turn(j.pair.basis_a, built.frames.0).length_squared() <= limit
+                        && turn(j.pair.basis_b, built.frames.1).length_squared() <= limit
                 })
             };
             let keep = range.clone().all(keeps);
@@ -1691,8 +1696,19 @@ mod tests {
         restored.restore_kept_rows(&before);
         let _ = prepare(&mut restored, &bodies, deck, &states);
         assert_eq!(kept(&restored), 5);
-        // A heavier plank (other inverse masses), or the joints given in another order (each link of the path
-        // another joint's): nothing kept.
+        // A plank turned past the carry angle since the build (its inverse inertia too far from the kept
+        // one), a heavier plank (other inverse masses), or the joints given in another order (each link of
+        // the path another joint's): nothing kept.
+        let mut turned = JointSolver::new();
+        turned.restore_kept_rows(&before);
+        let mut spun = bodies.clone();
+        let pose = spun[3].pose();
+        let rotation = Quat::from_rotation_x(2.0 * CARRY_ANGLE) * pose.rotation;
+        spun[3]
+            .set_pose(rebound_math::Pose::new(pose.position, rotation))
+            .unwrap();
+        let _ = prepare(&mut turned, &spun, deck, &states);
+        assert_eq!(kept(&turned), 0);
         let mut heavier = JointSolver::new();
         heavier.restore_kept_rows(&before);
         let mut changed = bodies.clone();
@@ -1869,36 +1885,17 @@ mod tests {
         let (solver, mut bodies, mut link, stage) = built_hinge();
         let j = &solver.joints[0];
         let built = link;
+        let carries = |link: &mut Link, bodies: &[SolverBody], angle: f32| {
+            let (a, b) = (&bodies[0], &bodies[1]);
+            carry(j, link, (a, b), &PoseKey::of(a, b), &stage, angle)
+        };
         bodies[1].delta_rotation = Quat::from_rotation_x(1.2 * CARRY_ANGLE);
-        let (a, b) = (&bodies[0], &bodies[1]);
-        assert!(!carry(
-            j,
-            &mut link,
-            (a, b),
-            &PoseKey::of(a, b),
-            &stage,
-            CARRY_ANGLE
-        ));
+        assert!(!carries(&mut link, &bodies, CARRY_ANGLE));
         assert_eq!(link, built, "nothing changed");
-        // Nor is any pose with a carry angle of 0, or a link holding no rows of this step.
+        // Nor is any pose with a carry angle of 0, or a link holding no carried rows.
         bodies[1].delta_rotation = Quat::IDENTITY;
-        let (a, b) = (&bodies[0], &bodies[1]);
-        assert!(!carry(
-            j,
-            &mut link,
-            (a, b),
-            &PoseKey::of(a, b),
-            &stage,
-            0.0
-        ));
+        assert!(!carries(&mut link, &bodies, 0.0));
         link.drop_built();
-        assert!(!carry(
-            j,
-            &mut link,
-            (a, b),
-            &PoseKey::of(a, b),
-            &stage,
-            CARRY_ANGLE
-        ));
+        assert!(!carries(&mut link, &bodies, CARRY_ANGLE));
     }
 }

@@ -94,6 +94,24 @@ fn deck() -> World<SimpleBackend> {
     world
 }
 
+/// Steps both worlds `steps` times, asserting equal digests after every step.
+fn step_in_lockstep(
+    original: &mut World<SimpleBackend>,
+    restored: &mut World<SimpleBackend>,
+    steps: usize,
+) {
+    for step in 0..steps {
+        original.step(DT);
+        restored.step(DT);
+        assert_eq!(
+            restored.state_digest(),
+            original.state_digest(),
+            "diverged {} steps after the restore",
+            step + 1
+        );
+    }
+}
+
 fn to_json(snapshot: &WorldSnapshot) -> String {
     serde_json::to_string(snapshot).unwrap()
 }
@@ -119,16 +137,7 @@ fn a_restored_world_steps_in_lockstep_with_the_original() {
         World::with_backend(WorldSettings::default(), original.backend().clone()).unwrap();
     restored.restore(&loaded).unwrap();
     assert_eq!(restored.state_digest(), original.state_digest());
-    for step in 0..120 {
-        original.step(DT);
-        restored.step(DT);
-        assert_eq!(
-            restored.state_digest(),
-            original.state_digest(),
-            "diverged {} steps after the restore",
-            step + 1
-        );
-    }
+    step_in_lockstep(&mut original, &mut restored, 120);
     assert_eq!(to_json(&restored.snapshot()), to_json(&original.snapshot()));
 }
 
@@ -213,16 +222,7 @@ fn a_restored_deck_steps_in_lockstep_with_its_kept_joint_rows() {
     let mut restored =
         World::with_backend(WorldSettings::default(), original.backend().clone()).unwrap();
     restored.restore(&loaded).unwrap();
-    for step in 0..120 {
-        original.step(DT);
-        restored.step(DT);
-        assert_eq!(
-            restored.state_digest(),
-            original.state_digest(),
-            "diverged {} steps after the restore",
-            step + 1
-        );
-    }
+    step_in_lockstep(&mut original, &mut restored, 120);
     // Rolled back in place, after stepping on, the world retraces the same steps too.
     let again = original.snapshot();
     let digests: Vec<u64> = (0..30)
