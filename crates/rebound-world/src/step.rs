@@ -254,7 +254,14 @@ impl<B: CollisionBackend> World<B> {
             }
         }
 
-        // Waking: repeat until nothing changes (a woken island may touch another sleeping one).
+        // Waking: repeat until nothing changes (a woken island may touch another sleeping one). Nothing to do
+        // when no body sleeps (always so with sleeping off): one scan of the bodies instead of a look at every
+        // manifold and joint.
+        if !self.state.bodies.iter().any(|(_, body)| body.is_sleeping()) {
+            self.scratch.approach_speeds = speeds;
+            self.scratch.manifolds = manifolds;
+            return;
+        }
         let mut to_wake = core::mem::take(&mut self.scratch.to_wake);
         loop {
             to_wake.clear();
@@ -774,9 +781,16 @@ fn approach_speed(
     a: &rebound_dynamics::RigidBody,
     b: &rebound_dynamics::RigidBody,
 ) -> f32 {
+    // `RigidBody::velocity_at_point` of both bodies, with their centres of mass found once per manifold
+    // (each is a rotation of the local centre): the same values.
+    let (center_a, center_b) = (a.center_of_mass(), b.center_of_mass());
+    let velocity_at = |body: &rebound_dynamics::RigidBody, center: Vec3, world: Vec3| {
+        body.linear_velocity() + body.angular_velocity().cross(world - center)
+    };
     m.points().iter().fold(0.0f32, |speed, p| {
         let world = a.pose().transform_point(p.local_anchor_a);
-        let closing = -(b.velocity_at_point(world) - a.velocity_at_point(world)).dot(m.normal);
+        let closing =
+            -(velocity_at(b, center_b, world) - velocity_at(a, center_a, world)).dot(m.normal);
         speed.max(closing)
     })
 }
