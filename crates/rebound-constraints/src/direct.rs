@@ -253,16 +253,7 @@ impl Side {
     /// I⁻¹·angular`): `Δx = M⁻¹·Jᵀ·p`, the rotation as a small rotation vector.
     #[inline]
     fn displace(&self, m: &InvMass, turned: Vec3, body: &mut SolverBody, p: f32) {
-        body.delta_position += self.linear * (m.mass * p);
-        let turn = turned * p;
-        if turn != Vec3::ZERO {
-            body.delta_rotation = integrate_rotation(
-                body.delta_rotation,
-                turn,
-                1.0,
-                RotationIntegrator::FirstOrder,
-            );
-        }
+        displace_body(body, self.linear * (m.mass * p), turned * p);
     }
 
     #[inline]

@@ -1617,6 +1617,25 @@ mod tests {
     /// carry the hinges' rows (the planks turn by less than the carry angle a substep), the last relax pass
     /// of the step builds them at the final pose, so that the projection finds every link's rows (and their
     /// factorisation) made at its pose.
+    /// The substeps of a step for the joints alone (velocities, warm start, solve, positions, relax), calling
+    /// `after_relax` after each relax pass.
+    fn substeps(
+        solver: &mut JointSolver,
+        solver_bodies: &mut [SolverBody],
+        params: &[BodyParams],
+        ctx: &StepContext,
+        mut after_relax: impl FnMut(&JointSolver, &[SolverBody]),
+    ) {
+        for _ in 0..ctx.substep_count {
+            integrate_velocities(solver_bodies, params, ctx);
+            solver.warm_start(solver_bodies);
+            solver.solve(solver_bodies, ctx, Bias::On);
+            integrate_positions(solver_bodies, params, ctx);
+            solver.solve(solver_bodies, ctx, Bias::Off);
+            after_relax(solver, solver_bodies);
+        }
+    }
+
     /// Four planks hinged between two fixed bodies 3.9 m apart (4 m of deck): its bodies, joints and pairs.
     fn hinge_deck(plank_mass: f32) -> (Vec<RigidBody>, Vec<Joint>, Vec<JointBodies>) {
         let mut bodies = vec![RigidBody::new(&BodyDesc::fixed()).unwrap()];
@@ -1675,13 +1694,7 @@ mod tests {
         // A fresh solver keeps nothing; after a step every link is kept.
         let (mut solver_bodies, params) = prepare(&mut solver, &bodies, deck, &states);
         assert_eq!(kept(&solver), 0);
-        for _ in 0..ctx.substep_count {
-            integrate_velocities(&mut solver_bodies, &params, &ctx);
-            solver.warm_start(&mut solver_bodies);
-            solver.solve(&mut solver_bodies, &ctx, Bias::On);
-            integrate_positions(&mut solver_bodies, &params, &ctx);
-            solver.solve(&mut solver_bodies, &ctx, Bias::Off);
-        }
+        substeps(&mut solver, &mut solver_bodies, &params, &ctx, |_, _| {});
         solver.project_positions(&mut solver_bodies, &ctx);
         solver.store_impulses(&mut states, &mut broken);
         for (body, (state, params)) in bodies.iter_mut().zip(solver_bodies.iter().zip(&params)) {
@@ -1746,14 +1759,15 @@ mod tests {
         let skipped = solver.prepare(&joints, &states, &pairs, &solver_bodies, &params, &ctx);
         assert_eq!((skipped, solver.paths.len()), (0, 1));
         let mut after_relax = Vec::new();
-        for _ in 0..ctx.substep_count {
-            integrate_velocities(&mut solver_bodies, &params, &ctx);
-            solver.warm_start(&mut solver_bodies);
-            solver.solve(&mut solver_bodies, &ctx, Bias::On);
-            integrate_positions(&mut solver_bodies, &params, &ctx);
-            solver.solve(&mut solver_bodies, &ctx, Bias::Off);
-            after_relax.push(solver.reusable_links(&solver_bodies));
-        }
+        substeps(
+            &mut solver,
+            &mut solver_bodies,
+            &params,
+            &ctx,
+            |solver, bodies| {
+                after_relax.push(solver.reusable_links(bodies));
+            },
+        );
         // Carried in the first relax passes (built at the step's first pass, not at their pose), built in the
         // last one.
         assert_eq!(after_relax, [0, 0, 0, 5]);
