@@ -99,7 +99,7 @@
 )]
 
 use crate::pair::{BodyPair, Distance};
-use crate::part::{RowTarget, block_target};
+use crate::part::{RowTarget, block_target, rotation_error};
 use crate::solver::Stage;
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
@@ -648,14 +648,6 @@ pub(crate) struct Link {
     pub built: Option<BuiltAt>,
 }
 
-/// The small rotation (rad, world) from `then` to `now`: `2·vec(now·then*)`, with the sign of its w.
-#[inline]
-pub(crate) fn turn(now: Quat, then: Quat) -> Vec3 {
-    let d = now * then.conjugate();
-    let v = Vec3::new(d.x, d.y, d.z) * 2.0;
-    if d.w < 0.0 { -v } else { v }
-}
-
 /// Where a link's rows were built, in world terms, and for which joint: what carries them to a later pose of
 /// the same step or of a later one ([`Link::carry`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -819,9 +811,10 @@ impl Link {
         let (Some(built), true) = (self.built, max_angle > 0.0) else {
             return false;
         };
+        // The small rotations (rad, world) since the build: the rotation error from the built frames.
         let (ta, tb) = (
-            turn(frames.0, built.frames.0),
-            turn(frames.1, built.frames.1),
+            rotation_error(built.frames.0, frames.0),
+            rotation_error(built.frames.1, frames.1),
         );
         let limit = max_angle * max_angle;
         if ta.length_squared() > limit || tb.length_squared() > limit {
@@ -1350,30 +1343,11 @@ impl Link {
             }
             return;
         }
-        // The rows' increments (position impulses in a projection) summed through `M⁻¹·Jᵀ` (made with the
-        // blocks this sweep used: the rows in the system now are those they were made for), then each body
-        // changed once.
+        // The rows' increments — in a projection, their position impulses — summed through `M⁻¹·Jᵀ` (made
+        // with the blocks this sweep used: the rows in the system now are those they were made for), then
+        // each body changed once.
+        let positions = self.positions;
         let mut change = [Vec4::ZERO; 4];
-        if self.positions {
-            for ((((row, &x), &lambda), &active), impulse) in rows
-                .rows()
-                .iter()
-                .zip(x)
-                .zip(&self.lambda)
-                .zip(&self.active)
-                .zip(&self.impulse)
-            {
-                if active {
-                    let p = (lambda - x as f32).max(row.lower).min(row.upper);
-                    for (change, &unit) in change.iter_mut().zip(impulse) {
-                        *change += unit * p;
-                    }
-                }
-            }
-            displace_body(a, change[0].truncate(), change[1].truncate());
-            displace_body(b, change[2].truncate(), change[3].truncate());
-            return;
-        }
         for ((((row, &x), lambda), &active), impulse) in rows
             .rows()
             .iter()
@@ -1386,11 +1360,18 @@ impl Link {
                 continue;
             }
             let new = (*lambda - x as f32).max(row.lower).min(row.upper);
-            let increment = new - *lambda;
+            let amount = if positions { new } else { new - *lambda };
             for (change, &unit) in change.iter_mut().zip(impulse) {
-                *change += unit * increment;
+                *change += unit * amount;
             }
-            *lambda = new;
+            if !positions {
+                *lambda = new;
+            }
+        }
+        if positions {
+            displace_body(a, change[0].truncate(), change[1].truncate());
+            displace_body(b, change[2].truncate(), change[3].truncate());
+            return;
         }
         a.linear_velocity += change[0].truncate();
         a.angular_velocity += change[1].truncate();

@@ -27,10 +27,11 @@
 use crate::coordinate::CoordinateRows;
 use crate::direct::{
     BuiltAt, CARRY_ANGLE, InvMass, JointRows, Link, MAX_ROWS, PoseKey, Real, Resume,
-    activate_violations, equality_violation, solve_path, turn,
+    activate_violations, equality_violation, solve_path,
 };
 use crate::fixed::PreparedFixed;
 use crate::hinge::PreparedHinge;
+use crate::part::rotation_error;
 use crate::prismatic::PreparedPrismatic;
 use crate::rod::PreparedRod;
 use crate::rope::PreparedRope;
@@ -448,8 +449,8 @@ impl JointSolver {
                     built.owner == (j.source, j.pair.index_a, j.pair.index_b)
                         && link.rows.mass_a.mass.to_bits() == j.pair.inv_mass_a.to_bits()
                         && link.rows.mass_b.mass.to_bits() == j.pair.inv_mass_b.to_bits()
-                        && turn(j.pair.basis_a, built.frames.0).length_squared() <= limit
-                        && turn(j.pair.basis_b, built.frames.1).length_squared() <= limit
+                        && rotation_error(built.frames.0, j.pair.basis_a).length_squared() <= limit
+                        && rotation_error(built.frames.1, j.pair.basis_b).length_squared() <= limit
                 })
             };
             let keep = range.clone().all(keeps);

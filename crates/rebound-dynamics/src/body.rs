@@ -316,10 +316,15 @@ impl RigidBody {
     /// Velocity of the material point at `world_point` (m/s): `v + ω × (p − c)`.
     #[must_use]
     pub fn velocity_at_point(&self, world_point: Vec3) -> Vec3 {
-        self.linear_velocity
-            + self
-                .angular_velocity
-                .cross(world_point - self.center_of_mass())
+        self.velocity_at_offset(world_point - self.center_of_mass())
+    }
+
+    /// Velocity of the material point at `offset` (m, world axes) from the centre of mass (m/s): `v + ω × r`.
+    /// [`RigidBody::velocity_at_point`] without finding the centre of mass again, for a caller that reads
+    /// several points of one body.
+    #[must_use]
+    pub fn velocity_at_offset(&self, offset: Vec3) -> Vec3 {
+        self.linear_velocity + self.angular_velocity.cross(offset)
     }
 
     /// Accumulated force this step (N, world space); cleared after each step.

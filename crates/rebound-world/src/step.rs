@@ -781,16 +781,13 @@ fn approach_speed(
     a: &rebound_dynamics::RigidBody,
     b: &rebound_dynamics::RigidBody,
 ) -> f32 {
-    // `RigidBody::velocity_at_point` of both bodies, with their centres of mass found once per manifold
-    // (each is a rotation of the local centre): the same values.
+    // The centres of mass found once per manifold (each is a rotation of the local centre), not per point.
     let (center_a, center_b) = (a.center_of_mass(), b.center_of_mass());
-    let velocity_at = |body: &rebound_dynamics::RigidBody, center: Vec3, world: Vec3| {
-        body.linear_velocity() + body.angular_velocity().cross(world - center)
-    };
     m.points().iter().fold(0.0f32, |speed, p| {
         let world = a.pose().transform_point(p.local_anchor_a);
-        let closing =
-            -(velocity_at(b, center_b, world) - velocity_at(a, center_a, world)).dot(m.normal);
+        let closing = -(b.velocity_at_offset(world - center_b)
+            - a.velocity_at_offset(world - center_a))
+        .dot(m.normal);
         speed.max(closing)
     })
 }

@@ -287,14 +287,10 @@ impl BroadPhase {
         let pairs = &mut self.pairs;
         self.bvh
             .traverse_bvtt_single_tree::<false>(&mut self.workspace, &mut |slot1, slot2| {
-                if slot1 != slot2
-                    && let (Some((h1, _)), Some((h2, _))) =
-                        (colliders.at_slot(slot1), colliders.at_slot(slot2))
+                if let Some((h1, h2)) = leaf_pair(colliders, slot1, slot2)
+                    && filter.keeps(h1, h2)
                 {
-                    let (h1, h2) = ordered(h1, h2);
-                    if filter.keeps(h1, h2) {
-                        pairs.push((h1, h2));
-                    }
+                    pairs.push((h1, h2));
                 }
             });
         // Sorted by the two slot indices: the same order as the handles' (live colliders have distinct
@@ -454,6 +450,24 @@ impl PairFilter<'_> {
     }
 }
 
+/// The colliders of two overlapping leaves (slots), lower handle first; `None` for a leaf overlapping itself
+/// or a slot without a collider.
+#[inline]
+fn leaf_pair(
+    colliders: &ColliderSet,
+    slot1: u32,
+    slot2: u32,
+) -> Option<(ColliderHandle, ColliderHandle)> {
+    if slot1 == slot2 {
+        return None;
+    }
+    let (Some((h1, _)), Some((h2, _))) = (colliders.at_slot(slot1), colliders.at_slot(slot2))
+    else {
+        return None;
+    };
+    Some(ordered(h1, h2))
+}
+
 /// One traversal of `bvh` against itself: every pair of overlapping leaves into `overlaps` (cleared first),
 /// sorted by the two slot indices — the same order as the handles' (live colliders have distinct slots, and
 /// a handle orders by slot first) — whatever the tree's shape.
@@ -466,12 +480,7 @@ fn find_overlaps(
 ) {
     overlaps.clear();
     bvh.traverse_bvtt_single_tree::<false>(workspace, &mut |slot1, slot2| {
-        if slot1 != slot2
-            && let (Some((h1, _)), Some((h2, _))) =
-                (colliders.at_slot(slot1), colliders.at_slot(slot2))
-        {
-            overlaps.push(ordered(h1, h2));
-        }
+        overlaps.extend(leaf_pair(colliders, slot1, slot2));
     });
     radix_sort_pairs(overlaps, scratch);
     overlaps.dedup();
