@@ -51,32 +51,51 @@ pub const LEVER_ARM_TOLERANCE: f32 = 0.01;
 /// 5 %. See [`LEVER_ARM_TOLERANCE`].
 pub const LEVER_ARM_RELATIVE_TOLERANCE: f32 = 0.05;
 
-/// Whether a kept lever arm may stand in for the fresh one (see [`LEVER_ARM_TOLERANCE`]).
-fn within_tolerance(kept: Vec3, fresh: Vec3) -> bool {
+/// The square of how far (m²) a kept lever arm may lie from the fresh lever arm `fresh` (see
+/// [`LEVER_ARM_TOLERANCE`]).
+fn tolerance_squared(fresh: Vec3) -> f32 {
     let tolerance = LEVER_ARM_TOLERANCE.min(LEVER_ARM_RELATIVE_TOLERANCE * fresh.length());
-    kept.distance_squared(fresh) <= tolerance * tolerance
+    tolerance * tolerance
 }
 
 impl ManifoldPoint {
     /// Sets [`ManifoldPoint::solver_lever_arms`] from the fresh lever arms (`fresh[0]` from A's centre of mass,
     /// `fresh[1]` from B's, world axes, m) and last step's points of the same manifold: the kept lever arms of
-    /// the nearest old point whose lever arms are both within tolerance ([`LEVER_ARM_TOLERANCE`]) of the fresh ones, else
-    /// the fresh ones. Returns that old point (or `None`), so the caller can warm start from it when feature
-    /// ids did not match.
+    /// the old point with this point's feature id if both are within tolerance ([`LEVER_ARM_TOLERANCE`]) of
+    /// the fresh ones, else those of the nearest old point whose lever arms are, else the fresh ones. Returns
+    /// the old point to warm start from: the one with this point's feature id, else that nearest one, else
+    /// `None`.
+    ///
+    /// The same feature comes first because it is the same point of contact — and because it is found with
+    /// no distance computed: a resting box's four points each find their old selves, where a search for the
+    /// nearest measured sixteen pairs of lever arms. The two choices differ only when two old points lie
+    /// within the tolerance of one fresh point (two points less than 2 cm apart).
     pub fn refresh_lever_arms<'a>(
         &mut self,
         fresh: [Vec3; 2],
         previous: &'a [ManifoldPoint],
     ) -> Option<&'a ManifoldPoint> {
+        let tolerance = [tolerance_squared(fresh[0]), tolerance_squared(fresh[1])];
+        let distances = |kept: &[Vec3; 2]| {
+            let d = [
+                kept[0].distance_squared(fresh[0]),
+                kept[1].distance_squared(fresh[1]),
+            ];
+            (d[0] <= tolerance[0] && d[1] <= tolerance[1]).then_some(d[0] + d[1])
+        };
+        let same = previous.iter().find(|p| p.feature_id == self.feature_id);
+        if let Some(old) = same
+            && let Some(kept) = old.solver_lever_arms
+            && distances(&kept).is_some()
+        {
+            self.solver_lever_arms = Some(kept);
+            return Some(old);
+        }
         let mut best: Option<(f32, &ManifoldPoint)> = None;
         for old in previous {
-            let Some(kept) = old.solver_lever_arms else {
+            let Some(distance) = old.solver_lever_arms.as_ref().and_then(distances) else {
                 continue;
             };
-            if !within_tolerance(kept[0], fresh[0]) || !within_tolerance(kept[1], fresh[1]) {
-                continue;
-            }
-            let distance = kept[0].distance_squared(fresh[0]) + kept[1].distance_squared(fresh[1]);
             if best.is_none_or(|(nearest, _)| distance < nearest) {
                 best = Some((distance, old));
             }
@@ -85,7 +104,7 @@ impl ManifoldPoint {
             best.and_then(|(_, old)| old.solver_lever_arms)
                 .unwrap_or(fresh),
         );
-        best.map(|(_, old)| old)
+        same.or(best.map(|(_, old)| old))
     }
 }
 
@@ -230,8 +249,13 @@ mod tests {
     use super::*;
 
     fn kept(a: Vec3, b: Vec3) -> ManifoldPoint {
+        kept_as(a, b, 7)
+    }
+
+    fn kept_as(a: Vec3, b: Vec3, feature_id: u32) -> ManifoldPoint {
         ManifoldPoint {
             solver_lever_arms: Some([a, b]),
+            feature_id,
             ..ManifoldPoint::default()
         }
     }
@@ -248,13 +272,37 @@ mod tests {
     fn lever_arms_within_tolerance_are_kept_and_the_nearest_point_wins() {
         let fresh = [Vec3::new(0.5, -0.5, 0.5), Vec3::new(0.5, 0.5, 0.5)];
         let nudge = Vec3::new(0.004, 0.0, 0.0);
-        let near = kept(fresh[0] + nudge, fresh[1] - nudge);
-        let nearer = kept(fresh[0] + nudge * 0.5, fresh[1]);
+        let near = kept_as(fresh[0] + nudge, fresh[1] - nudge, 1);
+        let nearer = kept_as(fresh[0] + nudge * 0.5, fresh[1], 2);
         let mut point = ManifoldPoint::default();
         let previous = [near, nearer];
         let matched = point.refresh_lever_arms(fresh, &previous);
         assert_eq!(matched, Some(&nearer));
         assert_eq!(point.solver_lever_arms, nearer.solver_lever_arms);
+    }
+
+    #[test]
+    fn the_same_feature_within_tolerance_wins_over_a_nearer_point() {
+        let fresh = [Vec3::new(0.5, -0.5, 0.5), Vec3::new(0.5, 0.5, 0.5)];
+        let nudge = Vec3::new(0.004, 0.0, 0.0);
+        let same = kept_as(fresh[0] + nudge, fresh[1] - nudge, 3);
+        let nearer = kept_as(fresh[0] + nudge * 0.5, fresh[1], 2);
+        let mut point = ManifoldPoint {
+            feature_id: 3,
+            ..ManifoldPoint::default()
+        };
+        let previous = [nearer, same];
+        assert_eq!(point.refresh_lever_arms(fresh, &previous), Some(&same));
+        assert_eq!(point.solver_lever_arms, same.solver_lever_arms);
+        // Beyond the tolerance the same feature still gives the warm start, the nearest point the lever arms.
+        let moved = kept_as(fresh[0] + Vec3::X * 0.02, fresh[1], 3);
+        let previous = [nearer, moved];
+        assert_eq!(point.refresh_lever_arms(fresh, &previous), Some(&moved));
+        assert_eq!(point.solver_lever_arms, nearer.solver_lever_arms);
+        // Neither within tolerance: the fresh lever arms, and the same feature's impulses.
+        let far = kept_as(fresh[0], fresh[1] + Vec3::Y * 0.02, 2);
+        assert_eq!(point.refresh_lever_arms(fresh, &[far, moved]), Some(&moved));
+        assert_eq!(point.solver_lever_arms, Some(fresh));
     }
 
     #[test]

@@ -242,12 +242,7 @@ impl<B: CollisionBackend> World<B> {
                     body_a.pose().transform_point(point.local_anchor_a) - centers[0],
                     body_b.pose().transform_point(point.local_anchor_b) - centers[1],
                 ];
-                let near = point.refresh_lever_arms(fresh, old_points);
-                let previous = old_points
-                    .iter()
-                    .find(|p| p.feature_id == point.feature_id)
-                    .or(near);
-                if let Some(previous) = previous {
+                if let Some(previous) = point.refresh_lever_arms(fresh, old_points) {
                     point.normal_impulse = previous.normal_impulse;
                     point.tangent_impulse = previous.tangent_impulse;
                 }
