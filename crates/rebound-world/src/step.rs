@@ -197,12 +197,10 @@ impl<B: CollisionBackend> World<B> {
             &mut manifolds,
         );
         let bodies = &self.state.bodies;
-        let before = manifolds.len();
-        manifolds.retain(|m| is_usable(m, bodies));
-        report.rejected_contact_count = before - manifolds.len();
         // Unstable sort: no buffer to allocate, and the result does not depend on the input order because a
         // backend's keys are unique per body pair (equal keys — a faulty backend — still sort the same way
-        // for the same input: the sort is deterministic).
+        // for the same input: the sort is deterministic). The key reads no number, so the manifolds the walk
+        // below rejects (`is_usable`) sort like the others.
         manifolds.sort_unstable_by_key(ContactManifold::order_key);
 
         // Warm start: copy impulses from last step's manifold with the same key, point by point by feature id;
@@ -213,18 +211,30 @@ impl<B: CollisionBackend> World<B> {
         // contact that may begin this step (no touching manifold last step: the speed goes in the event) and
         // those with a sleeping body (waking). The others get 0 — computing every speed was 4 % of a pile's
         // step.
+        //
+        // The walk also validates (one pass over the manifolds, and the bodies looked up once): an unusable
+        // manifold is dropped, the kept ones move down over it in order.
         let mut speeds = core::mem::take(&mut self.scratch.approach_speeds);
         speeds.clear();
+        let mut contacts = core::mem::take(&mut self.scratch.contacts);
+        contacts.clear();
         let mut previous = self.state.manifolds.iter().peekable();
-        for manifold in &mut manifolds {
-            let key = manifold.order_key();
-            let old = walk_to(&mut previous, &key, ContactManifold::order_key);
-            let (Some(body_a), Some(body_b)) =
-                (bodies.get(manifold.body_a), bodies.get(manifold.body_b))
-            else {
-                speeds.push(0.0);
+        let mut kept = 0;
+        for index in 0..manifolds.len() {
+            let (body_a, body_b) = (manifolds[index].body_a, manifolds[index].body_b);
+            let (Some(body_a), Some(body_b)) = (bodies.get(body_a), bodies.get(body_b)) else {
                 continue;
             };
+            if !is_usable(&manifolds[index]) {
+                continue;
+            }
+            if kept != index {
+                manifolds.swap(kept, index);
+            }
+            let manifold = &mut manifolds[kept];
+            kept += 1;
+            let key = manifold.order_key();
+            let old = walk_to(&mut previous, &key, ContactManifold::order_key);
             let may_begin = old.is_none_or(|o| !o.is_touching());
             speeds.push(
                 if may_begin || body_a.is_sleeping() || body_b.is_sleeping() {
@@ -233,8 +243,22 @@ impl<B: CollisionBackend> World<B> {
                     0.0
                 },
             );
-            let count = manifold.point_count;
+            let count = manifold.point_count.min(crate::MAX_MANIFOLD_POINTS);
             let old_points = old.map_or(&[][..], ContactManifold::points);
+            // The solver's contact is written here, with the points in cache, its bodies' solver indices
+            // left for `build_contacts` (they are known once waking is done); in place in the list (a contact
+            // is 232 bytes: building it on the stack and pushing it copied each one once more).
+            contacts.push(Contact::new(
+                usize::MAX,
+                usize::MAX,
+                manifold.normal,
+                manifold.friction,
+                manifold.restitution,
+            ));
+            let Some(contact) = contacts.last_mut() else {
+                continue;
+            };
+            contact.rolling_friction = manifold.rolling_friction;
             // The centres of mass once per manifold, not once per point.
             let centers = [body_a.center_of_mass(), body_b.center_of_mass()];
             for point in &mut manifold.points[..count] {
@@ -246,8 +270,20 @@ impl<B: CollisionBackend> World<B> {
                     point.normal_impulse = previous.normal_impulse;
                     point.tangent_impulse = previous.tangent_impulse;
                 }
+                let [anchor_a, anchor_b] = point.solver_lever_arms.unwrap_or(fresh);
+                contact.push_point(ContactPoint {
+                    anchor_a,
+                    anchor_b,
+                    separation: point.separation,
+                    normal_impulse: point.normal_impulse,
+                    tangent_impulse: point.tangent_impulse,
+                    feature_id: point.feature_id,
+                });
             }
         }
+        report.rejected_contact_count = manifolds.len() - kept;
+        manifolds.truncate(kept);
+        self.scratch.contacts = contacts;
 
         // Waking: repeat until nothing changes (a woken island may touch another sleeping one). Nothing to do
         // when no body sleeps (always so with sleeping off): one scan of the bodies instead of a look at every
@@ -339,13 +375,14 @@ impl<B: CollisionBackend> World<B> {
         Some(index)
     }
 
-    /// Stage *prepare*, part 2: contacts between an awake body and anything it can push, with anchors relative
-    /// to the centres of mass, then the contact solver's preparation.
+    /// Stage *prepare*, part 2: the contacts between an awake body and anything it can push (the collide stage
+    /// wrote one per manifold, with anchors relative to the centres of mass) get their bodies' solver indices;
+    /// the others are dropped, the kept ones moving down in order. Then the contact solver's preparation.
     fn build_contacts(&mut self, ctx: &StepContext, report: &mut StepReport) {
         let s = &mut self.scratch;
-        s.contacts.clear();
         s.contact_sources.clear();
-        'manifolds: for source in 0..s.manifolds.len() {
+        let mut kept = 0;
+        for source in 0..s.manifolds.len().min(s.contacts.len()) {
             let (handle_a, handle_b) = (s.manifolds[source].body_a, s.manifolds[source].body_b);
             let ia = Self::solver_index_of(s, &self.state.bodies, handle_a);
             let ib = Self::solver_index_of(s, &self.state.bodies, handle_b);
@@ -355,42 +392,16 @@ impl<B: CollisionBackend> World<B> {
             if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
                 continue;
             }
-            let m = &s.manifolds[source];
-            // Written in place in the list (a contact is 232 bytes; building it on the stack and pushing it
-            // copied each one once more).
-            s.contacts.push(
-                Contact::new(ia, ib, m.normal, m.friction, m.restitution)
-                    .with_rolling_friction(m.rolling_friction),
-            );
-            let Some(contact) = s.contacts.last_mut() else {
-                continue;
-            };
-            for p in m.points() {
-                // The collide stage gave every point its lever arms; the bodies are looked up only if not.
-                let [anchor_a, anchor_b] = match p.solver_lever_arms {
-                    Some(arms) => arms,
-                    None => {
-                        let bodies = &self.state.bodies;
-                        let (Some(a), Some(b)) = (bodies.get(handle_a), bodies.get(handle_b))
-                        else {
-                            s.contacts.pop();
-                            continue 'manifolds;
-                        };
-                        lever_arms(a, b, p)
-                    }
-                };
-                contact.push_point(ContactPoint {
-                    anchor_a,
-                    anchor_b,
-                    separation: p.separation,
-                    normal_impulse: p.normal_impulse,
-                    tangent_impulse: p.tangent_impulse,
-                    feature_id: p.feature_id,
-                });
+            if kept != source {
+                s.contacts.swap(kept, source);
             }
+            let contact = &mut s.contacts[kept];
+            kept += 1;
+            (contact.body_a, contact.body_b) = (ia, ib);
             report.contact_point_count += contact.point_count;
             s.contact_sources.push(source);
         }
+        s.contacts.truncate(kept);
         report.contact_count = s.contacts.len();
         report.rejected_contact_count +=
             s.contact_solver
@@ -714,24 +725,11 @@ fn walk_to<'a, T: 'a, K: Ord>(
     walk.next_if(|item| key_of(item) == *key)
 }
 
-/// A contact point's lever arms at the bodies' current poses: from A's and from B's centre of mass to the
-/// point, world axes (m).
-fn lever_arms(
-    a: &rebound_dynamics::RigidBody,
-    b: &rebound_dynamics::RigidBody,
-    point: &crate::ManifoldPoint,
-) -> [Vec3; 2] {
-    [
-        a.pose().transform_point(point.local_anchor_a) - a.center_of_mass(),
-        b.pose().transform_point(point.local_anchor_b) - b.center_of_mass(),
-    ]
-}
-
-/// Whether a backend's manifold can be used: live, distinct bodies, finite unit normal, finite points.
-fn is_usable(m: &ContactManifold, bodies: &BodySet) -> bool {
+/// Whether a backend's manifold (between live bodies) can be used: distinct bodies, finite unit normal, at most
+/// [`crate::MAX_MANIFOLD_POINTS`] points, all finite.
+fn is_usable(m: &ContactManifold) -> bool {
     m.body_a != m.body_b
-        && bodies.contains(m.body_a)
-        && bodies.contains(m.body_b)
+        && m.point_count <= crate::MAX_MANIFOLD_POINTS
         && m.normal.is_finite()
         && (m.normal.length() - 1.0).abs() < 1e-3
         && m.friction.is_finite()

@@ -261,7 +261,7 @@ impl rebound_world::CollisionBackend for Faulty {
 }
 
 #[test]
-fn a_backends_non_finite_or_malformed_manifolds_are_rejected_and_change_nothing() {
+fn a_backends_non_finite_malformed_or_stale_manifolds_are_rejected_and_change_nothing() {
     use rebound_world::{ContactManifold, ManifoldPoint};
     let settings = WorldSettings {
         gravity: Vec3::ZERO,
@@ -309,6 +309,15 @@ fn a_backends_non_finite_or_malformed_manifolds_are_rejected_and_change_nothing(
     let mut own = manifold(good_point, Vec3::Y);
     own.body_a = ball;
     bad.push(own);
+    // More points than a manifold holds; a body that is gone.
+    let mut overfull = manifold(good_point, Vec3::Y);
+    overfull.point_count = rebound_world::MAX_MANIFOLD_POINTS + 5;
+    bad.push(overfull);
+    let gone = world.insert_body(&BodyDesc::dynamic()).unwrap();
+    world.remove_body(gone).unwrap();
+    let mut stale = manifold(good_point, Vec3::Y);
+    stale.body_b = gone;
+    bad.push(stale);
     let count = bad.len();
     world.backend_mut().0 = bad;
     let report = world.step(1.0 / 60.0);
