@@ -52,10 +52,10 @@ pub const LEVER_ARM_TOLERANCE: f32 = 0.01;
 pub const LEVER_ARM_RELATIVE_TOLERANCE: f32 = 0.05;
 
 /// The square of how far (m²) a kept lever arm may lie from the fresh lever arm `fresh` (see
-/// [`LEVER_ARM_TOLERANCE`]).
+/// [`LEVER_ARM_TOLERANCE`]): the smaller of the two tolerances, squared, with no square root taken.
 fn tolerance_squared(fresh: Vec3) -> f32 {
-    let tolerance = LEVER_ARM_TOLERANCE.min(LEVER_ARM_RELATIVE_TOLERANCE * fresh.length());
-    tolerance * tolerance
+    (LEVER_ARM_TOLERANCE * LEVER_ARM_TOLERANCE)
+        .min(LEVER_ARM_RELATIVE_TOLERANCE * LEVER_ARM_RELATIVE_TOLERANCE * fresh.length_squared())
 }
 
 impl ManifoldPoint {

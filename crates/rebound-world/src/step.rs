@@ -27,7 +27,7 @@ use rebound_dynamics::integrate::{integrate_positions, integrate_velocities};
 use rebound_dynamics::{
     BodyParams, BodyType, Contact, ContactPoint, ContactSolver, Motion, SolverBody, StepContext,
 };
-use rebound_math::Vec3;
+use rebound_math::{Mat3, Vec3};
 use std::time::Instant;
 
 const NO_INDEX: u32 = u32::MAX;
@@ -57,6 +57,11 @@ pub(crate) struct Scratch {
     touching: Vec<(BodyHandle, BodyHandle)>,
     /// For each manifold of this step, the approach speed before the step (m/s), for contact events.
     approach_speeds: Vec<f32>,
+    /// Body slot → the rotation matrix of the body's orientation and the collide call that computed it
+    /// (`collide_calls`): each body's matrix is computed once per collide stage, at its first manifold.
+    rotations: Vec<(u64, Mat3)>,
+    /// How many collide stages ran (so that a matrix of an earlier one is never read as current).
+    collide_calls: u64,
     /// Touching body pairs of this step with their approach speeds (events stage).
     touching_speeds: Vec<((BodyHandle, BodyHandle), f32)>,
     /// Buffer for the contact events of a step.
@@ -218,6 +223,20 @@ impl<B: CollisionBackend> World<B> {
         speeds.clear();
         let mut contacts = core::mem::take(&mut self.scratch.contacts);
         contacts.clear();
+        let mut rotations = core::mem::take(&mut self.scratch.rotations);
+        rotations.resize(bodies.slot_count(), (0, Mat3::IDENTITY));
+        self.scratch.collide_calls += 1;
+        let call = self.scratch.collide_calls;
+        // A body's rotation matrix, computed at its first manifold of the stage: a point's lever arm is then
+        // one matrix product, `R·(p_local − c_local)`, where rotating the point and the centre of mass by the
+        // quaternion took two rotations of twice the arithmetic.
+        let mut rotation_of = |handle: BodyHandle, body: &rebound_dynamics::RigidBody| {
+            let entry = &mut rotations[BodySet::slot(handle)];
+            if entry.0 != call {
+                *entry = (call, Mat3::from_quat(body.rotation()));
+            }
+            entry.1
+        };
         let mut previous = self.state.manifolds.iter().peekable();
         let mut kept = 0;
         for index in 0..manifolds.len() {
@@ -259,12 +278,18 @@ impl<B: CollisionBackend> World<B> {
                 continue;
             };
             contact.rolling_friction = manifold.rolling_friction;
-            // The centres of mass once per manifold, not once per point.
-            let centers = [body_a.center_of_mass(), body_b.center_of_mass()];
+            let rotations = [
+                rotation_of(manifold.body_a, body_a),
+                rotation_of(manifold.body_b, body_b),
+            ];
+            let centers = [
+                body_a.mass_properties().local_center_of_mass(),
+                body_b.mass_properties().local_center_of_mass(),
+            ];
             for point in &mut manifold.points[..count] {
                 let fresh = [
-                    body_a.pose().transform_point(point.local_anchor_a) - centers[0],
-                    body_b.pose().transform_point(point.local_anchor_b) - centers[1],
+                    rotations[0] * (point.local_anchor_a - centers[0]),
+                    rotations[1] * (point.local_anchor_b - centers[1]),
                 ];
                 if let Some(previous) = point.refresh_lever_arms(fresh, old_points) {
                     point.normal_impulse = previous.normal_impulse;
@@ -284,6 +309,7 @@ impl<B: CollisionBackend> World<B> {
         report.rejected_contact_count = manifolds.len() - kept;
         manifolds.truncate(kept);
         self.scratch.contacts = contacts;
+        self.scratch.rotations = rotations;
 
         // Waking: repeat until nothing changes (a woken island may touch another sleeping one). Nothing to do
         // when no body sleeps (always so with sleeping off): one scan of the bodies instead of a look at every
@@ -731,7 +757,8 @@ fn is_usable(m: &ContactManifold) -> bool {
     m.body_a != m.body_b
         && m.point_count <= crate::MAX_MANIFOLD_POINTS
         && m.normal.is_finite()
-        && (m.normal.length() - 1.0).abs() < 1e-3
+        // |n|² within 2e-3 of 1 (|n| within 1e-3 of 1, to first order), without the square root.
+        && (m.normal.length_squared() - 1.0).abs() < 2.0e-3
         && m.friction.is_finite()
         && m.friction >= 0.0
         && m.restitution.is_finite()

@@ -183,7 +183,16 @@ impl NarrowPhase {
             };
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
-            if shape1.is_convex() && shape2.is_convex() {
+            // Balls and boxes are convex: the commonest pairs skip the two virtual calls.
+            let primitive = |shape: &ColliderShape| {
+                matches!(
+                    shape,
+                    ColliderShape::Ball { .. } | ColliderShape::Cuboid { .. }
+                )
+            };
+            let convex = (primitive(&c1.desc.shape) || shape1.is_convex())
+                && (primitive(&c2.desc.shape) || shape2.is_convex());
+            if convex {
                 // The two commonest pairs skip parry's dispatch (two trait-object downcasts per shape and
                 // pair) and its heap-backed manifold: two balls and two boxes go to our generators
                 // (`ball_ball`, crate::box_box), which write a `ShapeManifold` on the stack. The shape kind is
@@ -559,8 +568,12 @@ impl Seam<'_> {
             manifold.rolling_friction,
         ) = self.materials();
         manifold.basis = Some(basis);
+        // s = n·(R·p_B + t − p_A) = (R*·n)·p_B + n·t − n·p_A: one rotation per manifold, two dot products
+        // per point.
+        let normal_in_b = rotate_inverse(relative.rotation, n);
+        let offset = n.dot(relative.position);
         for p in old.points() {
-            let separation = (relative.transform_point(p.local_anchor_b) - p.local_anchor_a).dot(n);
+            let separation = normal_in_b.dot(p.local_anchor_b) + offset - n.dot(p.local_anchor_a);
             if separation <= prediction {
                 manifold.push_point(ManifoldPoint {
                     local_anchor_a: p.local_anchor_a,
