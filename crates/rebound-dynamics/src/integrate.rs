@@ -45,17 +45,29 @@ pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ct
             Motion::DynamicExplicit => advance_position(state, h),
             Motion::Dynamic => {}
         }
+        // Undamped bodies and bodies under no torque skip the division by 1 and the product with zero: the
+        // same bits (`v/1 = v`; `h·(I⁻¹·0)` is +0, which is what the addition of `Vec3::ZERO` adds).
         let linear_acceleration = p.force * p.inv_mass + ctx.gravity * p.gravity_scale;
-        state.linear_velocity =
-            state.linear_velocity / (1.0 + h * p.linear_damping) + h * linear_acceleration;
+        let mut v = state.linear_velocity;
+        if p.linear_damping != 0.0 {
+            v /= 1.0 + h * p.linear_damping;
+        }
+        state.linear_velocity = v + h * linear_acceleration;
 
         let mut omega = state.angular_velocity;
         if p.gyroscopic {
             let rotation = state.delta_rotation * p.rotation;
             omega = solve_gyroscopic(omega, rotation, &p.local_inertia, &p.local_inv_inertia, h);
         }
-        state.angular_velocity =
-            omega / (1.0 + h * p.angular_damping) + h * (p.inv_inertia_world * p.torque);
+        if p.angular_damping != 0.0 {
+            omega /= 1.0 + h * p.angular_damping;
+        }
+        state.angular_velocity = omega
+            + if p.torque == Vec3::ZERO {
+                Vec3::ZERO
+            } else {
+                h * (p.inv_inertia_world * p.torque)
+            };
         state.linear_velocity = flush_tiny(state.linear_velocity);
         state.angular_velocity = flush_tiny(state.angular_velocity);
     }
