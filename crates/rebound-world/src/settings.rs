@@ -18,7 +18,7 @@ pub struct WorldSettings {
     pub substep_count: u32,
     /// Contact stiffness as a natural frequency (Hz), capped at a quarter of the substep rate. Default: 30 Hz.
     pub contact_frequency_hz: f32,
-    /// Contact damping ratio (dimensionless). Default: 10.
+    /// Contact damping ratio (dimensionless). Default: 5.
     pub contact_damping_ratio: f32,
     /// The fastest contacts push overlapping bodies apart (m/s). Default: 3 m/s.
     pub max_push_out_speed: f32,
