@@ -11,10 +11,12 @@ use crate::{BodyType, Integrator, RigidBody};
 use rebound_math::{Mat3, Pose, Quat, Vec3, inertia, rotate};
 
 /// The hot state of one body in the solver: 64 bytes, one cache line (`Quat` is 16-byte aligned; the three
-/// `Vec3`s take 36 bytes and 12 pad).
+/// `Vec3`s take 36 bytes and 12 pad). `#[repr(C)]`: the contact lanes read `[v, ω.x]` and `[ω.y, ω.z, Δp.x,
+/// Δp.y]` as 16 contiguous bytes each, in this field order.
 ///
 /// Fixed bodies appear with zero velocity and zero deltas, so the constraint code needs no branch for them.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct SolverBody {
     /// Rotation since the start of the step: current orientation = `delta_rotation · rotation₀`.
     pub delta_rotation: Quat,

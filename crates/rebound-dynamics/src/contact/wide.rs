@@ -513,16 +513,13 @@ impl Batch {
             self.states(&self.body_a, bodies),
             self.states(&self.body_b, bodies),
         );
-        let mut va = gather3(&sa, |s| s.linear_velocity);
-        let mut wa = gather3(&sa, |s| s.angular_velocity);
-        let mut vb = gather3(&sb, |s| s.linear_velocity);
-        let mut wb = gather3(&sb, |s| s.angular_velocity);
+        let (la, lb) = (LaneStates::of(&sa), LaneStates::of(&sb));
+        let (mut va, mut wa, mut vb, mut wb) = (la.v, la.w, lb.v, lb.w);
         let normal = self.normal;
         // Separation terms, as in the scalar solve: n·(Δp_b − Δp_a) and Δq⁻¹·n − n per body.
-        let shift = normal
-            .dot(&gather3(&sb, |s| s.delta_position).sub(&gather3(&sa, |s| s.delta_position)));
-        let turn_a = turn(&sa, &normal);
-        let turn_b = turn(&sb, &normal);
+        let shift = normal.dot(&lb.dp.sub(&la.dp));
+        let turn_a = la.turn(&normal);
+        let turn_b = lb.turn(&normal);
         let zero = Vec4::ZERO;
         let one = Vec4::ONE;
         let inv_h = Vec4::splat(ctx.inv_h);
@@ -614,7 +611,10 @@ impl Batch {
         patches: &[PatchX4],
         bodies: &mut [SolverBody],
     ) {
-        let (mut va, mut wa, mut vb, mut wb) = self.gather(bodies);
+        let ((mut va, mut wa), (mut vb, mut wb)) = (
+            LaneStates::velocities(&self.states(&self.body_a, bodies)),
+            LaneStates::velocities(&self.states(&self.body_b, bodies)),
+        );
         // All normal impulses act along n: their sum moves the linear velocities once.
         let mut pushed = Vec4::ZERO;
         for p in &slots[self.first_slot..][..self.slots] {
@@ -658,35 +658,6 @@ impl Batch {
             }
         };
         [lane(0), lane(1), lane(2), lane(3)]
-    }
-
-    /// The velocities of the lanes' bodies (`v_a`, `ω_a`, `v_b`, `ω_b`); empty lanes read zero.
-    #[inline(always)]
-    fn gather(&self, bodies: &[SolverBody]) -> (Vec3x4, Vec3x4, Vec3x4, Vec3x4) {
-        // Lane by lane with constant indices, not into an array filled by a loop: that array lived on the
-        // stack, written in 8 + 4-byte pieces and read back at once as 16-byte lanes, which stalls every
-        // load (no store-to-load forwarding across two stores).
-        let velocity = |index: &[usize; LANES], angular: bool| {
-            let lane = |k: usize| {
-                if k < self.lanes {
-                    let body = &bodies[index[k]];
-                    if angular {
-                        body.angular_velocity
-                    } else {
-                        body.linear_velocity
-                    }
-                } else {
-                    Vec3::ZERO
-                }
-            };
-            Vec3x4::from_lanes([lane(0), lane(1), lane(2), lane(3)])
-        };
-        (
-            velocity(&self.body_a, false),
-            velocity(&self.body_a, true),
-            velocity(&self.body_b, false),
-            velocity(&self.body_b, true),
-        )
     }
 
     /// Writes the lanes' velocities back.
@@ -768,6 +739,109 @@ const EMPTY_LANE: PreparedContact = PreparedContact {
     both_dynamic: false,
 };
 
+/// The lanes' full solver states, transposed four floats at a time: each body's `[v, ω.x]`, `[ω.y, ω.z, Δp.x,
+/// Δp.y]` and `Δq` are 16 contiguous bytes of a `#[repr(C)]` [`SolverBody`] (one load each), and a 4 × 4
+/// transpose turns four bodies' into lanes; `Δp.z` is gathered alone.
+struct LaneStates {
+    v: Vec3x4,
+    w: Vec3x4,
+    dp: Vec3x4,
+    /// `Δq`'s vector part and scalar part.
+    dq: Vec3x4,
+    dq_w: Vec4,
+}
+
+/// Four bodies' 16-byte groups `f`, transposed into lanes.
+#[inline(always)]
+fn transpose_lanes(states: &[&SolverBody; LANES], f: fn(&SolverBody) -> Vec4) -> Mat4 {
+    Mat4::from_cols(f(states[0]), f(states[1]), f(states[2]), f(states[3])).transpose()
+}
+
+/// A body's `[v, ω.x]`.
+#[inline(always)]
+fn first_group(b: &SolverBody) -> Vec4 {
+    Vec4::new(
+        b.linear_velocity.x,
+        b.linear_velocity.y,
+        b.linear_velocity.z,
+        b.angular_velocity.x,
+    )
+}
+
+/// A body's `[ω.y, ω.z, Δp.x, Δp.y]`.
+#[inline(always)]
+fn second_group(b: &SolverBody) -> Vec4 {
+    Vec4::new(
+        b.angular_velocity.y,
+        b.angular_velocity.z,
+        b.delta_position.x,
+        b.delta_position.y,
+    )
+}
+
+impl LaneStates {
+    /// The lanes' velocities (`v`, `ω`) alone.
+    #[inline(always)]
+    fn velocities(states: &[&SolverBody; LANES]) -> (Vec3x4, Vec3x4) {
+        let (v, w, _) = Self::moving(states);
+        (v, w)
+    }
+
+    /// The lanes' `v`, `ω` and `[Δp.x, Δp.y]`: the first two groups.
+    #[inline(always)]
+    fn moving(states: &[&SolverBody; LANES]) -> (Vec3x4, Vec3x4, [Vec4; 2]) {
+        let a = transpose_lanes(states, first_group);
+        let c = transpose_lanes(states, second_group);
+        (
+            Vec3x4 {
+                x: a.x_axis,
+                y: a.y_axis,
+                z: a.z_axis,
+            },
+            Vec3x4 {
+                x: a.w_axis,
+                y: c.x_axis,
+                z: c.y_axis,
+            },
+            [c.z_axis, c.w_axis],
+        )
+    }
+
+    #[inline(always)]
+    fn of(states: &[&SolverBody; LANES]) -> Self {
+        let (v, w, [dp_x, dp_y]) = Self::moving(states);
+        let q = transpose_lanes(states, |b| Vec4::from(b.delta_rotation));
+        Self {
+            v,
+            w,
+            dp: Vec3x4 {
+                x: dp_x,
+                y: dp_y,
+                z: gather1(states, |s| s.delta_position.z),
+            },
+            dq: Vec3x4 {
+                x: q.x_axis,
+                y: q.y_axis,
+                z: q.z_axis,
+            },
+            dq_w: q.w_axis,
+        }
+    }
+
+    /// `Δq⁻¹·n − n` in each lane: the rotated normal whose dot with an anchor gives `n·(Δq·r − r)`.
+    #[inline(always)]
+    fn turn(&self, normal: &Vec3x4) -> Vec3x4 {
+        // The conjugate's vector part; v' = v + w·t + u × t with t = 2·(u × v).
+        let u = Vec3x4 {
+            x: -self.dq.x,
+            y: -self.dq.y,
+            z: -self.dq.z,
+        };
+        let t = u.cross(normal).scale(Vec4::splat(2.0));
+        t.scale(self.dq_w).add(&u.cross(&t))
+    }
+}
+
 /// One vector per lane, transposed into lanes.
 #[inline(always)]
 fn gather3<T>(items: &[T; LANES], f: impl Fn(&T) -> Vec3) -> Vec3x4 {
@@ -778,16 +852,6 @@ fn gather3<T>(items: &[T; LANES], f: impl Fn(&T) -> Vec3) -> Vec3x4 {
 #[inline(always)]
 fn gather1<T>(items: &[T; LANES], f: impl Fn(&T) -> f32) -> Vec4 {
     Vec4::new(f(&items[0]), f(&items[1]), f(&items[2]), f(&items[3]))
-}
-
-/// `Δq⁻¹·n − n` in each lane: the rotated normal whose dot with an anchor gives `n·(Δq·r − r)`.
-#[inline(always)]
-fn turn(states: &[&SolverBody; LANES], normal: &Vec3x4) -> Vec3x4 {
-    // The conjugate's vector part; v' = v + w·t + u × t with t = 2·(u × v).
-    let u = gather3(states, |s| -s.delta_rotation.xyz());
-    let w = gather1(states, |s| s.delta_rotation.w);
-    let t = u.cross(normal).scale(Vec4::splat(2.0));
-    t.scale(w).add(&u.cross(&t))
 }
 
 #[cfg(test)]
