@@ -55,8 +55,10 @@ pub enum Bias {
     Off,
 }
 
-/// One point of a contact manifold, as the collision stage reports it.
+/// One point of a contact manifold, as the collision stage reports it. `#[repr(C)]`: the contact lanes read
+/// it in 16-byte groups, in this field order.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[repr(C)]
 pub struct ContactPoint {
     /// The contact point relative to body A's centre of mass at the start of the step, world axes (m).
     pub anchor_a: Vec3,

@@ -408,10 +408,13 @@ impl Batch {
         for slot in 0..slot_count {
             let points = lanes.map(|c| c.and_then(|c| input.contacts[c.source].points().get(slot)));
             let here = BVec4A::from_array(points.map(|p| p.is_some()));
-            let point =
-                |f: fn(&ContactPoint) -> Vec3| gather3(&points, |p| p.map_or(Vec3::ZERO, f));
-            let (anchor_a, anchor_b) = (point(|p| p.anchor_a), point(|p| p.anchor_b));
-            let friction = point(|p| p.tangent_impulse);
+            let PointLanes {
+                anchor_a,
+                anchor_b,
+                separation,
+                normal_impulse,
+                friction,
+            } = PointLanes::of(points.map(|p| p.unwrap_or(&NO_POINT)));
             let [center_a, _, _] = *sums.get_or_insert([anchor_a, anchor_b, friction]);
             let rn_a = anchor_a.cross(&normal);
             let rn_b = anchor_b.cross(&normal);
@@ -430,9 +433,9 @@ impl Batch {
             slots.push(PointX4 {
                 anchor_a,
                 anchor_b,
-                separation: gather1(&points, |p| p.map_or(0.0, |p| p.separation)),
+                separation,
                 normal_impulse: if input.ctx.warm_starting {
-                    gather1(&points, |p| p.map_or(0.0, |p| p.normal_impulse))
+                    normal_impulse
                 } else {
                     Vec4::ZERO
                 },
@@ -738,6 +741,58 @@ const EMPTY_LANE: PreparedContact = PreparedContact {
     softness: crate::Softness::RIGID,
     both_dynamic: false,
 };
+
+/// What an empty lane's point reads: zeros.
+const NO_POINT: ContactPoint = ContactPoint {
+    anchor_a: Vec3::ZERO,
+    anchor_b: Vec3::ZERO,
+    separation: 0.0,
+    normal_impulse: 0.0,
+    tangent_impulse: Vec3::ZERO,
+    feature_id: 0,
+};
+
+/// One slot's contact points in lanes, read like [`LaneStates`]: a `#[repr(C)]` [`ContactPoint`] is
+/// `[r_a, r_b.x]`, `[r_b.y, r_b.z, s, λ_n]`, `[λ_t, id]` — three 16-byte groups, three transposes.
+struct PointLanes {
+    anchor_a: Vec3x4,
+    anchor_b: Vec3x4,
+    separation: Vec4,
+    normal_impulse: Vec4,
+    friction: Vec3x4,
+}
+
+impl PointLanes {
+    #[inline(always)]
+    fn of(points: [&ContactPoint; LANES]) -> Self {
+        let transpose = |f: fn(&ContactPoint) -> Vec4| {
+            Mat4::from_cols(f(points[0]), f(points[1]), f(points[2]), f(points[3])).transpose()
+        };
+        let a = transpose(|p| Vec4::new(p.anchor_a.x, p.anchor_a.y, p.anchor_a.z, p.anchor_b.x));
+        let b =
+            transpose(|p| Vec4::new(p.anchor_b.y, p.anchor_b.z, p.separation, p.normal_impulse));
+        let t = transpose(|p| p.tangent_impulse.extend(0.0));
+        Self {
+            anchor_a: Vec3x4 {
+                x: a.x_axis,
+                y: a.y_axis,
+                z: a.z_axis,
+            },
+            anchor_b: Vec3x4 {
+                x: a.w_axis,
+                y: b.x_axis,
+                z: b.y_axis,
+            },
+            separation: b.z_axis,
+            normal_impulse: b.w_axis,
+            friction: Vec3x4 {
+                x: t.x_axis,
+                y: t.y_axis,
+                z: t.z_axis,
+            },
+        }
+    }
+}
 
 /// The lanes' full solver states, transposed four floats at a time: each body's `[v, ω.x]`, `[ω.y, ω.z, Δp.x,
 /// Δp.y]` and `Δq` are 16 contiguous bytes of a `#[repr(C)]` [`SolverBody`] (one load each), and a 4 × 4
