@@ -73,8 +73,20 @@ pub(crate) fn world_aabb(collider: &Collider, body: &RigidBody) -> Aabb {
     aabb_at(collider, body.pose())
 }
 
-/// The world-space box of `collider` on a body at `body_pose`.
+/// The world-space box of `collider` on a body at `body_pose`. A ball's is its centre ± its radius, computed
+/// here (what parry computes, without composing the poses, converting them and calling through the shape
+/// trait object: two boxes a step for every collider of a pile of balls or a chain).
 pub(crate) fn aabb_at(collider: &Collider, body_pose: Pose) -> Aabb {
+    if let ColliderShape::Ball { radius } = collider.desc.shape {
+        let offset = collider.desc.local_pose.position;
+        let center = if offset == Vec3::ZERO {
+            body_pose.position
+        } else {
+            body_pose.transform_point(offset)
+        };
+        let r = Vec3::splat(radius);
+        return Aabb::new(center - r, center + r);
+    }
     collider
         .shape
         .compute_aabb(&to_parry_pose(collider.world_pose(body_pose)))
