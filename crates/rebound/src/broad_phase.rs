@@ -299,11 +299,7 @@ impl BroadPhase {
         let pairs = &mut self.pairs;
         self.bvh
             .traverse_bvtt_single_tree::<false>(&mut self.workspace, &mut |slot1, slot2| {
-                if let Some((h1, h2)) = leaf_pair(colliders, slot1, slot2)
-                    && filter.keeps(h1, h2)
-                {
-                    pairs.push((h1, h2));
-                }
+                pairs.extend(filter.keeps_leaves(slot1, slot2));
             });
         // Sorted by the two slot indices: the same order as the handles' (live colliders have distinct
         // slots, and a handle orders by slot first).
@@ -446,6 +442,26 @@ impl PairFilter<'_> {
         let (Some(x), Some(y)) = (candidate(h1), candidate(h2)) else {
             return false;
         };
+        self.keeps_candidates(x, y)
+    }
+
+    /// The candidate pair of two overlapping leaves (slots), lower handle first, if it passes: what
+    /// [`leaf_pair`] then [`PairFilter::keeps`] give, with the handles read from this step's candidates (every
+    /// collider on a live body has one, holding its current handle) instead of from the collider arena.
+    fn keeps_leaves(&self, slot1: u32, slot2: u32) -> Option<(ColliderHandle, ColliderHandle)> {
+        if slot1 == slot2 {
+            return None;
+        }
+        let candidate = |slot: u32| self.candidates.get(slot as usize).and_then(Option::as_ref);
+        let (mut x, mut y) = (candidate(slot1)?, candidate(slot2)?);
+        if y.handle < x.handle {
+            core::mem::swap(&mut x, &mut y);
+        }
+        self.keeps_candidates(x, y).then_some((x.handle, y.handle))
+    }
+
+    /// The filters on the candidates of colliders `x` and `y` (`x` the lower handle).
+    fn keeps_candidates(&self, x: &Candidate, y: &Candidate) -> bool {
         if !(x.mover || y.mover) {
             return false;
         }
