@@ -388,6 +388,11 @@ impl Collider {
     /// The world pose for a body at `body_pose`.
     #[must_use]
     pub fn world_pose(&self, body_pose: Pose) -> Pose {
+        // Most colliders sit at their body's origin: no composition to compute (the same pose but for the
+        // sign of a zero).
+        if self.desc.local_pose == Pose::IDENTITY {
+            return body_pose;
+        }
         body_pose.mul_pose(&self.desc.local_pose)
     }
 

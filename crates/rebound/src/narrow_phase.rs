@@ -430,10 +430,18 @@ impl Seam<'_> {
             return;
         };
         manifold.rolling_friction = rolling_friction;
+        // A shape at its body's origin (the common case) needs no transform.
+        let to_body = |frame: &Pose, p: Vec3| {
+            if *frame == Pose::IDENTITY {
+                p
+            } else {
+                frame.transform_point(p)
+            }
+        };
         for point in chosen[..count].iter().map(|&i| points[i].shape_point()) {
             manifold.push_point(ManifoldPoint {
-                local_anchor_a: frame1.transform_point(point.local_p1),
-                local_anchor_b: frame2.transform_point(point.local_p2),
+                local_anchor_a: to_body(&frame1, point.local_p1),
+                local_anchor_b: to_body(&frame2, point.local_p2),
                 separation: point.dist,
                 feature_id: pack_feature_id(point.fid1, point.fid2),
                 ..ManifoldPoint::default()
