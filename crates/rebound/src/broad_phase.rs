@@ -38,7 +38,9 @@
 //! *contacts* only), so the contacts — and the step — are a function of the current state alone, which is
 //! what makes a restored snapshot step like the world that never stopped.
 
-use crate::narrow_phase::{ball_center, centres_clearly_apart, prediction_distance};
+use crate::narrow_phase::{
+    ball_center, ball_center_at, centres_clearly_apart, prediction_distance,
+};
 use crate::shape::to_parry_pose;
 use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
@@ -78,13 +80,7 @@ pub(crate) fn world_aabb(collider: &Collider, body: &RigidBody) -> Aabb {
 /// trait object: two boxes a step for every collider of a pile of balls or a chain).
 pub(crate) fn aabb_at(collider: &Collider, body_pose: Pose) -> Aabb {
     if let ColliderShape::Ball { radius } = collider.desc.shape {
-        let offset = collider.desc.local_pose.position;
-        let center = if offset == Vec3::ZERO {
-            body_pose.position
-        } else {
-            body_pose.transform_point(offset)
-        };
-        let r = Vec3::splat(radius);
+        let (center, r) = (ball_center_at(collider, body_pose), Vec3::splat(radius));
         return Aabb::new(center - r, center + r);
     }
     collider

@@ -183,16 +183,8 @@ impl NarrowPhase {
             };
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
-            // Balls and boxes are convex: the commonest pairs skip the two virtual calls.
-            let primitive = |shape: &ColliderShape| {
-                matches!(
-                    shape,
-                    ColliderShape::Ball { .. } | ColliderShape::Cuboid { .. }
-                )
-            };
-            let convex = (primitive(&c1.desc.shape) || shape1.is_convex())
-                && (primitive(&c2.desc.shape) || shape2.is_convex());
-            if convex {
+            // Read from the descriptions: no call through the shape trait objects.
+            if c1.desc.shape.is_convex() && c2.desc.shape.is_convex() {
                 // The two commonest pairs skip parry's dispatch (two trait-object downcasts per shape and
                 // pair) and its heap-backed manifold: two balls and two boxes go to our generators
                 // (`ball_ball`, crate::box_box), which write a `ShapeManifold` on the stack. The shape kind is
@@ -647,11 +639,17 @@ pub(crate) fn centres_clearly_apart(
 /// common case: no rotation to apply), else the collider's offset carried by the body's pose.
 #[inline]
 pub(crate) fn ball_center(c: &Collider, b: &RigidBody) -> Vec3 {
+    ball_center_at(c, b.pose())
+}
+
+/// [`ball_center`] for a body at `body_pose`.
+#[inline]
+pub(crate) fn ball_center_at(c: &Collider, body_pose: Pose) -> Vec3 {
     let offset = c.desc.local_pose.position;
     if offset == Vec3::ZERO {
-        b.position()
+        body_pose.position
     } else {
-        b.pose().transform_point(offset)
+        body_pose.transform_point(offset)
     }
 }
 

@@ -114,6 +114,22 @@ impl ColliderShape {
         }
     }
 
+    /// Whether the shape is convex — what its parry3d shape's `is_convex` answers, read from the description
+    /// without a call through the shape trait object: the primitives and hulls are, meshes, height fields and
+    /// compounds are not.
+    #[must_use]
+    pub const fn is_convex(&self) -> bool {
+        match self {
+            Self::Ball { .. }
+            | Self::Cuboid { .. }
+            | Self::Capsule { .. }
+            | Self::Cylinder { .. }
+            | Self::Cone { .. }
+            | Self::ConvexHull { .. } => true,
+            Self::TriMesh { .. } | Self::HeightField { .. } | Self::Compound { .. } => false,
+        }
+    }
+
     /// Checks the description and builds the parry3d shape.
     ///
     /// # Errors
@@ -401,6 +417,58 @@ mod tests {
         assert!(height_at(0.99, 0.99) > 0.97, "{}", height_at(0.99, 0.99));
         assert!(height_at(-0.99, 0.99).abs() < 1e-4);
         assert!(height_at(0.99, -0.99).abs() < 1e-4);
+    }
+
+    #[test]
+    fn convexity_is_parrys() {
+        let tetrahedron = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+        let shapes = [
+            ColliderShape::Ball { radius: 0.5 },
+            ColliderShape::Cuboid {
+                half_extents: Vec3::splat(0.5),
+            },
+            ColliderShape::Capsule {
+                radius: 0.5,
+                half_height: 1.0,
+            },
+            ColliderShape::Capsule {
+                radius: 0.5,
+                half_height: 0.0,
+            },
+            ColliderShape::Cylinder {
+                radius: 0.5,
+                half_height: 1.0,
+            },
+            ColliderShape::Cone {
+                radius: 0.5,
+                half_height: 1.0,
+            },
+            ColliderShape::ConvexHull {
+                points: tetrahedron.clone(),
+            },
+            ColliderShape::TriMesh {
+                vertices: tetrahedron,
+                indices: vec![[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]],
+            },
+            ColliderShape::HeightField {
+                rows: 2,
+                cols: 2,
+                heights: vec![0.0; 4],
+                scale: Vec3::ONE,
+            },
+            ColliderShape::Compound {
+                parts: vec![(Pose::IDENTITY, ColliderShape::Ball { radius: 0.5 })],
+            },
+        ];
+        for shape in shapes {
+            let parry = shape.to_parry().unwrap();
+            assert_eq!(
+                shape.is_convex(),
+                parry.is_convex(),
+                "{}",
+                shape.kind_name()
+            );
+        }
     }
 
     #[test]
