@@ -54,13 +54,12 @@ impl Vec3x4 {
     /// The four lanes' vectors, transposed (one 4×4 transpose instead of twelve lane inserts).
     #[inline(always)]
     fn from_lanes(v: [Vec3; LANES]) -> Self {
-        let m = Mat4::from_cols(
-            v[0].extend(0.0),
-            v[1].extend(0.0),
-            v[2].extend(0.0),
-            v[3].extend(0.0),
-        )
-        .transpose();
+        Self::rows(&transpose_lanes(&v, |v| v.extend(0.0)))
+    }
+
+    /// The first three rows of `m` (of a [`transpose_lanes`]): x, y and z in lanes.
+    #[inline(always)]
+    fn rows(m: &Mat4) -> Self {
         Self {
             x: m.x_axis,
             y: m.y_axis,
@@ -765,19 +764,15 @@ struct PointLanes {
 impl PointLanes {
     #[inline(always)]
     fn of(points: [&ContactPoint; LANES]) -> Self {
-        let transpose = |f: fn(&ContactPoint) -> Vec4| {
-            Mat4::from_cols(f(points[0]), f(points[1]), f(points[2]), f(points[3])).transpose()
-        };
-        let a = transpose(|p| Vec4::new(p.anchor_a.x, p.anchor_a.y, p.anchor_a.z, p.anchor_b.x));
-        let b =
-            transpose(|p| Vec4::new(p.anchor_b.y, p.anchor_b.z, p.separation, p.normal_impulse));
-        let t = transpose(|p| p.tangent_impulse.extend(0.0));
+        let a = transpose_lanes(&points, |p| {
+            Vec4::new(p.anchor_a.x, p.anchor_a.y, p.anchor_a.z, p.anchor_b.x)
+        });
+        let b = transpose_lanes(&points, |p| {
+            Vec4::new(p.anchor_b.y, p.anchor_b.z, p.separation, p.normal_impulse)
+        });
+        let t = transpose_lanes(&points, |p| p.tangent_impulse.extend(0.0));
         Self {
-            anchor_a: Vec3x4 {
-                x: a.x_axis,
-                y: a.y_axis,
-                z: a.z_axis,
-            },
+            anchor_a: Vec3x4::rows(&a),
             anchor_b: Vec3x4 {
                 x: a.w_axis,
                 y: b.x_axis,
@@ -785,11 +780,7 @@ impl PointLanes {
             },
             separation: b.z_axis,
             normal_impulse: b.w_axis,
-            friction: Vec3x4 {
-                x: t.x_axis,
-                y: t.y_axis,
-                z: t.z_axis,
-            },
+            friction: Vec3x4::rows(&t),
         }
     }
 }
@@ -806,10 +797,10 @@ struct LaneStates {
     dq_w: Vec4,
 }
 
-/// Four bodies' 16-byte groups `f`, transposed into lanes.
+/// Four items' 16-byte groups `f`, transposed into lanes: row `k` holds component `k` of each lane.
 #[inline(always)]
-fn transpose_lanes(states: &[&SolverBody; LANES], f: fn(&SolverBody) -> Vec4) -> Mat4 {
-    Mat4::from_cols(f(states[0]), f(states[1]), f(states[2]), f(states[3])).transpose()
+fn transpose_lanes<T>(items: &[T; LANES], f: impl Fn(&T) -> Vec4) -> Mat4 {
+    Mat4::from_cols(f(&items[0]), f(&items[1]), f(&items[2]), f(&items[3])).transpose()
 }
 
 /// A body's `[v, ω.x]`.
@@ -845,14 +836,10 @@ impl LaneStates {
     /// The lanes' `v`, `ω` and `[Δp.x, Δp.y]`: the first two groups.
     #[inline(always)]
     fn moving(states: &[&SolverBody; LANES]) -> (Vec3x4, Vec3x4, [Vec4; 2]) {
-        let a = transpose_lanes(states, first_group);
-        let c = transpose_lanes(states, second_group);
+        let a = transpose_lanes(states, |b| first_group(b));
+        let c = transpose_lanes(states, |b| second_group(b));
         (
-            Vec3x4 {
-                x: a.x_axis,
-                y: a.y_axis,
-                z: a.z_axis,
-            },
+            Vec3x4::rows(&a),
             Vec3x4 {
                 x: a.w_axis,
                 y: c.x_axis,
@@ -874,11 +861,7 @@ impl LaneStates {
                 y: dp_y,
                 z: gather1(states, |s| s.delta_position.z),
             },
-            dq: Vec3x4 {
-                x: q.x_axis,
-                y: q.y_axis,
-                z: q.z_axis,
-            },
+            dq: Vec3x4::rows(&q),
             dq_w: q.w_axis,
         }
     }
