@@ -1614,10 +1614,6 @@ mod tests {
         assert_eq!(steps(false), steps(true));
     }
 
-    /// A deck of hinges between two fixed bodies, sagging under gravity: the relax passes of substeps 1 to 3
-    /// carry the hinges' rows (the planks turn by less than the carry angle a substep), the last relax pass
-    /// of the step builds them at the final pose, so that the projection finds every link's rows (and their
-    /// factorisation) made at its pose.
     /// The substeps of a step for the joints alone (velocities, warm start, solve, positions, relax), calling
     /// `after_relax` after each relax pass.
     fn substeps(
@@ -1748,6 +1744,10 @@ mod tests {
         assert_eq!(kept(&reordered), 0);
     }
 
+    /// A deck of hinges between two fixed bodies, sagging under gravity: the relax passes of substeps 1 to 3
+    /// carry the hinges' rows (the planks turn by less than the carry angle a substep), the last relax pass
+    /// of the step builds them at the final pose, so that the projection finds every link's rows (and their
+    /// factorisation) made at its pose.
     #[test]
     fn the_last_relax_pass_builds_the_rows_the_projection_reuses() {
         let (bodies, joints, pairs) = hinge_deck(1.0);
