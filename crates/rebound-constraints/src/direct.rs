@@ -99,7 +99,7 @@
 )]
 
 use crate::pair::{BodyPair, Distance};
-use crate::part::{RowTarget, block_target, rotation_error};
+use crate::part::{RowTarget, block_target, clamp_impulse, rotation_error};
 use crate::solver::Stage;
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
@@ -1271,7 +1271,7 @@ impl Link {
     /// increment (velocity pass) or as the position impulse itself (projection, where `lambda` is 0).
     fn increment(&self, k: usize, x: Real) -> f32 {
         let row = &self.rows.rows[k];
-        let new = (self.lambda[k] - x as f32).max(row.lower).min(row.upper);
+        let new = clamp_impulse(self.lambda[k] - x as f32, row.lower, row.upper);
         new - self.lambda[k]
     }
 
@@ -1336,7 +1336,7 @@ impl Link {
             if self.active[0] {
                 let row = &self.rows.rows[0];
                 let lambda = self.lambda[0];
-                let new = (lambda - x[0] as f32).max(row.lower).min(row.upper);
+                let new = clamp_impulse(lambda - x[0] as f32, row.lower, row.upper);
                 self.rows.apply_first(a, b, new - lambda);
                 self.lambda[0] = new;
             }
@@ -1347,7 +1347,7 @@ impl Link {
         if self.positions && rows.count == 1 {
             if self.active[0] {
                 let row = &rows.rows[0];
-                let p = (self.lambda[0] - x[0] as f32).max(row.lower).min(row.upper);
+                let p = clamp_impulse(self.lambda[0] - x[0] as f32, row.lower, row.upper);
                 rows.displace(0, a, b, p);
             }
             return;
@@ -1368,7 +1368,7 @@ impl Link {
             if !active {
                 continue;
             }
-            let new = (*lambda - x as f32).max(row.lower).min(row.upper);
+            let new = clamp_impulse(*lambda - x as f32, row.lower, row.upper);
             let amount = if positions { new } else { new - *lambda };
             for (change, &unit) in change.iter_mut().zip(impulse) {
                 *change += unit * amount;

@@ -1383,7 +1383,7 @@ fn stiffen(
             continue;
         }
         let row = &link.rows.rows[0];
-        let p = (-(x[0] as f32)).max(row.lower).min(row.upper).abs();
+        let p = crate::part::clamp_impulse(-(x[0] as f32), row.lower, row.upper).abs();
         any |= link.stiffen(PROJECTION_STIFFENING * p / length);
     }
     any

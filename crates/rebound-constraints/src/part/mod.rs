@@ -203,7 +203,8 @@ impl RowTarget {
 /// N·m·s), clamped to `[lower, upper]`, and returns the increment to apply.
 ///
 /// `effective_mass` is `1/(J·M⁻¹·Jᵀ)` (kg or kg·m²; 0 when neither body can move), `velocity` is `Ċ`.
-/// Never panics: the clamp is `max` then `min`, so even a reversed range gives a value.
+/// Never panics: the clamp ([`clamp_impulse`]) is a bound from below then one from above, so even a reversed
+/// range gives a value.
 #[inline]
 #[must_use]
 pub fn solve_row(
@@ -217,10 +218,21 @@ pub fn solve_row(
     let s = target.softness;
     let delta =
         -effective_mass * s.mass_scale * (velocity + target.bias) - s.impulse_scale * *accumulated;
-    let new = (*accumulated + delta).max(lower).min(upper);
+    let new = clamp_impulse(*accumulated + delta, lower, upper);
     let applied = new - *accumulated;
     *accumulated = new;
     applied
+}
+
+/// `x` clamped to `[lower, upper]`: `max(x, lower)`, then `min(·, upper)`, with a NaN `x` giving `lower` as
+/// [`f32::max`] does — written as comparisons so that each bound is one `maxss`/`minss` instruction
+/// (`f32::max` also handles a NaN bound, which no row has, at five more instructions a bound; the clamp runs
+/// for every row of every pass). A reversed range gives `upper`.
+#[inline]
+#[must_use]
+pub(crate) fn clamp_impulse(x: f32, lower: f32, upper: f32) -> f32 {
+    let above = if x > lower { x } else { lower };
+    if above < upper { above } else { upper }
 }
 
 /// The bias and softness of an equality block `C = 0` (vector form of [`RowTarget::equality`]).
