@@ -628,11 +628,12 @@ pub(crate) struct Link {
     /// [`Link::make_positional`] and read only while `positions` holds.
     compliance: [Real; MAX_ROWS],
     /// Scratch of the block Thomas sweep (see [`solve_block_path`]): the strictly lower part of the unit
-    /// lower triangular `L` of `Sᵢ = L·D·Lᵀ`, then `V = D⁻¹·L⁻¹·Cᵢ` and `y = D⁻¹·L⁻¹·r̃ᵢ`.
+    /// lower triangular `L` of `Sᵢ = L·D·Lᵀ`, then `V = D⁻¹·L⁻¹·Cᵢ`, stored transposed (`v_t[k]` is column
+    /// `k` of `V`: the back substitution sweeps it a column at a time), and `y = D⁻¹·L⁻¹·r̃ᵢ`.
     y: [Real; MAX_ROWS],
     inv_pivot: [Real; MAX_ROWS],
     factor: Block,
-    v: Block,
+    v_t: Block,
     /// The rest of the factorisation, kept for the next pass ([`FactorKey`]): the link's blocks `B` and `C`
     /// (`K·λ` of a soft row reads them), `W = L⁻¹·C` (the next link's forward step reads it) and `D⁻¹`
     /// (`inv_pivot`).
@@ -696,7 +697,7 @@ impl Link {
             compliance: [0.0; MAX_ROWS],
             scalar: ScalarEntries::default(),
             factor: [[0.0; MAX_ROWS]; MAX_ROWS],
-            v: [[0.0; MAX_ROWS]; MAX_ROWS],
+            v_t: [[0.0; MAX_ROWS]; MAX_ROWS],
             y: [0.0; MAX_ROWS],
             b_block: [[0.0; MAX_ROWS]; MAX_ROWS],
             c_block: [[0.0; MAX_ROWS]; MAX_ROWS],
@@ -1703,6 +1704,10 @@ fn solve_block_path<'b>(
 /// xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁)       (= Sᵢ⁻¹·(rhsᵢ − Cᵢ·xᵢ₊₁))
 /// ```
 ///
+/// The products are written as sums of scaled rows (`rhs −= yₖ·(row k of W)`, `x −= xₖ·(column k of V)`,
+/// with `V` stored transposed), not as dot products: the rows are contiguous, so the compiler pairs them
+/// into two-lane f64 instructions (the SCENES.md bridge −0.8 % instructions, `docs/performance.md`).
+///
 /// `B`, `C`, `L`, `D⁻¹`, `W` and `V` depend on the rows and on which of them are in the system, not on the
 /// velocities: while the links up to the next one still have the rows and the active sets they were
 /// factorised with ([`FactorKey`], [`keeps_factor`]; a pass at an unchanged pose), they are kept and only the
@@ -1756,19 +1761,19 @@ fn block_sweep<'b, const N: usize>(
         }
         let mut rhs = if split { r } else { [0.0; MAX_ROWS] };
         if let Some(prev) = done.last() {
-            // rhs = r̃ − Wᵢ₋₁ᵀ·yᵢ₋₁
-            for row in 0..N {
-                let mut sum = 0.0;
-                for k in 0..N {
-                    sum += prev.w[k][row] * prev.y[k];
+            // rhs = r̃ − Wᵢ₋₁ᵀ·yᵢ₋₁, a row of W at a time (contiguous, so the rows pair into SIMD lanes).
+            for k in 0..N {
+                let (w, y) = (&prev.w[k], prev.y[k]);
+                for row in 0..N {
+                    rhs[row] -= w[row] * y;
                 }
-                rhs[row] -= sum;
-                if soft_rows {
-                    let mut sum = 0.0;
-                    for k in 0..N {
-                        sum += prev.c_block[k][row] * lambda_prev[k];
+            }
+            if soft_rows {
+                for k in 0..N {
+                    let (c, l) = (&prev.c_block[k], lambda_prev[k]);
+                    for row in 0..N {
+                        k_lambda[row] += c[row] * l;
                     }
-                    k_lambda[row] += sum;
                 }
             }
         }
@@ -1778,17 +1783,18 @@ fn block_sweep<'b, const N: usize>(
                 rhs[row] += soft[row];
             }
         }
-        // S = B − Wᵢ₋₁ᵀ·Vᵢ₋₁ (upper triangle);  S = L·D·Lᵀ;  W = L⁻¹·C,  V = D⁻¹·W  (kept when `reuse`)
+        // S = B − Wᵢ₋₁ᵀ·D⁻¹ᵢ₋₁·Wᵢ₋₁ (upper triangle);  S = L·D·Lᵀ;  W = L⁻¹·C,  Vᵀ = (D⁻¹·W)ᵀ  (kept when
+        // `reuse`)
         if !reuse {
             let mut s = link.b_block;
             if let Some(prev) = done.last() {
-                for row in 0..N {
-                    for col in row..N {
-                        let mut sum = 0.0;
-                        for k in 0..N {
-                            sum += prev.w[k][row] * prev.v[k][col];
+                for k in 0..N {
+                    let w = &prev.w[k];
+                    for row in 0..N {
+                        let f = w[row] * prev.inv_pivot[k];
+                        for col in row..N {
+                            s[row][col] -= f * w[col];
                         }
-                        s[row][col] -= sum;
                     }
                 }
             }
@@ -1798,7 +1804,7 @@ fn block_sweep<'b, const N: usize>(
             forward_substitute_block::<N>(&link.factor, &mut link.w);
             for row in 0..N {
                 for col in 0..N {
-                    link.v[row][col] = link.w[row][col] * link.inv_pivot[row];
+                    link.v_t[col][row] = link.w[row][col] * link.inv_pivot[row];
                 }
             }
             link.factored = Some(FactorKey::of(link, N));
@@ -1810,17 +1816,17 @@ fn block_sweep<'b, const N: usize>(
         }
         lambda_prev = lambda;
     }
-    // Back substitution: xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁) (`V` of the last link is 0).
+    // Back substitution: xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁) (`V` of the last link is 0), a column of V (a row of the
+    // stored Vᵀ) at a time.
     let mut x_next = [0.0; MAX_ROWS];
     let mut released = false;
     for (link, out) in links.iter().zip(out.iter_mut()).rev() {
-        let mut x = [0.0; MAX_ROWS];
-        for row in 0..N {
-            let mut sum = 0.0;
-            for k in 0..N {
-                sum += link.v[row][k] * x_next[k];
+        let mut x = link.y;
+        for k in 0..N {
+            let (v, f) = (&link.v_t[k], x_next[k]);
+            for row in 0..N {
+                x[row] -= v[row] * f;
             }
-            x[row] = link.y[row] - sum;
         }
         back_substitute::<N>(&link.factor, &mut x);
         *out = link.finish(x, uniform);
