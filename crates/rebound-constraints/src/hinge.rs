@@ -231,6 +231,12 @@ impl PreparedHinge {
     }
 
     /// The limit, motor and spring rows alone (when the rest is solved directly).
+    /// Whether the hinge has no limit, motor or spring: all its rows are then the point and alignment rows
+    /// of [`PreparedHinge::direct_rows`].
+    pub(crate) fn has_no_coordinate_rows(&self) -> bool {
+        self.rows.limits.is_none() && self.rows.motor.is_none() && self.rows.spring.is_none()
+    }
+
     pub(crate) fn solve_coordinate(
         &self,
         pair: &BodyPair,

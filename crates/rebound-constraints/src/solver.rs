@@ -240,6 +240,12 @@ pub struct JointSolver {
     /// Relax passes since [`JointSolver::prepare`]: the last one of a step (the `substep_count`-th) builds
     /// every path's rows at the final pose, where the position projection starts.
     relax_passes: u32,
+    /// Per path, whether it is *closed*: all of its joints' rows are in the direct solve (no hinge limit,
+    /// motor or spring) and no other joint or tether acts on its dynamic bodies. Only the last relax pass of
+    /// a step solves a closed path (see [`JointSolver::solve`]).
+    closed: Vec<bool>,
+    /// Scratch of [`JointSolver::find_closed_paths`]: per body, the joints and tethers acting on it.
+    touches: Vec<u32>,
 }
 
 impl Default for JointSolver {
@@ -265,6 +271,8 @@ impl Default for JointSolver {
             h: 0.0,
             carry_angle: CARRY_ANGLE,
             relax_passes: 0,
+            closed: Vec::new(),
+            touches: Vec::new(),
         }
     }
 }
@@ -468,7 +476,55 @@ impl JointSolver {
         self.link_paths();
         self.list_iterated();
         self.analyse_graph(params);
+        self.find_closed_paths(body_count);
         skipped
+    }
+
+    /// Marks each path closed or not ([`JointSolver::closed`]): a path is closed when every member's rows are
+    /// all in the direct solve (ropes, rods, ball joints, hinges without limit, motor or spring) and each of its
+    /// dynamic bodies is acted on by the path's joints alone — no other joint, no tether. Fixed and kinematic
+    /// bodies (zero inverse mass and inertia) take no impulse and may be shared.
+    fn find_closed_paths(&mut self, body_count: usize) {
+        let Self {
+            joints,
+            tethers,
+            paths,
+            path_joints,
+            closed,
+            touches,
+            ..
+        } = self;
+        touches.clear();
+        touches.resize(body_count, 0);
+        let pairs = joints
+            .iter()
+            .map(|j| &j.pair)
+            .chain(tethers.iter().map(|t| &t.pair));
+        for pair in pairs {
+            for index in [pair.index_a, pair.index_b] {
+                if let Some(count) = touches.get_mut(index) {
+                    *count += 1;
+                }
+            }
+        }
+        closed.clear();
+        closed.extend(paths.iter().map(|range| {
+            let members = path_joints.get(range.clone()).unwrap_or_default();
+            let whole = members.iter().all(|&index| match &joints[index].kind {
+                Prepared::Rope(_) | Prepared::Rod(_) | Prepared::Ball => true,
+                Prepared::Hinge(hinge) => hinge.has_no_coordinate_rows(),
+                _ => false,
+            });
+            // Each dynamic body of the path: as many joints and tethers act on it as path joints do.
+            count_dynamic_sides(touches, joints, members, false);
+            let alone = members.iter().all(|&index| {
+                dynamic_sides(&joints[index].pair)
+                    .iter()
+                    .all(|&(body, dynamic)| !dynamic || touches.get(body) == Some(&0))
+            });
+            count_dynamic_sides(touches, joints, members, true);
+            whole && alone
+        }));
     }
 
     /// The paths solved directly: maximal sequences of direct-capable joints (rope, rod, ball, hinge) through
@@ -706,6 +762,18 @@ impl JointSolver {
     /// soft springs are left alone, see [`crate::spring`]). Each pass visits the joints in the order given to
     /// [`JointSolver::prepare`] (all but those a direct path solves entirely), then the paths, then the
     /// tethers.
+    ///
+    /// A *closed* path (every row of its joints in the direct solve, no other joint or tether on its bodies)
+    /// is relaxed in the last substep only. The relax pass of an inner substep leaves the velocities at the
+    /// pose where the next substep's solve pass starts, and that pass solves the same rows of the same path
+    /// exactly: for rigid rows its result does not depend on the velocity along the rows at all (a
+    /// projection: `P·(P·v + g·h) = P·(v + g·h)`), and the soft step keeps `1 − mass_scale` of it (about a
+    /// tenth at the default joint softness). The last relax pass stays: it takes the bias velocity out of
+    /// the step's final velocities, and builds the rows the position projection starts from. On the SCENES.md
+    /// bridge and chain this is a third of the direct solves (instructions −10 % and −13 %) with joint gaps
+    /// and stretch no worse (`docs/physics.md`, "Relaxing a closed path"). A path with other rows on its
+    /// bodies is relaxed every substep: a hinge limit solved by Gauss–Seidel before the path's exact solve
+    /// was pushed past by up to 1.5° without the path's relax (`tests/hinge.rs`).
     pub fn solve(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
         let stage = Stage {
             bias,
@@ -722,9 +790,11 @@ impl JointSolver {
         // the rows and, for paths whose rows all stay in the system (hinges, ball joints, taut ropes), their
         // factorisation — one factorisation of every such path a step fewer than building them there.
         let mut carry_angle = self.carry_angle;
+        let mut last_relax = false;
         if bias == Bias::Off {
             self.relax_passes += 1;
             if self.relax_passes >= ctx.substep_count {
+                last_relax = true;
                 carry_angle = 0.0;
                 // Every link is built again at the final pose, and with this step's inverse inertias.
                 for link in &mut self.links {
@@ -763,6 +833,10 @@ impl JointSolver {
                 }
             }
             for path in 0..self.paths.len() {
+                // A closed path is relaxed in the step's last substep only: see the method docs.
+                if bias == Bias::Off && !last_relax && self.closed.get(path) == Some(&true) {
+                    continue;
+                }
                 self.solve_path(path, solver_bodies, &stage, carry_angle);
             }
             for t in &mut self.tethers {
@@ -1206,6 +1280,40 @@ fn link_rows(
     link.built_at(pose);
 }
 
+/// Both bodies of `pair` with whether each is dynamic (takes impulses: a non-zero inverse mass or inertia).
+fn dynamic_sides(pair: &BodyPair) -> [(usize, bool); 2] {
+    [
+        (
+            pair.index_a,
+            pair.inv_mass_a > 0.0 || pair.inv_inertia_a != Mat3::ZERO,
+        ),
+        (
+            pair.index_b,
+            pair.inv_mass_b > 0.0 || pair.inv_inertia_b != Mat3::ZERO,
+        ),
+    ]
+}
+
+/// Adds (`add`) or takes off one count per joint of `members` from each of its dynamic bodies in `touches`.
+fn count_dynamic_sides(
+    touches: &mut [u32],
+    joints: &[PreparedJoint],
+    members: &[usize],
+    add: bool,
+) {
+    for &index in members {
+        for (body, dynamic) in dynamic_sides(&joints[index].pair) {
+            if let (true, Some(count)) = (dynamic, touches.get_mut(body)) {
+                *count = if add {
+                    *count + 1
+                } else {
+                    count.wrapping_sub(1)
+                };
+            }
+        }
+    }
+}
+
 /// Where joint `j`'s rows are when its bodies are at `a`, `b`, in world terms ([`BuiltAt`]).
 fn build_site(j: &PreparedJoint, a: &SolverBody, b: &SolverBody) -> BuiltAt {
     BuiltAt {
@@ -1487,7 +1595,7 @@ mod tests {
     )]
 
     use super::*;
-    use crate::{BallJoint, HingeJoint, Rope};
+    use crate::{BallJoint, FixedJoint, HingeJoint, Rope};
     use rebound_dynamics::integrate::{integrate_positions, integrate_velocities};
     use rebound_dynamics::{BodyDesc, MassProperties, RigidBody, SolverSettings};
     use rebound_math::Quat;
@@ -1540,8 +1648,15 @@ mod tests {
                 .with_local_axes(Vec3::Z, Vec3::Z)
                 .unwrap()
         };
+        // The first hinge's limits never bind, but they keep the deck from being a closed path (one relaxed
+        // in the last substep only), so that its rows are reused in every substep.
+        let limited = Joint::new(HingeJoint::new().with_limits(-3.0, 3.0).unwrap())
+            .with_local_anchors(Vec3::new(0.5, 0.0, 0.0), Vec3::new(-0.5, 0.0, 0.0))
+            .unwrap()
+            .with_local_axes(Vec3::Z, Vec3::Z)
+            .unwrap();
         let mut joints = vec![
-            hinge(0.5),
+            limited,
             hinge(0.5),
             Joint::new(Rope::new(1.0).unwrap()),
             hinge(0.5),
@@ -1568,6 +1683,11 @@ mod tests {
             let params: Vec<BodyParams> = bodies.iter().map(BodyParams::from_body).collect();
             let skipped = solver.prepare(&joints, &states, &pairs, &solver_bodies, &params, &ctx);
             assert_eq!((skipped, solver.paths.len()), (0, 2));
+            assert_eq!(
+                solver.closed,
+                [false, true],
+                "the deck has a limit, the chain is closed"
+            );
             assert_eq!(solver.reusable_links(&solver_bodies), 0, "prepare forgets");
             for _ in 0..ctx.substep_count {
                 integrate_velocities(&mut solver_bodies, &params, &ctx);
@@ -1600,11 +1720,13 @@ mod tests {
                 assert!(params.write_back(state, body));
             }
         }
-        // Every link is reusable in the solve pass of substeps 2 to 4 and in the projection (the relax pass
-        // left the pose), none after the world moved the bodies.
+        // Every deck link is reusable in the solve pass of substeps 2 to 4 and in the projection (the relax
+        // pass left the pose), none after the world moved the bodies; the closed chain is relaxed in the last
+        // substep only, so its links are reusable in the projection alone.
+        let (deck_links, chain_links) = (5, lengths.len());
         assert_eq!(
             reused,
-            STEPS * ctx.substep_count as usize * solver.path_joints.len()
+            STEPS * (ctx.substep_count as usize * deck_links + chain_links)
         );
         format!("{bodies:?} {states:?}")
     }
@@ -1659,6 +1781,50 @@ mod tests {
             .collect();
         let pairs: Vec<JointBodies> = (0..5).map(|k| JointBodies { a: k, b: k + 1 }).collect();
         (bodies, joints, pairs)
+    }
+
+    /// A path is closed when its joints' rows are all in the direct solve and nothing else acts on its
+    /// dynamic bodies; a fixed body may be shared.
+    #[test]
+    fn a_path_is_closed_only_if_nothing_else_acts_on_its_dynamic_bodies() {
+        let settings = SolverSettings::default();
+        let ctx = StepContext::new(1.0 / 60.0, &settings);
+        let closed = |bodies: &[RigidBody], joints: &[Joint], pairs: &[JointBodies]| {
+            let solver_bodies: Vec<SolverBody> = bodies.iter().map(SolverBody::from_body).collect();
+            let params: Vec<BodyParams> = bodies.iter().map(BodyParams::from_body).collect();
+            let states = vec![JointState::default(); joints.len()];
+            let mut solver = JointSolver::new();
+            let skipped = solver.prepare(joints, &states, pairs, &solver_bodies, &params, &ctx);
+            assert_eq!(skipped, 0);
+            solver.closed
+        };
+        let (mut bodies, mut joints, mut pairs) = hinge_deck(1.0);
+        assert_eq!(closed(&bodies, &joints, &pairs), [true]);
+        // A rope from the deck's left anchor to a ball of its own: a second path, sharing a fixed body only.
+        bodies.push(
+            RigidBody::new(&BodyDesc::dynamic().with_position(Vec3::new(0.0, -1.0, 0.0))).unwrap(),
+        );
+        joints.push(Joint::new(Rope::new(1.0).unwrap()));
+        pairs.push(JointBodies {
+            a: 0,
+            b: bodies.len() - 1,
+        });
+        assert_eq!(closed(&bodies, &joints, &pairs), [true, true]);
+        // A fixed joint (not solved directly) on the second plank: the deck is still a path, not a closed one.
+        joints.push(Joint::new(FixedJoint::new()));
+        pairs.push(JointBodies {
+            a: 2,
+            b: bodies.len() - 1,
+        });
+        assert_eq!(closed(&bodies, &joints, &pairs), [false, false]);
+        // A limit on one hinge: its rows are solved by Gauss–Seidel beside the path's.
+        let (bodies, mut joints, pairs) = hinge_deck(1.0);
+        joints[2] = Joint::new(HingeJoint::new().with_limits(-1.0, 1.0).unwrap())
+            .with_local_anchors(Vec3::new(0.5, 0.0, 0.0), Vec3::new(-0.5, 0.0, 0.0))
+            .unwrap()
+            .with_local_axes(Vec3::Z, Vec3::Z)
+            .unwrap();
+        assert_eq!(closed(&bodies, &joints, &pairs), [false]);
     }
 
     /// A deck's hinge rows are kept into the next step — for the same joints, between the same bodies, with
