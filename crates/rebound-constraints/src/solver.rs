@@ -417,7 +417,7 @@ impl JointSolver {
                     keep_only(&mut state, Keep::Linear);
                     Prepared::Ball
                 }
-                JointKind::Hinge(h) => Prepared::Hinge(h.prepare(ctx, &mut state)),
+                JointKind::Hinge(h) => Prepared::Hinge(h.prepare(&pair, ctx, &mut state)),
                 JointKind::Fixed(_) => Prepared::Fixed(FixedJoint::prepare(&pair, &mut state)),
                 JointKind::Prismatic(p) => Prepared::Prismatic(p.prepare(&pair, ctx, &mut state)),
                 JointKind::Wheel(w) => Prepared::Wheel(w.prepare(ctx, &mut state)),
