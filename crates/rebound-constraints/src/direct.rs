@@ -831,10 +831,29 @@ impl Link {
             return false;
         }
         let d = relative - built.relative;
+        // The first [`LANES`] rows four lanes wide from the Jacobians in `lanes` while they are current (the
+        // factorisation is: both are made again with the rows), each lane the operations of the row-by-row
+        // line below — the same bits.
+        let (lanes, in_lanes) = if self.factored.is_some() {
+            let dot = |j: &[Vec4; 3], v: Vec3| (j[0] * v.x + j[1] * v.y) + j[2] * v.z;
+            let l = &self.lanes;
+            let moved = dot(&l[2], d) + (dot(&l[1], ta) + dot(&l[3], tb));
+            (moved.to_array(), LANES)
+        } else {
+            ([0.0; LANES], 0)
+        };
         let rows = &self.rows;
-        for ((row, &(c, _)), carried) in rows.rows().iter().zip(&rows.errors).zip(&mut self.carried)
+        for (k, ((row, &(c, _)), carried)) in rows
+            .rows()
+            .iter()
+            .zip(&rows.errors)
+            .zip(&mut self.carried)
+            .enumerate()
         {
-            let moved = row.b.linear.dot(d) + (row.a.angular.dot(ta) + row.b.angular.dot(tb));
+            let moved = match lanes.get(k) {
+                Some(&moved) if k < in_lanes => moved,
+                _ => row.b.linear.dot(d) + (row.a.angular.dot(ta) + row.b.angular.dot(tb)),
+            };
             *carried = c + moved;
         }
         self.carried_at = Some(*now);
