@@ -203,7 +203,7 @@ pub struct JointSolver {
     settings: JointSettings,
     joints: Vec<PreparedJoint>,
     /// The joints a Gauss–Seidel pass visits (indices into `joints`, in order): those on no direct path, and
-    /// hinges on one for their limit, motor and spring rows. A rope chain solved directly has none.
+    /// hinges on one that have limit, motor or spring rows. A rope chain or a bridge solved directly has none.
     iterated: Vec<usize>,
     /// Long-range tethers of chains hanging from fixed bodies (see [`crate::tether`]).
     tethers: Vec<Tether>,
@@ -646,14 +646,18 @@ impl JointSolver {
     }
 
     /// The joints a Gauss–Seidel pass visits: all but the ones whose rows a path solves entirely (a hinge on a
-    /// path keeps its coordinate rows — limit, motor, spring — in the pass).
+    /// path with coordinate rows — limit, motor, spring — keeps them in the pass).
     fn list_iterated(&mut self) {
         self.iterated.clear();
         self.iterated.extend(
             self.joints
                 .iter()
                 .enumerate()
-                .filter(|(_, j)| j.path.is_none() || matches!(j.kind, Prepared::Hinge(_)))
+                .filter(|(_, j)| match &j.kind {
+                    // A hinge on a path is visited for its limit, motor and spring rows, if it has any.
+                    Prepared::Hinge(hinge) => j.path.is_none() || !hinge.has_no_coordinate_rows(),
+                    _ => j.path.is_none(),
+                })
                 .map(|(index, _)| index),
         );
     }
