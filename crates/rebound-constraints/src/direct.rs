@@ -1173,41 +1173,45 @@ impl Link {
     /// summed in f32 (the precision of the rows), four lanes at a time, and the blocks kept in f64.
     fn fill_blocks<const N: usize>(&mut self, next: Option<&Link>) {
         let live = self.live_rows();
-        // Written in place: the blocks are 200 bytes each, made for every link a pass factorises.
-        self.b_block = [[0.0; MAX_ROWS]; MAX_ROWS];
-        self.c_block = [[0.0; MAX_ROWS]; MAX_ROWS];
-        let (b, c) = (&mut self.b_block, &mut self.c_block);
         let (ma, mb, rows) = (&self.rows.mass_a, &self.rows.mass_b, &self.rows.rows);
         // Each row's Jacobian `[J_a,linear, J_a,angular, J_b,linear, J_b,angular]` and `M⁻¹·Jᵀ` in the same
-        // order, as 4-lane vectors (w = 0): an entry is then four lane products summed once.
+        // order, as 4-lane vectors (w = 0), zero for a row not in the system: an entry is then four lane
+        // products summed once. Every entry is written once, here and below, rather than the arrays and
+        // blocks cleared first: each clear of these few hundred bytes was a call to the C library's `memset`.
         let lanes = |v: Vec3| v.extend(0.0);
-        let mut jacobian = [[Vec4::ZERO; 4]; MAX_ROWS];
-        let mut inverse = [[Vec4::ZERO; 4]; MAX_ROWS];
-        for k in 0..N {
-            if live[k] {
-                let (row, [ta, tb]) = (&rows[k], self.rows.turned(k));
-                jacobian[k] = [row.a.linear, row.a.angular, row.b.linear, row.b.angular].map(lanes);
-                inverse[k] = [row.a.linear * ma.mass, ta, row.b.linear * mb.mass, tb].map(lanes);
+        let jacobian: [[Vec4; 4]; MAX_ROWS] = core::array::from_fn(|k| match rows.get(k) {
+            Some(row) if k < N && live[k] => {
+                [row.a.linear, row.a.angular, row.b.linear, row.b.angular].map(lanes)
             }
+            _ => [Vec4::ZERO; 4],
+        });
+        for k in 0..MAX_ROWS {
+            self.impulse[k] = match rows.get(k) {
+                Some(row) if k < N && live[k] => {
+                    let [ta, tb] = self.rows.turned(k);
+                    [row.a.linear * ma.mass, ta, row.b.linear * mb.mass, tb].map(lanes)
+                }
+                _ => [Vec4::ZERO; 4],
+            };
         }
-        self.impulse = inverse;
+        let inverse = &self.impulse;
         // Bᵢⱼ = Jᵢ·M⁻¹·Jⱼᵀ over both bodies, i ≤ j;   Bᵢᵢ·(1 + ε)
+        let b = &mut self.b_block;
         for i in 0..N {
-            if !live[i] {
-                continue;
-            }
             let ji = &jacobian[i];
             for j in i..N {
-                if !live[j] {
-                    continue;
-                }
-                let wj = &inverse[j];
-                let k = Real::from(
-                    (ji[0] * wj[0] + ji[1] * wj[1] + ji[2] * wj[2] + ji[3] * wj[3]).element_sum(),
-                );
+                let k = if live[i] && live[j] {
+                    let wj = &inverse[j];
+                    Real::from(
+                        (ji[0] * wj[0] + ji[1] * wj[1] + ji[2] * wj[2] + ji[3] * wj[3])
+                            .element_sum(),
+                    )
+                } else {
+                    0.0
+                };
                 if i == j {
                     b[i][i] = k * (1.0 + REGULARIZATION);
-                    if self.positions {
+                    if self.positions && live[i] {
                         b[i][i] += self.compliance[i];
                     }
                 } else {
@@ -1216,30 +1220,34 @@ impl Link {
                 }
             }
         }
-        let (Some(next), Some((this_b, next_b))) = (next, self.shared_with_next) else {
+        // Cᵢⱼ = sⱼ·(M⁻¹·sᵢᵀ) through the shared body (`s` = `[linear, angular]` of a row's side on it); 0
+        // without a next link.
+        let c = &mut self.c_block;
+        let Some((next, (this_b, next_b))) = next.zip(self.shared_with_next) else {
+            for row in c.iter_mut().take(N) {
+                row[..N].fill(0.0);
+            }
             return;
         };
-        // Cᵢⱼ = sⱼ·(M⁻¹·sᵢᵀ) through the shared body (`s` = `[linear, angular]` of a row's side on it).
         let shared = if this_b { 2 } else { 0 };
         let next_live = next.live_rows();
-        let mut next_sides = [[Vec4::ZERO; 2]; MAX_ROWS];
-        for j in 0..N {
-            if next_live[j] {
-                let row = &next.rows.rows[j];
-                let side = if next_b { &row.b } else { &row.a };
-                next_sides[j] = [side.linear, side.angular].map(lanes);
-            }
-        }
+        let next_sides: [[Vec4; 2]; MAX_ROWS] =
+            core::array::from_fn(|j| match next.rows.rows.get(j) {
+                Some(row) if j < N && next_live[j] => {
+                    let side = if next_b { &row.b } else { &row.a };
+                    [side.linear, side.angular].map(lanes)
+                }
+                _ => [Vec4::ZERO; 2],
+            });
         for i in 0..N {
-            if !live[i] {
-                continue;
-            }
             let (wl, wa) = (inverse[i][shared], inverse[i][shared + 1]);
             for j in 0..N {
-                if next_live[j] {
+                c[i][j] = if live[i] && next_live[j] {
                     let [sl, sa] = next_sides[j];
-                    c[i][j] = Real::from((sl * wl + sa * wa).element_sum());
-                }
+                    Real::from((sl * wl + sa * wa).element_sum())
+                } else {
+                    0.0
+                };
             }
         }
     }
@@ -1805,22 +1813,22 @@ fn block_sweep<'b, const N: usize>(
         // S = B − Wᵢ₋₁ᵀ·D⁻¹ᵢ₋₁·Wᵢ₋₁ (upper triangle);  S = L·D·Lᵀ;  W = L⁻¹·C,  Vᵀ = (D⁻¹·W)ᵀ  (kept when
         // `reuse`)
         if !reuse {
-            let mut s = link.b_block;
-            if let Some(prev) = done.last() {
-                for k in 0..N {
-                    let w = &prev.w[k];
-                    for row in 0..N {
-                        let f = w[row] * prev.inv_pivot[k];
-                        for col in row..N {
-                            s[row][col] -= f * w[col];
+            // `S` (upper triangle) straight into the factor storage, an entry at a time (a copy of the
+            // 200-byte `B` first was a call to `memcpy`), then factorised there.
+            let s = &mut link.factor;
+            for row in 0..N {
+                for col in row..N {
+                    let mut value = link.b_block[row][col];
+                    if let Some(prev) = done.last() {
+                        for k in 0..N {
+                            value -= (prev.w[k][row] * prev.inv_pivot[k]) * prev.w[k][col];
                         }
                     }
+                    s[row][col] = value;
                 }
             }
-            // In place: each of these is a 200-byte block.
-            ldl_factor::<N>(&s, &mut link.factor, &mut link.inv_pivot);
-            link.w = link.c_block;
-            forward_substitute_block::<N>(&link.factor, &mut link.w);
+            ldl_factor::<N>(&mut link.factor, &mut link.inv_pivot);
+            forward_substitute_block::<N>(&link.factor, &link.c_block, &mut link.w);
             for row in 0..N {
                 for col in 0..N {
                     link.v_t[col][row] = link.w[row][col] * link.inv_pivot[row];
@@ -1989,10 +1997,11 @@ const REGULARIZATION: Real = 1e-6;
 /// Pivots smaller than this fraction of the largest diagonal entry count as zero: the row is redundant.
 const RELATIVE_PIVOT: Real = 1e-5;
 
-/// The factorisation `S = L·D·Lᵀ` of the symmetric positive semi-definite top-left `N × N` of `s` (only its
-/// upper triangle, row ≤ column, is read): writes the strictly lower part of the unit lower triangular `L`
-/// into `l` and the reciprocal pivots `D⁻¹` into `inv_pivots` (whatever they held before; in place, so that
-/// the sweep factorises into the link's own storage without copying 200-byte blocks). No pivoting: `S` is a
+/// The factorisation `S = L·D·Lᵀ` of the symmetric positive semi-definite top-left `N × N` of `block`, in
+/// place: only the upper triangle of `S` (row ≤ column) is read, and the strictly lower part of the unit lower
+/// triangular `L` is written below it, into the same block, with the reciprocal pivots `D⁻¹` into
+/// `inv_pivots` (every entry of both, whatever they held before; nothing reads the rest). One block and no
+/// copies: the sweep writes `S` into the link's factor storage and factorises it there. No pivoting: `S` is a
 /// Schur complement of `K = J·M⁻¹·Jᵀ`, whose pivots are positive. A pivot at or below [`RELATIVE_PIVOT`] ×
 /// the largest diagonal entry — a row no body can move along, a row of zeros (not in the system), or a row
 /// redundant with the rows before it (a bridge hung from two anchors constrains more than its bodies' degrees
@@ -2002,19 +2011,20 @@ const RELATIVE_PIVOT: Real = 1e-5;
 /// ```text
 /// dⱼ = Sⱼⱼ − Σₖ<ⱼ Lⱼₖ²·dₖ,        Lᵢⱼ = (Sⱼᵢ − Σₖ<ⱼ Lᵢₖ·Lⱼₖ·dₖ) / dⱼ,   i > j
 /// ```
-fn ldl_factor<const N: usize>(s: &Block, l: &mut Block, inv_pivots: &mut [Real; MAX_ROWS]) {
+fn ldl_factor<const N: usize>(block: &mut Block, inv_pivots: &mut [Real; MAX_ROWS]) {
+    // `S` above the diagonal and on it, `L` below: each entry of `L` is written after the last read of the
+    // entry of `S` it would have shared storage with — none, as they are on opposite sides.
+    let l = block;
     let mut scale: Real = 0.0;
     for k in 0..N {
-        scale = scale.max(s[k][k]);
+        scale = scale.max(l[k][k]);
     }
     let tiny = (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE);
-    *l = [[0.0; MAX_ROWS]; MAX_ROWS];
     let mut pivots = [0.0; MAX_ROWS];
-    *inv_pivots = [0.0; MAX_ROWS];
     for j in 0..N {
         // lj_d[k] = Lⱼₖ·dₖ, shared by the pivot and the column below it.
         let mut lj_d = [0.0; MAX_ROWS];
-        let mut pivot = s[j][j];
+        let mut pivot = l[j][j];
         for k in 0..j {
             lj_d[k] = l[j][k] * pivots[k];
             pivot -= l[j][k] * lj_d[k];
@@ -2025,26 +2035,34 @@ fn ldl_factor<const N: usize>(s: &Block, l: &mut Block, inv_pivots: &mut [Real; 
             pivots[j] = pivot;
             inv_pivots[j] = inv;
             for i in (j + 1)..N {
-                let mut value = s[j][i];
+                let mut value = l[j][i];
                 for k in 0..j {
                     value -= l[i][k] * lj_d[k];
                 }
                 l[i][j] = value * inv;
             }
+        } else {
+            inv_pivots[j] = 0.0;
+            for i in (j + 1)..N {
+                l[i][j] = 0.0;
+            }
         }
     }
 }
 
-/// `L⁻¹` applied in place to the columns of the top-left `N × N` of `w` (forward substitution with the unit
-/// lower triangular factor of [`ldl_factor`]): `wᵢ −= Lᵢₖ·wₖ`, k < i.
-fn forward_substitute_block<const N: usize>(l: &Block, w: &mut Block) {
-    for i in 1..N {
+/// `W = L⁻¹·C` for the top-left `N × N` of `c`, written into `w` (forward substitution with the unit lower
+/// triangular factor of [`ldl_factor`]): `wᵢ = cᵢ − Σₖ<ᵢ Lᵢₖ·wₖ`, a row at a time (no copy of `C` first: the
+/// 200-byte copy was a call to `memcpy`).
+fn forward_substitute_block<const N: usize>(l: &Block, c: &Block, w: &mut Block) {
+    for i in 0..N {
+        let mut row = c[i];
         for k in 0..i {
             let f = l[i][k];
             for col in 0..N {
-                w[i][col] -= f * w[k][col];
+                row[col] -= f * w[k][col];
             }
         }
+        w[i] = row;
     }
 }
 
@@ -2075,8 +2093,8 @@ mod tests {
 
     /// Solves `s·x = b` with the block path's factorisation: `x = L⁻ᵀ·D⁻¹·L⁻¹·b`.
     fn ldl_solve<const N: usize>(s: &Block, b: [Real; MAX_ROWS]) -> [Real; MAX_ROWS] {
-        let (mut l, mut inv_pivots) = ([[0.0; MAX_ROWS]; MAX_ROWS], [0.0; MAX_ROWS]);
-        ldl_factor::<N>(s, &mut l, &mut inv_pivots);
+        let (mut l, mut inv_pivots) = (*s, [0.0; MAX_ROWS]);
+        ldl_factor::<N>(&mut l, &mut inv_pivots);
         let mut x = b;
         forward_substitute::<N>(&l, &mut x);
         for (x, inv) in x.iter_mut().zip(&inv_pivots) {
