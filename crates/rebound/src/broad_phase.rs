@@ -514,8 +514,8 @@ fn find_overlaps(
     overlaps.dedup();
 }
 
-/// Bits per digit of the pair sort: 2,048 buckets, so a pile of 16,384 colliders (28-bit keys) sorts in three
-/// passes.
+/// Bits per digit of the pair sort, at most: 2,048 buckets, so a pile of 16,384 colliders (28-bit keys) sorts
+/// in three passes.
 const RADIX_BITS: u32 = 11;
 
 /// Sorts `pairs` by (first slot, second slot): an LSD radix sort on the two slot indices packed into one key
@@ -536,7 +536,12 @@ fn radix_sort_pairs(
         (u64::from(h1.0.index) << slot_bits) | u64::from(h2.0.index)
     };
     let key_bits = 2 * slot_bits;
-    let buckets = 1usize << RADIX_BITS;
+    // As many passes as digits of `RADIX_BITS` take, the bits shared evenly between them: a small world's
+    // 16-bit keys sort in two passes over 256 buckets, not over 2,048 (whose clearing and prefix sums cost
+    // more than a few hundred pairs).
+    let passes = key_bits.div_ceil(RADIX_BITS).max(1);
+    let digit_bits = key_bits.div_ceil(passes);
+    let buckets = 1usize << digit_bits;
     let mask = (buckets - 1) as u64;
     // Every pass writes all of `scratch` before it becomes `pairs`: one resize suffices.
     scratch.clear();
@@ -545,13 +550,15 @@ fn radix_sort_pairs(
         (ColliderHandle::invalid(), ColliderHandle::invalid()),
     );
     let mut shift = 0;
+    let mut count = [0u32; 1 << RADIX_BITS];
+    let count = &mut count[..buckets];
     while shift < key_bits {
-        let mut count = [0u32; 1 << RADIX_BITS];
+        count.fill(0);
         for pair in pairs.iter() {
             count[((key(pair) >> shift) & mask) as usize] += 1;
         }
         let mut start = 0;
-        for c in &mut count {
+        for c in count.iter_mut() {
             let n = *c;
             *c = start;
             start += n;
@@ -562,7 +569,7 @@ fn radix_sort_pairs(
             count[digit] += 1;
         }
         core::mem::swap(pairs, scratch);
-        shift += RADIX_BITS;
+        shift += digit_bits;
     }
 }
 
