@@ -155,10 +155,22 @@ fn gyroscopic_iterations(
     let momentum = inertia * omega;
     let half_h = 0.5 * h;
     for iteration in 0..iterations {
-        let v = omega * half_h;
-        let x = v.length_squared();
-        let turn = Quat::from_xyzw(v.x, v.y, v.z, 1.0) * (1.0 + x).sqrt().recip();
-        let next = turn * (inv_inertia * (turn.conjugate() * momentum));
+        // `Δ = (u, 1)/√s` with `u = ½·h·ω_b`, `s = 1 + |u|²`: turning by the unit quaternion `(u', w')` is
+        // `v + 2w'·(u' × v) + 2u' × (u' × v)`, which with `u' = u/√s`, `w' = 1/√s` is
+        // `v + (2/s)·(u × v + u × (u × v))` — the normalisation's square root drops out (one division is
+        // left, shared by both turns), and `Δ*` only flips the sign of the first cross product.
+        let u = omega * half_h;
+        let x = u.length_squared();
+        let k = 2.0 / (1.0 + x);
+        let turned_back = {
+            let c = u.cross(momentum);
+            momentum + k * (u.cross(c) - c)
+        };
+        let next = {
+            let v = inv_inertia * turned_back;
+            let c = u.cross(v);
+            v + k * (c + u.cross(c))
+        };
         // The map contracts by about `h·|ω|` (`4x = (h·|ω|)²`) times a factor of the inertia's anisotropy:
         // with that factor taken as 20, once the next iteration cannot move ω by 6e-8·|ω| (half an f32 ulp
         // of |ω| or less) the first is kept — a body turning slowly (under about 0.01 rad per substep) skips
