@@ -628,7 +628,8 @@ pub(crate) struct Link {
     /// [`Link::make_positional`] and read only while `positions` holds.
     compliance: [Real; MAX_ROWS],
     /// Scratch of the block Thomas sweep (see [`solve_block_path`]): the strictly lower part of the unit
-    /// lower triangular `L` of `Sᵢ = L·D·Lᵀ`, then `V = D⁻¹·L⁻¹·Cᵢ`, stored transposed (`v_t[k]` is column
+    /// lower triangular `L` of `Sᵢ = L·D·Lᵀ` (with `Sᵢ`'s upper triangle above it, factorised in place by
+    /// [`ldl_factor`]), then `V = D⁻¹·L⁻¹·Cᵢ`, stored transposed (`v_t[k]` is column
     /// `k` of `V`: the back substitution sweeps it a column at a time), and `y = D⁻¹·L⁻¹·r̃ᵢ`.
     y: [Real; MAX_ROWS],
     inv_pivot: [Real; MAX_ROWS],
@@ -2012,8 +2013,7 @@ const RELATIVE_PIVOT: Real = 1e-5;
 /// dⱼ = Sⱼⱼ − Σₖ<ⱼ Lⱼₖ²·dₖ,        Lᵢⱼ = (Sⱼᵢ − Σₖ<ⱼ Lᵢₖ·Lⱼₖ·dₖ) / dⱼ,   i > j
 /// ```
 fn ldl_factor<const N: usize>(block: &mut Block, inv_pivots: &mut [Real; MAX_ROWS]) {
-    // `S` above the diagonal and on it, `L` below: each entry of `L` is written after the last read of the
-    // entry of `S` it would have shared storage with — none, as they are on opposite sides.
+    // `S` is read on and above the diagonal, `L` written below it: no entry is both.
     let l = block;
     let mut scale: Real = 0.0;
     for k in 0..N {
