@@ -203,7 +203,7 @@ impl RowTarget {
 /// N·m·s), clamped to `[lower, upper]`, and returns the increment to apply.
 ///
 /// `effective_mass` is `1/(J·M⁻¹·Jᵀ)` (kg or kg·m²; 0 when neither body can move), `velocity` is `Ċ`.
-/// Never panics: the clamp ([`clamp_impulse`]) is a bound from below then one from above, so even a reversed
+/// Never panics: the clamp is a bound from below then one from above (`clamp_impulse`), so even a reversed
 /// range gives a value.
 #[inline]
 #[must_use]
