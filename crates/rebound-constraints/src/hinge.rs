@@ -12,7 +12,7 @@ use crate::soft_spring::JointSpring;
 use crate::solver::Stage;
 use crate::{BodyPair, ConstraintError, JointState, ball};
 use core::f32::consts::{PI, TAU};
-use rebound_dynamics::{Softness, SolverBody, StepContext};
+use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
 use rebound_math::glam::{Mat3A, Vec3A};
 use rebound_math::{Quat, Vec3};
 
@@ -252,7 +252,8 @@ impl PreparedHinge {
     /// Whether the hinge has no limit, motor or spring: all its rows are then the point and alignment rows
     /// of [`PreparedHinge::direct_rows`].
     pub(crate) fn has_no_coordinate_rows(&self) -> bool {
-        self.rows.limits.is_none() && self.rows.motor.is_none() && self.rows.spring.is_none()
+        // Idle in the bias pass: no limit, no motor, no spring (idle in the relax pass holds then too).
+        self.rows.is_idle(Bias::On)
     }
 
     pub(crate) fn solve_coordinate(

@@ -501,8 +501,8 @@ impl JointSolver {
             .map(|j| &j.pair)
             .chain(tethers.iter().map(|t| &t.pair));
         for pair in pairs {
-            for index in [pair.index_a, pair.index_b] {
-                if let Some(count) = touches.get_mut(index) {
+            for body in dynamic_bodies(pair).into_iter().flatten() {
+                if let Some(count) = touches.get_mut(body) {
                     *count += 1;
                 }
             }
@@ -516,13 +516,14 @@ impl JointSolver {
                 _ => false,
             });
             // Each dynamic body of the path: as many joints and tethers act on it as path joints do.
-            count_dynamic_sides(touches, joints, members, false);
+            count_dynamic_bodies(touches, joints, members, false);
             let alone = members.iter().all(|&index| {
-                dynamic_sides(&joints[index].pair)
-                    .iter()
-                    .all(|&(body, dynamic)| !dynamic || touches.get(body) == Some(&0))
+                dynamic_bodies(&joints[index].pair)
+                    .into_iter()
+                    .flatten()
+                    .all(|body| touches.get(body) == Some(&0))
             });
-            count_dynamic_sides(touches, joints, members, true);
+            count_dynamic_bodies(touches, joints, members, true);
             whole && alone
         }));
     }
@@ -1284,30 +1285,16 @@ fn link_rows(
     link.built_at(pose);
 }
 
-/// Both bodies of `pair` with whether each is dynamic (takes impulses: a non-zero inverse mass or inertia).
-fn dynamic_sides(pair: &BodyPair) -> [(usize, bool); 2] {
-    [
-        (
-            pair.index_a,
-            pair.inv_mass_a > 0.0 || pair.inv_inertia_a != Mat3::ZERO,
-        ),
-        (
-            pair.index_b,
-            pair.inv_mass_b > 0.0 || pair.inv_inertia_b != Mat3::ZERO,
-        ),
-    ]
-}
-
 /// Adds (`add`) or takes off one count per joint of `members` from each of its dynamic bodies in `touches`.
-fn count_dynamic_sides(
+fn count_dynamic_bodies(
     touches: &mut [u32],
     joints: &[PreparedJoint],
     members: &[usize],
     add: bool,
 ) {
     for &index in members {
-        for (body, dynamic) in dynamic_sides(&joints[index].pair) {
-            if let (true, Some(count)) = (dynamic, touches.get_mut(body)) {
+        for body in dynamic_bodies(&joints[index].pair).into_iter().flatten() {
+            if let Some(count) = touches.get_mut(body) {
                 *count = if add {
                     *count + 1
                 } else {
