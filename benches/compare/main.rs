@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! cargo run --release --bin compare -- [--rounds R] [--steps N] [--scene NAME|all]... [--json]
+//! cargo run --release --bin compare -- --engine rebound [--rounds R] [--steps N] [--scene NAME|all]...
 //! cargo run --release --bin compare -- --scaling [--rounds R] [--steps N] [--json]
 //! ```
 //!
@@ -15,6 +16,10 @@
 //! the ratio of each engine's fastest run (the figure least touched by the machine's slow periods), both
 //! engines' quality metrics side by side, and where Rebound's step spends its time
 //! (`StepReport::profile`).
+//!
+//! `--engine rebound` runs Rebound alone on the chosen scenes, without building or running rapier: the
+//! run to count Rebound's instructions per scene under `valgrind --tool=callgrind` (docs/performance.md,
+//! "Layout check").
 //!
 //! `--scaling` runs Rebound alone on growing scenes instead: balls with 1,024, 4,096 and 16,384 balls and
 //! pyramids of base 20, 40 and 80, and fits the cost-growth exponent (the slope of log ms against log n).
@@ -41,9 +46,10 @@ use serde_json::{Map, Value as Json, json};
 const WARMUP_STEPS: usize = 60;
 
 const USAGE: &str = "\
-usage: compare [--rounds R] [--steps N] [--scene NAME|all]... [--json]
+usage: compare [--engine both|rebound] [--rounds R] [--steps N] [--scene NAME|all]... [--json]
        compare --scaling [--rounds R] [--steps N] [--json]
 
+  --engine E    both (default): Rebound beside rapier; rebound: Rebound alone, rapier neither built nor run
   --rounds R    rounds of every scene in both engines (default 3); times are the median over rounds
   --steps N     steps per run (default 600); timing statistics cover steps 60..N
   --scene NAME  balls | pyramid | chain | springs | bridge | chain_spherical | all
@@ -54,9 +60,19 @@ usage: compare [--rounds R] [--steps N] [--scene NAME|all]... [--json]
   --json        one JSON object per line instead of the tables
 ";
 
+/// Which engines a comparison runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Engines {
+    /// Rebound and rapier side by side.
+    Both,
+    /// Rebound alone (no rapier build).
+    Rebound,
+}
+
 /// Parsed command line.
 #[derive(Debug, Clone, PartialEq, Eq)]
 struct Args {
+    engines: Engines,
     rounds: Option<usize>,
     steps: Option<usize>,
     scenes: Vec<String>,
@@ -67,6 +83,7 @@ struct Args {
 /// Parses the command line; `Err` carries the message to print (the usage text for `--help`).
 fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, String> {
     let mut parsed = Args {
+        engines: Engines::Both,
         rounds: None,
         steps: None,
         scenes: Vec::new(),
@@ -84,6 +101,18 @@ fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, String> {
     let mut args = args.into_iter();
     while let Some(arg) = args.next() {
         match arg.as_str() {
+            "--engine" => {
+                parsed.engines = match args.next().as_deref() {
+                    Some("both") => Engines::Both,
+                    Some("rebound") => Engines::Rebound,
+                    Some(other) => {
+                        return Err(format!(
+                            "--engine: `{other}` is not an engine (expected both or rebound)"
+                        ));
+                    }
+                    None => return Err("--engine needs both or rebound".to_owned()),
+                };
+            }
             "--rounds" => parsed.rounds = Some(positive("--rounds", args.next())?),
             "--steps" => parsed.steps = Some(positive("--steps", args.next())?),
             "--scene" => {
@@ -427,6 +456,68 @@ fn compare(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
+/// Rebound alone on the chosen scenes: times, quality and phases, no rapier build.
+fn rebound_alone(args: &Args) -> Result<(), String> {
+    let rounds = args.rounds.unwrap_or(3);
+    let steps = args.steps.unwrap_or(600);
+    let warmup = if steps > WARMUP_STEPS {
+        WARMUP_STEPS
+    } else {
+        0
+    };
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "{}: SCENES peer scenes alone, single thread, dt = 1/60, sleeping off, {steps} steps; \
+         ms/step = median over rounds ({rounds}) of each run's median over steps {warmup}..{steps}\n",
+        rebound_engine()
+    );
+    let _ = writeln!(out, "| scene | bodies / joints | ms/step | quality |");
+    let _ = writeln!(out, "|---|---|---|---|");
+    for name in &args.scenes {
+        let runs = (0..rounds)
+            .map(|_| run_rebound(name, steps))
+            .collect::<Result<Vec<_>, _>>()?;
+        let ms = median(&runs.iter().map(|r| r.timing.median_ms).collect::<Vec<_>>());
+        let Some(last) = runs.last() else {
+            continue;
+        };
+        if args.json {
+            println!(
+                "{}",
+                json!({
+                    "scene": name,
+                    "steps": steps,
+                    "rounds": rounds,
+                    "rebound": {
+                        "engine": rebound_engine(),
+                        "bodies": last.bodies,
+                        "joints": last.joints,
+                        "ms_median": ms,
+                        "quality": Json::Object(last.quality.iter().cloned().collect()),
+                    },
+                })
+            );
+        }
+        let quality: Vec<String> = last
+            .quality
+            .iter()
+            .map(|(k, v)| format!("`{k}` {}", DisplayJson(v)))
+            .collect();
+        let _ = writeln!(
+            out,
+            "| {name} | {} / {} | {ms:.3} | {} |",
+            last.bodies,
+            last.joints,
+            quality.join(", ")
+        );
+    }
+    if !args.json {
+        print!("{out}");
+    }
+    Ok(())
+}
+
 /// The Rebound version of this build.
 fn rebound_engine() -> String {
     format!("rebound {}", env!("CARGO_PKG_VERSION"))
@@ -710,6 +801,8 @@ fn main() -> ExitCode {
     }
     let outcome = if args.scaling {
         scaling(&args)
+    } else if args.engines == Engines::Rebound {
+        rebound_alone(&args)
     } else {
         compare(&args)
     };
@@ -724,7 +817,7 @@ fn main() -> ExitCode {
 
 #[cfg(test)]
 mod tests {
-    use super::{ScalingPoint, growth_exponent, parse_args};
+    use super::{Engines, ScalingPoint, growth_exponent, parse_args};
 
     fn args(list: &[&str]) -> Vec<String> {
         list.iter().map(|&s| s.to_owned()).collect()
@@ -744,6 +837,14 @@ mod tests {
         .expect("valid");
         assert_eq!(a.scenes, ["chain"]);
         assert_eq!((a.rounds, a.steps, a.json), (Some(2), Some(90), true));
+        assert_eq!(a.engines, Engines::Both);
+        let a = parse_args(args(&["--engine", "rebound", "--scene", "bridge"])).expect("valid");
+        assert_eq!(
+            (a.engines, a.scenes.as_slice()),
+            (Engines::Rebound, &["bridge".to_owned()][..])
+        );
+        assert!(parse_args(args(&["--engine", "bullet"])).is_err());
+        assert!(parse_args(args(&["--engine"])).is_err());
         assert!(parse_args(args(&["--scene", "nope"])).is_err());
         assert!(parse_args(args(&["--rounds", "0"])).is_err());
         assert!(parse_args(args(&["--frobnicate"])).is_err());
