@@ -76,8 +76,10 @@ impl CollisionBackend for ParryBackend {
             settings.speculative_margin,
             dt,
         );
+        let broad_phase = &self.broad_phase;
         self.narrow_phase.collide(
-            &self.broad_phase,
+            &broad_phase.pairs,
+            |handle| broad_phase.rotation_reach(handle),
             &self.colliders,
             bodies,
             settings.speculative_margin,

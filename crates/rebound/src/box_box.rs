@@ -3,7 +3,7 @@
 //! # Why not parry's
 //!
 //! parry's cuboid–cuboid manifold is general polyhedral machinery (support features, 2D line clipping, a
-//! separating-edge search in both directions); in the SCENES.md pyramid it was a quarter of the step. This
+//! separating-edge search in both directions), the largest cost of the pyramid scene's collide phase. This
 //! is the classic box test specialised to two boxes (Gottschalk's OBB separating-axis test, then the
 //! reference/incident face clipping of Box2D's polygon manifold and of ODE's `dBoxBox`), about four times
 //! cheaper, and it depends on the current poses only (no history), as the narrow phase requires.
@@ -34,11 +34,11 @@
 //! edges. The same touching features give the same ids step after step, whichever box is the reference —
 //! warm starting matches points by them.
 //!
-//! Measured (`docs/performance.md`, "Box–box contacts"): the pyramid's collide phase 5.6 → 3.1–3.9 ms, its
-//! drift unchanged. Which face is the reference and the order of the points matter to a tall column of equal
-//! boxes (solved point after point): flipping the reference on rounding-level ties tilted the pyramid out of
+//! Its cost beside parry's is in `docs/performance.md` ("Box–box contacts"). Which face is the reference and
+//! the order of the points matter to a tall column of equal boxes (solved point after point): flipping the reference on rounding-level ties tilted the pyramid out of
 //! its plane, hence [`FACE_TOLERANCE`]; the points stay in polygon order.
 
+use crate::shape_manifold::{ShapeManifold, ShapePoint};
 use parry3d::shape::PackedFeatureId;
 use rebound_math::{Mat3, Quat, Vec3};
 
@@ -55,94 +55,7 @@ const EDGE_TOLERANCE: f32 = 1.0e-3;
 const PARALLEL_SINE: f32 = 1.0e-3;
 
 /// Most vertices a quad can have after clipping against four planes.
-pub(crate) const MAX_CLIPPED: usize = 8;
-
-/// A contact point of two convex shapes, in the shapes' own frames (parry's `TrackedContact` without its user
-/// data).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct ShapePoint {
-    /// The point on shape 1, in shape 1's frame (m).
-    pub(crate) local_p1: Vec3,
-    /// The point on shape 2, in shape 2's frame (m).
-    pub(crate) local_p2: Vec3,
-    /// What touches on shape 1.
-    pub(crate) fid1: PackedFeatureId,
-    /// What touches on shape 2.
-    pub(crate) fid2: PackedFeatureId,
-    /// Signed distance along the normal (m): negative when overlapping.
-    pub(crate) dist: f32,
-}
-
-impl ShapePoint {
-    /// A placeholder for unused slots.
-    const UNUSED: Self = Self {
-        local_p1: Vec3::ZERO,
-        local_p2: Vec3::ZERO,
-        fid1: PackedFeatureId::UNKNOWN,
-        fid2: PackedFeatureId::UNKNOWN,
-        dist: 0.0,
-    };
-}
-
-/// The points of a [`ShapeManifold`], without allocation (at most [`MAX_CLIPPED`]; a push beyond is dropped).
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct ShapePoints {
-    points: [ShapePoint; MAX_CLIPPED],
-    len: usize,
-}
-
-impl Default for ShapePoints {
-    fn default() -> Self {
-        Self {
-            points: [ShapePoint::UNUSED; MAX_CLIPPED],
-            len: 0,
-        }
-    }
-}
-
-impl ShapePoints {
-    /// Appends a point (dropped if full: no generator makes more than [`MAX_CLIPPED`]).
-    pub(crate) fn push(&mut self, point: ShapePoint) {
-        if let Some(slot) = self.points.get_mut(self.len) {
-            *slot = point;
-            self.len += 1;
-        }
-    }
-
-    /// Forgets every point.
-    pub(crate) fn clear(&mut self) {
-        self.len = 0;
-    }
-}
-
-impl<'a> IntoIterator for &'a ShapePoints {
-    type Item = &'a ShapePoint;
-    type IntoIter = core::slice::Iter<'a, ShapePoint>;
-
-    fn into_iter(self) -> Self::IntoIter {
-        self.iter()
-    }
-}
-
-impl core::ops::Deref for ShapePoints {
-    type Target = [ShapePoint];
-
-    fn deref(&self) -> &[ShapePoint] {
-        &self.points[..self.len]
-    }
-}
-
-/// The contact of two convex shapes in their own frames, as our generators write it for the narrow phase's
-/// seam: the fields of parry's `ContactManifold` a convex pair uses, on the stack instead of a heap buffer.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct ShapeManifold {
-    /// The normal, from shape 1 towards shape 2, in shape 1's frame.
-    pub(crate) local_n1: Vec3,
-    /// The same normal in shape 2's frame, pointing back towards shape 1.
-    pub(crate) local_n2: Vec3,
-    /// The points (none: no contact).
-    pub(crate) points: ShapePoints,
-}
+const MAX_CLIPPED: usize = 8;
 
 /// What the polygon edge leaving a vertex runs along: an incident edge (its id, 0..12), or the side plane
 /// `sign·x_k ≤ h_k` of the reference face where the polygon was cut (`REFERENCE_PLANE + 2·k + (sign < 0)`).

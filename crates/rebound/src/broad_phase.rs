@@ -38,8 +38,8 @@
 //! *contacts* only), so the contacts — and the step — are a function of the current state alone, which is
 //! what makes a restored snapshot step like the world that never stopped.
 
-use crate::narrow_phase::{
-    ball_center, ball_center_at, centres_clearly_apart, prediction_distance,
+use crate::prediction::{
+    ball_center, ball_center_at, centres_clearly_apart, prediction_distance, rotation_reach,
 };
 use crate::shape::to_parry_pose;
 use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups};
@@ -208,12 +208,10 @@ impl BroadPhase {
             };
             let aabb = world_aabb(collider, body);
             let active = is_active(body);
-            // How far rotation can move the collider's surface per second this step, |ω|·r (m/s; 0 for a
-            // body that does not move), with `r` bounding the box's distance from the centre of mass.
+            // How far rotation can move the collider's surface per second this step (m/s; 0 for a body
+            // that does not move).
             let reach = if active {
-                let r =
-                    (aabb.center() - body.center_of_mass()).length() + aabb.half_extents().length();
-                body.angular_velocity().length() * r
+                rotation_reach(body, &aabb)
             } else {
                 0.0
             };

@@ -1,6 +1,7 @@
 #![doc = include_str!("../README.md")]
 
 mod backend;
+mod ball_ball;
 mod box_box;
 mod broad_phase;
 mod collider;
@@ -10,9 +11,13 @@ mod error;
 mod events;
 mod narrow_phase;
 mod physics_world;
+mod prediction;
 mod query;
+mod recycling;
+mod seam;
 mod sensors;
 mod shape;
+mod shape_manifold;
 mod snapshot;
 
 /// The collision library, re-exported so users get the same version Rebound uses.
