@@ -1,10 +1,10 @@
 //! `PhysicsWorld`: the world of `rebound-world` with the parry3d backend, colliders, sensors, queries,
-//! events and snapshots — the type most users hold. The step itself is the world's (`docs/architecture.md`, "The step"); this type
-//! adds what happens around it: colliders' mass summed into bodies on insertion and removal, the query BVH
-//! refreshed and sensor overlaps found after each step.
+//! events and snapshots — the type most users hold. The step itself is the world's (`docs/architecture.md`,
+//! "The step pipeline and its data flow"); this type adds what happens around it: colliders' mass summed into
+//! bodies on insertion and removal, the query BVH refreshed and sensor overlaps found after each step.
 
 use crate::sensors::update_sensors;
-use crate::{ColliderHandle, Error, Event, ParryBackend, PhysicsSnapshot};
+use crate::{ColliderHandle, Error, Event, ParryBackend};
 use parry3d::bounding_volume::Aabb;
 use rebound_dynamics::{BodyDesc, MassProperties, RigidBody};
 use rebound_math::Pose;
@@ -306,27 +306,7 @@ impl PhysicsWorld {
         &self.sensor_overlaps
     }
 
-    // ---- snapshots ----
-
-    /// Captures everything needed to continue: the world's snapshot (bodies, joints, contacts with their
-    /// warm-start impulses, sleep, handles) plus the colliders (descriptions, bodies, handles), the bodies'
-    /// own mass properties, the joints without contacts, the sensor overlaps and the advance accumulator.
-    /// The narrow phase's pair cache is not part of it: a restored world steps bit-identically anyway (see
-    /// the crate docs, "Determinism").
-    #[must_use]
-    pub fn snapshot(&self) -> PhysicsSnapshot {
-        PhysicsSnapshot::capture(self)
-    }
-
-    /// Restores a snapshot into this world (a rollback, or a load into a fresh world). Handles from the
-    /// snapshot resolve again; pending events are cleared; parry shapes are rebuilt from the descriptions.
-    ///
-    /// # Errors
-    /// [`Error::BadSnapshot`] for a snapshot of another format version, with inconsistent handle tables or
-    /// invalid colliders, or that the world refuses; the world is unchanged.
-    pub fn restore(&mut self, snapshot: &PhysicsSnapshot) -> Result<(), Error> {
-        snapshot.restore_into(self)
-    }
+    // ---- snapshots (`PhysicsWorld::snapshot` and `restore` are in snapshot.rs) ----
 
     /// A 64-bit digest of every body's pose and velocities ([`World::state_digest`]): equal digests mean
     /// bit-identical motion state.

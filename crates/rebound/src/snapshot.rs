@@ -5,6 +5,9 @@
 //! generations and free list; parry shapes are rebuilt from the descriptions on restore. The narrow phase's
 //! pair cache and the BVH are rebuilt too: neither influences the results (see the crate docs,
 //! "Determinism").
+//!
+//! [`PhysicsWorld::snapshot`] and [`PhysicsWorld::restore`] live here, with the type they make and read, so
+//! that the world type does not depend on its snapshot.
 
 use crate::{Collider, ColliderDesc, ColliderHandle, ColliderSet, Error, PhysicsWorld};
 use rebound_dynamics::MassProperties;
@@ -34,6 +37,28 @@ pub struct PhysicsSnapshot {
     joints_without_contacts: Vec<JointHandle>,
     sensor_overlaps: Vec<(ColliderHandle, ColliderHandle)>,
     accumulator: f32,
+}
+
+impl PhysicsWorld {
+    /// Captures everything needed to continue: the world's snapshot (bodies, joints, contacts with their
+    /// warm-start impulses, sleep, handles) plus the colliders (descriptions, bodies, handles), the bodies'
+    /// own mass properties, the joints without contacts, the sensor overlaps and the advance accumulator.
+    /// The narrow phase's pair cache is not part of it: a restored world steps bit-identically anyway (see
+    /// the crate docs, "Determinism").
+    #[must_use]
+    pub fn snapshot(&self) -> PhysicsSnapshot {
+        PhysicsSnapshot::capture(self)
+    }
+
+    /// Restores a snapshot into this world (a rollback, or a load into a fresh world). Handles from the
+    /// snapshot resolve again; pending events are cleared; parry shapes are rebuilt from the descriptions.
+    ///
+    /// # Errors
+    /// [`Error::BadSnapshot`] for a snapshot of another format version, with inconsistent handle tables or
+    /// invalid colliders, or that the world refuses; the world is unchanged.
+    pub fn restore(&mut self, snapshot: &PhysicsSnapshot) -> Result<(), Error> {
+        snapshot.restore_into(self)
+    }
 }
 
 impl PhysicsSnapshot {
