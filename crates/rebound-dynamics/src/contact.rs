@@ -1,7 +1,7 @@
 //! The contact-constraint kernel: soft non-penetration with a push-out speed cap, Coulomb friction on each
 //! manifold's patch (two tangents with a circular cone at the centre of the points, and twist about the
-//! normal), and restitution. Stages: *prepare* → per substep *warm start*, *solve*
-//! (bias on), *relax* (bias off) → *restitution* (once) → *store impulses*.
+//! normal), and restitution as a bounce inside the solve. Stages: *prepare* → per substep *warm start*,
+//! *solve* (bias on, bounces included), *relax* (bias off) → *store impulses*.
 //!
 //! Contacts arrive as plain data ([`Contact`]); the collision backend (or a test) makes them. Bodies are
 //! referred to by their index into the solver arrays ([`SolverBody`], [`BodyParams`]).
@@ -28,11 +28,14 @@
 //! pushed out softly at no more than `v_max`, and the relax pass removes the push-out velocity so that resting
 //! bodies do not gain energy. Friction, at the patch centre `c` (the mean of the points' anchors):
 //! `λ_t ← clamp_circle(λ_t − M_t·v_t, μ·Σλ)`, and about the normal `τ ← clamp(τ − m_τ·n·(ω_b − ω_a),
-//! ±μ·Σλ·|r − c|)` (`docs/physics.md`, "Contacts"). Restitution, once after
-//! the substeps, drives `v_n` to `−C_r·v_n⁻` where `v_n⁻` is the approach speed — the most negative normal
-//! velocity the bias passes met before applying their impulse, so a body that keeps falling for part of the
-//! step rebounds from its speed at impact, not its speed when the step began — for contacts that approached
-//! faster than the threshold and carried an impulse.
+//! ±μ·Σλ·|r − c|)` (`docs/physics.md`, "Contacts"). Restitution is a bounce inside the solve pass, once per
+//! point and step: when a point touches (or, between two moving bodies, closes its gap within the substep)
+//! having approached faster than the threshold, one impulse sets its normal velocity to `+C_r·v_n⁻`, where
+//! `v_n⁻` is the approach speed — the most negative normal velocity any pass met before an impulse acted, so
+//! a body that keeps falling for part of the step rebounds from its speed at impact, not its speed when the
+//! step began. The bounce is kept out of the accumulated impulse, so the later passes see a separating
+//! contact and leave it alone; and since it happens within a Gauss–Seidel pass, an impulse passes along a row
+//! of touching balls (Newton's cradle) instead of moving the row as one block.
 
 use crate::{BodyParams, Softness, SolverBody, StepContext};
 use rebound_math::{Mat3, Vec2, Vec3, rotate_inverse};

@@ -1,5 +1,5 @@
 //! The step's phases proven by behaviour on a half-space: a ball dropped from 2 m bounces to C_r²·2 m
-//! (restitution after the substeps), comes to rest and falls asleep (islands and sleep); a column of five
+//! (the bounce inside the contact solve), comes to rest and falls asleep (islands and sleep); a column of five
 //! spheres settles without jitter (soft contacts, relax, warm starting); every wake trigger works.
 
 #![allow(
