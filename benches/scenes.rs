@@ -1,4 +1,4 @@
-//! Whole-scene criterion benchmarks: the five SCENES.md peer scenes and the scaling series (balls at 1,024,
+//! Whole-scene criterion benchmarks: the five peer scenes of docs/scenes.md and the scaling series (balls at 1,024,
 //! 4,096 and 16,384; pyramids of base 20, 40 and 80), through the `rebound` facade, one thread.
 //!
 //! ```text

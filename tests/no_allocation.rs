@@ -1,6 +1,6 @@
 //! A step allocates nothing once the scene's buffers have grown (issue 7: "no allocation per step — prove it
-//! with a counting-allocator test"). This binary installs a counting global allocator, warms each SCENES.md
-//! peer scene up (buffers grow to the scene's size), then counts the allocations of further steps: zero (in a
+//! with a counting-allocator test"). This binary installs a counting global allocator, warms each peer scene
+//! (docs/scenes.md) up (buffers grow to the scene's size), then counts the allocations of further steps: zero (in a
 //! window of steps without the one-time amortised growth of a buffer; see the test).
 //!
 //! One test function only: the allocator is global to the binary, and a second test running on another

@@ -1,4 +1,4 @@
-//! The SCENES.md peer scenes as Rebound builds them (`tests/support/scenes/`): the exact body and joint counts,
+//! The peer scenes (docs/scenes.md) as Rebound builds them (`tests/support/scenes/`): the exact body and joint counts,
 //! the construction (generator draws, lattice, touching boxes, satisfied bridge joints, spring energy) and the
 //! metric names the rapier side reports. Fast: the scenes are built, and stepped a few times at most; the
 //! 600-step runs belong to `cargo run --release --bin compare`.
@@ -29,7 +29,7 @@ fn assert_bits(actual: f32, expected: f32) {
 #[test]
 fn generator_draws_match_values_computed_independently() {
     // First outputs and first draws of both scene seeds, computed by a separate Python implementation of
-    // SCENES.md's recurrence (f32 rounding after each operation).
+    // the recurrence of docs/scenes.md (f32 rounding after each operation).
     assert_eq!(
         XorShift64Star::new(balls::SEED).next_u64(),
         0xadc0_a73a_d9d7_122c
@@ -275,7 +275,7 @@ fn a_few_steps_keep_the_joint_scenes_together() {
     }
 }
 
-/// Issue 7's joint targets on the SCENES.md scenes, 10 s each: the bridge's joints never open by more than
+/// Issue 7's joint targets on the peer scenes, 10 s each: the bridge's joints never open by more than
 /// 1 cm (rapier: 5.9 cm; Rebound solving joint by joint: 3.3 cm), the chain of ball joints never stretches a
 /// link by more than 1 % (joint by joint: 140 %), and neither does the rope chain — links that go slack,
 /// bunch up and snap taut at the whip (measured 0.14 %; 6.0 % before the direct solve's soft step was taken
@@ -307,7 +307,7 @@ fn the_joint_scenes_hold_their_joints_for_10_s() {
 /// further along x left 2.7 % (step 320) and 2.0 % (step 323): at the whip the plain Newton step of the
 /// position projection moved the light balls of the nearly straight, heavily pulled links near the anchor
 /// sideways by up to 10 cm and was rejected, and the sweeps after it barely help (`docs/physics.md`, "Chains
-/// solved directly"). Now every such start stays near 0.04 %. The SCENES.md chain up to just past the whip
+/// solved directly"). Now every such start stays near 0.04 %. The chain scene up to just past the whip
 /// (330 steps; shorter chains whip too gently to show it).
 #[test]
 fn the_rope_chain_holds_through_the_whip_from_nudged_starts() {

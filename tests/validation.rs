@@ -1,4 +1,4 @@
-//! SCENES.md's validation scenes through the `rebound` facade with real parry shapes (ground = a fixed cuboid
+//! The validation scenes of docs/scenes.md through the `rebound` facade with real parry shapes (ground = a fixed cuboid
 //! whose top face is y = 0), each against its closed form with the stated tolerance; plus a pyramid of base
 //! 20 that must stand, balls on a height field that must stay above it, and a 100 m/s ball that must not
 //! tunnel through a 0.1 m wall.

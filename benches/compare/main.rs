@@ -1,4 +1,4 @@
-//! `compare`: Rebound and rapier3d side by side on the peer scenes of SCENES.md, in one run on one machine.
+//! `compare`: Rebound and rapier3d side by side on the peer scenes of docs/scenes.md, in one run on one machine.
 //!
 //! ```text
 //! cargo run --release --bin compare -- [--rounds R] [--steps N] [--scene NAME|all]... [--json]
@@ -53,7 +53,7 @@ usage: compare [--engine both|rebound] [--rounds R] [--steps N] [--scene NAME|al
   --rounds R    rounds of every scene in both engines (default 3); times are the median over rounds
   --steps N     steps per run (default 600); timing statistics cover steps 60..N
   --scene NAME  balls | pyramid | chain | springs | bridge | chain_spherical | all
-                (repeatable; default: the five SCENES.md peer scenes)
+                (repeatable; default: the five peer scenes of docs/scenes.md)
   --scaling     Rebound alone: balls at 1k, 4k, 16k and pyramid bases 20, 40, 80, with the cost-growth
                 exponent (default 180 steps, 1 round: about 3.5 minutes, most of it
                 the 16k-ball pile)
@@ -575,7 +575,7 @@ fn comparison_table(
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{} vs {rapier_engine}: SCENES.md peer scenes, single thread, dt = 1/60, sleeping off, {steps} steps;\n\
+        "{} vs {rapier_engine}: peer scenes (docs/scenes.md), single thread, dt = 1/60, sleeping off, {steps} steps;\n\
          ms/step = median over rounds ({rounds}) of each run's median over steps {warmup}..{steps}; \
          engines alternate scene by scene\n",
         rebound_engine()

@@ -1,13 +1,13 @@
 //! Support code shared by the workspace-level scenario tests (`tests/`) and whole-scene benches (`benches/`).
 //!
-//! Not part of the engine: nothing here is published. It holds what SCENES.md defines once for every scene —
+//! Not part of the engine: nothing here is published. It holds what docs/scenes.md defines once for every scene —
 //! the random generator — and the analytic predictors the tests compare against — and the peer scenes
 //! themselves ([`scenes`]), which the scene tests, the criterion benches (`benches/scenes.rs`) and the
 //! `compare` binary (`benches/compare/`) share.
 
 pub mod scenes;
 
-/// The scene generator of SCENES.md: xorshift64*.
+/// The scene generator of docs/scenes.md: xorshift64*.
 ///
 /// ```text
 /// next: s ^= s >> 12; s ^= s << 25; s ^= s >> 27; return s · 0x2545F4914F6CDD1D (wrapping)

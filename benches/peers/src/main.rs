@@ -1,4 +1,4 @@
-//! `peers`: Rebound's peer comparison. Runs the benchmark scenes of SCENES.md in rapier3d 0.36 — single
+//! `peers`: Rebound's peer comparison. Runs the benchmark scenes of docs/scenes.md in rapier3d 0.36 — single
 //! thread, rapier's default `IntegrationParameters`, dt = 1/60 — times every `PhysicsPipeline::step` and
 //! reports ms/step next to the scenes' quality metrics.
 //!

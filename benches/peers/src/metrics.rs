@@ -1,6 +1,6 @@
 //! Quality metrics and timing statistics.
 //!
-//! A scene reports its metrics as an ordered [`Quality`] list (the order of SCENES.md), which serialises to a
+//! A scene reports its metrics as an ordered [`Quality`] list (the order of docs/scenes.md), which serialises to a
 //! JSON object with the keys in that order. The helpers here are the measurements shared by several scenes.
 
 use std::fmt;
@@ -88,7 +88,7 @@ pub fn short(x: f32) -> f64 {
     x.to_string().parse().unwrap_or(f64::from(x))
 }
 
-/// A scene's quality metrics, in the order SCENES.md lists them.
+/// A scene's quality metrics, in the order docs/scenes.md lists them.
 #[derive(Debug, Clone, Default)]
 pub struct Quality(Vec<(&'static str, Value)>);
 

@@ -1,4 +1,4 @@
-//! The scene generator of SCENES.md: xorshift64*, reproduced bit for bit so that rapier and Rebound build
+//! The scene generator of docs/scenes.md: xorshift64*, reproduced bit for bit so that rapier and Rebound build
 //! identical scenes from the same seeds.
 //!
 //! ```text

@@ -98,7 +98,7 @@ impl World {
         );
     }
 
-    /// Number of dynamic bodies (the "bodies" column of SCENES.md: fixed ground and anchors are not counted).
+    /// Number of dynamic bodies (the "bodies" column of docs/scenes.md: fixed ground and anchors are not counted).
     pub fn dynamic_body_count(&self) -> usize {
         self.bodies.iter().filter(|(_, b)| b.is_dynamic()).count()
     }

@@ -1,6 +1,6 @@
 //! Micro-benchmarks of the joint solver: one full step (prepare, 4 substeps of integrate velocities, apply
 //! forces, warm start, solve, integrate positions, relax, then restitution, store and write-back) of a
-//! 1,000-link rope chain swinging from a fixed point, and of 1,000 damped spring pairs (SCENES.md `springs`:
+//! 1,000-link rope chain swinging from a fixed point, and of 1,000 damped spring pairs (docs/scenes.md, `springs`:
 //! 1 kg balls, rest length 1 m, k = 1e4 N/m, c = 10 N·s/m, zero gravity) in both spring models.
 //! Run: `cargo bench -p rebound-constraints`.
 //!
@@ -54,7 +54,7 @@ fn warm_up(mut h: Harness) -> Harness {
     h
 }
 
-/// SCENES.md `springs`: 1,000 pairs on a 10 × 10 × 10 grid, initial length 1.5 m.
+/// docs/scenes.md, `springs`: 1,000 pairs on a 10 × 10 × 10 grid, initial length 1.5 m.
 fn springs(model: SpringModel) -> Harness {
     let mut h = Harness::new(SolverSettings {
         gravity: Vec3::ZERO,

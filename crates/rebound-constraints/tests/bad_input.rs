@@ -1,6 +1,6 @@
-//! Bad input (DESIGN.md §7): every constructor and setter rejects NaN, infinities where they make no sense,
-//! negative lengths and stiffnesses, inverted ranges and zero axes with a typed error naming the field — and a
-//! setter that fails changes nothing.
+//! Bad input (`docs/architecture.md`, "Errors"): every constructor and setter rejects NaN, infinities where they make
+//! no sense, negative lengths and stiffnesses, inverted ranges and zero axes with a typed error naming the field — and
+//! a setter that fails changes nothing.
 
 #![allow(
     clippy::unwrap_used,

@@ -1,6 +1,6 @@
 //! The soft spring against the closed form of its integrator (Jolt's `TestDistanceSpring`): a 1-DOF
 //! implicit-Euler spring-damper recurrence stepped in f64 next to the engine, in both parameterisations, from a
-//! world anchor and between two free bodies; and the period of an undamped spring (SCENES.md "spring
+//! world anchor and between two free bodies; and the period of an undamped spring (docs/scenes.md "spring
 //! oscillator").
 
 #![allow(
@@ -160,7 +160,7 @@ fn upward_crossings(samples: &[(f64, f64)]) -> Vec<f64> {
 
 #[test]
 fn an_undamped_spring_oscillates_with_period_two_pi_root_m_over_k() {
-    // SCENES.md "spring oscillator": 1 kg, k = 100 N/m, ζ = 0, world anchor. Period 2π√(m/k) = 0.6283 s.
+    // docs/scenes.md "spring oscillator": 1 kg, k = 100 N/m, ζ = 0, world anchor. Period 2π√(m/k) = 0.6283 s.
     let (m, k) = (1.0f32, 100.0f32);
     let expected = TAU * (f64::from(m) / f64::from(k)).sqrt();
     let omega = (k / m).sqrt();

@@ -1,5 +1,5 @@
 //! The course's explicit spring (`SpringModel::Force`, course items 1–3) against the closed form of its
-//! integrator, and the course's question answered with numbers (SCENES.md "explicit spring limit", "stiff
+//! integrator, and the course's question answered with numbers (docs/scenes.md "explicit spring limit", "stiff
 //! spring"): the explicit force is bounded at h·ω = 1.9 — it conserves the discrete energy of symplectic
 //! Euler exactly — and grows by the predicted factor every substep at h·ω = 2.1; the implicit soft spring with
 //! k = 1e7 N/m on 1 kg at dt = 1/30 s never diverges and its length error converges to 0.
@@ -161,7 +161,7 @@ fn the_force_spring_diverges_at_h_omega_2_1_by_the_predicted_factor() {
 
 #[test]
 fn a_stiff_soft_spring_never_diverges_and_its_error_converges_to_zero() {
-    // SCENES.md "stiff spring": k = 1e7 N/m on 1 kg at dt = 1/30 s (h·ω = 26 per substep).
+    // docs/scenes.md "stiff spring": k = 1e7 N/m on 1 kg at dt = 1/30 s (h·ω = 26 per substep).
     let k = 1.0e7f32;
     let dt = 1.0 / 30.0;
     let x0 = 0.1f32;

@@ -1,4 +1,4 @@
-//! Ropes (course item 4, SCENES.md "rope pendulum" and "rope slack"): a rope pendulum keeps its length within
+//! Ropes (course item 4, docs/scenes.md "rope pendulum" and "rope slack"): a rope pendulum keeps its length within
 //! 0.5 % and swings with the period 2π√(L/g); a slack rope leaves a falling body bit-identical to free fall;
 //! a rope snapping taut jerks like a collision with the coefficient of restitution.
 
@@ -177,7 +177,7 @@ fn a_rope_snapping_taut_jerks_like_a_collision() {
 #[test]
 fn an_elastic_rope_between_free_bodies_conserves_momentum_and_energy() {
     // m₁ = 1 kg and m₂ = 3 kg fly apart at 4 and 1 m/s on a 1 m rope with e = 1: like the head-on elastic
-    // collision (SCENES.md), the relative velocity reverses: v₁' = 2.5·… computed from the two conservation
+    // collision (docs/scenes.md), the relative velocity reverses: v₁' = 2.5·… computed from the two conservation
     // laws: v₁' = v₁ − (1 + e)·m₂/(m₁ + m₂)·(v₁ − v₂), v₂' = v₂ + (1 + e)·m₁/(m₁ + m₂)·(v₁ − v₂).
     let (m1, m2, v1, v2) = (1.0f32, 3.0f32, -4.0f32, 1.0f32);
     let mut h = Harness::new(SolverSettings {

@@ -62,7 +62,7 @@ pub fn collision_impulse(
 /// ```
 /// use rebound_dynamics::impulse::resolve_collision;
 /// use rebound_math::Vec3;
-/// // m₁ = 1 kg at 4 m/s meets m₂ = 3 kg at −1 m/s, elastic (SCENES.md "head-on elastic").
+/// // m₁ = 1 kg at 4 m/s meets m₂ = 3 kg at −1 m/s, elastic (docs/scenes.md "head-on elastic").
 /// let (v1, v2) = resolve_collision(Vec3::new(4.0, 0.0, 0.0), 1.0, Vec3::new(-1.0, 0.0, 0.0), 1.0 / 3.0, Vec3::X, 1.0);
 /// assert!((v1.x + 3.5).abs() < 1e-5 && (v2.x - 1.5).abs() < 1e-5);
 /// ```

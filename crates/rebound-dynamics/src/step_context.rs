@@ -1,5 +1,6 @@
 //! The per-step constants every stage reads (Box2D's `b2StepContext`): step and substep lengths, their
-//! inverses, gravity and the contact softness. Built once at the start of a step (stage 1 of DESIGN.md §3).
+//! inverses, gravity and the contact softness. Built once at the start of a step (stage 1 of the step,
+//! `docs/architecture.md`).
 
 use crate::Softness;
 use rebound_math::Vec3;
@@ -16,7 +17,7 @@ pub struct SolverSettings {
     pub contact_frequency_hz: f32,
     /// Damping ratio of contacts (dimensionless; 1 = critical). Default: 5 (over-damped: contacts push out
     /// without bouncing — bounce comes from restitution; rapier's default). Box2D's 10 corrects overlap half as
-    /// fast (the bias rate is `ω/(2ζ + hω)`) and let the SCENES.md pyramid rock out of its plane by 0.8 cm
+    /// fast (the bias rate is `ω/(2ζ + hω)`) and let the pyramid scene rock out of its plane by 0.8 cm
     /// (5 gives 0.3 cm, 20 topples it); see `docs/physics.md`, "Contact damping ratio".
     pub contact_damping_ratio: f32,
     /// The fastest a contact pushes overlapping bodies apart (m/s). Default: 3 m/s.

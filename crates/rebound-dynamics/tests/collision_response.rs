@@ -119,7 +119,7 @@ proptest! {
 
 #[test]
 fn head_on_elastic_scene_is_exact() {
-    // SCENES.md "head-on elastic": m1 = 1, m2 = 3, v1 = 4, v2 = −1 m/s, C_r = 1 → v1' = −3.5, v2' = 1.5.
+    // docs/scenes.md "head-on elastic": m1 = 1, m2 = 3, v1 = 4, v2 = −1 m/s, C_r = 1 → v1' = −3.5, v2' = 1.5.
     let (v1, v2) = resolve_collision_1d(4.0, 1.0, -1.0, 1.0 / 3.0, 1.0);
     assert!((v1 + 3.5).abs() < 1e-5, "v1' = {v1}");
     assert!((v2 - 1.5).abs() < 1e-5, "v2' = {v2}");
@@ -133,7 +133,7 @@ fn head_on_elastic_scene_is_exact() {
 
 #[test]
 fn infinite_mass_scene_is_exact() {
-    // SCENES.md "infinite mass": a ball at 5 m/s hits a fixed body (inverse mass 0), C_r = 1.
+    // docs/scenes.md "infinite mass": a ball at 5 m/s hits a fixed body (inverse mass 0), C_r = 1.
     let (ball, wall) =
         resolve_collision(Vec3::new(5.0, 0.0, 0.0), 1.0, Vec3::ZERO, 0.0, Vec3::X, 1.0);
     assert!(

@@ -1,4 +1,4 @@
-//! Free fall against the closed form of the integrator (SCENES.md "free fall"): semi-implicit Euler at 1, 2 and
+//! Free fall against the closed form of the integrator (docs/scenes.md "free fall"): semi-implicit Euler at 1, 2 and
 //! 4 substeps, and the course's explicit Euler, each to 1e-5 m relative.
 
 mod support;

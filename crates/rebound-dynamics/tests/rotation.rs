@@ -1,4 +1,4 @@
-//! SCENES.md "rotation": a torque-free asymmetric box spun about its middle principal axis plus a small
+//! docs/scenes.md "rotation": a torque-free asymmetric box spun about its middle principal axis plus a small
 //! perturbation (the Dzhanibekov / tennis-racket flip). Angular momentum must be conserved within 1 % over
 //! 10 s at dt = 1/60, kinetic energy must not grow — and without the gyroscopic term it is not conserved.
 

@@ -1,4 +1,4 @@
-//! SCENES.md "Newton's cradle": five equal balls on ropes in a row, 1 mm apart, C_r = 1; the first lifted 30°
+//! docs/scenes.md "Newton's cradle": five equal balls on ropes in a row, 1 mm apart, C_r = 1; the first lifted 30°
 //! and released. After the first impact the last ball must carry ≥ 90 % of the momentum and the first keep
 //! ≤ 10 %. A solver that applies restitution only from pre-solve velocities moves the row as one block; the
 //! bounce here is an impulse that passes along the row within one Gauss–Seidel pass (Guendelman et al. 2003).

@@ -21,7 +21,7 @@
 //! centres are farther apart than their radii plus the narrow phase's prediction distance (which counts
 //! their *relative* speed, where the boxes count each one's own) are dropped here: they can get no contact
 //! this step. Balls moving together — a swinging chain, a falling pile — have boxes fattened by their speed
-//! that overlap many neighbours they cannot reach (the SCENES.md chain: some 2,000 such pairs a step for 500
+//! that overlap many neighbours they cannot reach (the chain scene: some 2,000 such pairs a step for 500
 //! balls).
 //!
 //! **At the end of a step** (and whenever the world is edited through the facade) the leaves are made to hold
@@ -305,7 +305,7 @@ impl BroadPhase {
     /// after a restore, on request): a leaf that already contains that box — the fattened box of the step's
     /// pair search, which a body rarely leaves within the step — is kept, the others get the tight box, and
     /// the tree is refitted only if a leaf changed. Queries test their candidates exactly, so a leaf larger
-    /// than its collider only adds a candidate; keeping the pair search's boxes saved the SCENES.md chain a
+    /// than its collider only adds a candidate; keeping the pair search's boxes saved the chain scene a
     /// refit of the whole tree every step.
     pub(crate) fn refresh(&mut self, colliders: &ColliderSet, bodies: &BodySet) {
         let mut changed = false;

@@ -1,5 +1,5 @@
-//! Typed errors of the facade (STYLE.md G). Every error names the field and the value that were wrong, and
-//! the world is unchanged when one is returned. Not part of any step stage: input is checked where it enters
+//! Typed errors of the facade (`docs/architecture.md`, "Errors"). Every error names the field and the value that were
+//! wrong, and the world is unchanged when one is returned. Not part of any step stage: input is checked where it enters
 //! (insertion, setters, queries), and the step never fails.
 
 use crate::ColliderHandle;

@@ -1,4 +1,4 @@
-//! `balls`: 4,096 balls falling into a pile on the ground (SCENES.md scene 1).
+//! `balls`: 4,096 balls falling into a pile on the ground (docs/scenes.md).
 //!
 //! 16 × 16 × 16 balls of radius 0.5 (density 1) on a 1.1 m grid, `x = (i − 7.5)·1.1 + jx`,
 //! `y = 0.6 + j·1.1`, `z = (k − 7.5)·1.1 + jz`, loops in the order i, j, k, with the jitters `jx` then `jz`

@@ -1,5 +1,5 @@
 //! `bridge`: a slack rope bridge of 100 planks between two fixed anchors, with 50 balls dropped on it
-//! (SCENES.md scene 5).
+//! (docs/scenes.md).
 //!
 //! No ground. Planks are cuboids of half-extents 0.25 × 0.1 × 1.0 (density 1): 0.5 m long along x, 2 m wide
 //! along z, a 50 m deck. The two fixed anchors (no colliders) are 47.5 m apart (95 % of the deck) at y0 = 10.

@@ -1,4 +1,4 @@
-//! `chain`: 500 balls on ropes, released horizontally (SCENES.md scene 3); and the supplementary
+//! `chain`: 500 balls on ropes, released horizontally (docs/scenes.md); and the supplementary
 //! `chain_spherical`.
 //!
 //! No ground. A fixed body without a collider sits at the origin; balls `i = 0..500` of radius 0.1 (density 1)

@@ -1,4 +1,4 @@
-//! The peer scenes of SCENES.md built in Rebound, one module each, exactly as the rapier side
+//! The peer scenes of docs/scenes.md built in Rebound, one module each, exactly as the rapier side
 //! (`benches/peers/src/scenes/`) builds them: the same counts, positions, seeds and f32 arithmetic, and the
 //! same quality metrics under the same names, so that the two engines compare one to one.
 //!
@@ -6,7 +6,7 @@
 //! `PhysicsWorld::step` of 1/60 s) and then [`Scene::observe`] outside the timed region, which keeps the
 //! run-long metrics up to date; [`Scene::quality`] reads the metrics at the end.
 //!
-//! Rebound runs these scenes on its own defaults ([`WorldSettings::default`]) with two changes SCENES.md asks
+//! Rebound runs these scenes on its own defaults ([`WorldSettings::default`]) with two changes docs/scenes.md asks
 //! for: sleeping off (in the settings and on every dynamic body, unless [`SceneOptions::sleep`]), and zero
 //! gravity in `springs`. One thread (Rebound has no other mode yet), dt = 1/60 s.
 
@@ -29,7 +29,7 @@ pub use springs::Springs;
 /// The step every scene runs with (s).
 pub const DT: f32 = 1.0 / 60.0;
 
-/// The five default peer scenes, in SCENES.md's order.
+/// The five default peer scenes, in the order of docs/scenes.md.
 pub const DEFAULT_SCENES: [&str; 5] = ["balls", "pyramid", "chain", "springs", "bridge"];
 
 /// Every scene name [`build`] accepts: the five default ones and the supplementary `chain_spherical`.
@@ -45,7 +45,7 @@ pub const ALL_SCENES: [&str; 6] = [
 /// Options shared by every scene.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct SceneOptions {
-    /// Let bodies fall asleep (Rebound's default). Off by default: SCENES.md disables sleeping on every
+    /// Let bodies fall asleep (Rebound's default). Off by default: docs/scenes.md disables sleeping on every
     /// dynamic body, so that both engines do the same work every step.
     pub sleep: bool,
 }
@@ -81,11 +81,11 @@ pub trait Scene {
     /// Called after step `step` (1-based), outside the timed region: updates the run-long metrics.
     fn observe(&mut self, step: usize);
 
-    /// The quality metrics now (and over the run where the name ends in `_run`), in SCENES.md's order, with
+    /// The quality metrics now (and over the run where the name ends in `_run`), in the order of docs/scenes.md, with
     /// the rapier side's names.
     fn quality(&self) -> Vec<(&'static str, Value)>;
 
-    /// Dynamic bodies (the "bodies" column of SCENES.md: the fixed ground and anchors are not counted).
+    /// Dynamic bodies (the "bodies" column of docs/scenes.md: the fixed ground and anchors are not counted).
     fn body_count(&self) -> usize {
         self.world()
             .bodies()
@@ -117,7 +117,7 @@ pub fn build(name: &str, options: SceneOptions) -> Result<Option<Box<dyn Scene>>
     Ok(Some(scene))
 }
 
-/// Adds SCENES.md's ground: a fixed cuboid of half-extents 100 × 0.5 × 100 centred at (0, −0.5, 0), so its
+/// Adds the ground of docs/scenes.md: a fixed cuboid of half-extents 100 × 0.5 × 100 centred at (0, −0.5, 0), so its
 /// top face is y = 0 (collider defaults: friction 0.5, restitution 0, as rapier's).
 ///
 /// # Errors

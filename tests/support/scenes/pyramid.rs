@@ -1,4 +1,4 @@
-//! `pyramid`: a one-box-deep pyramid of 820 unit cubes, base 40, on the ground (SCENES.md scene 2).
+//! `pyramid`: a one-box-deep pyramid of 820 unit cubes, base 40, on the ground (docs/scenes.md).
 //!
 //! Row `r` in `0..40` holds `40 − r` cubes of half-extent 0.5 (density 1) at `x = (j − (40 − r − 1)/2)·1.0`,
 //! `y = 0.5 + r`, `z = 0`: the boxes touch exactly, with no gap and no overlap; the top box is at y = 39.5.

@@ -1,4 +1,4 @@
-//! `springs`: 1,000 damped spring pairs in zero gravity (SCENES.md scene 4).
+//! `springs`: 1,000 damped spring pairs in zero gravity (docs/scenes.md).
 //!
 //! Pairs on a 10 × 10 × 10 grid of 4 m spacing, pair centre `c = 4·(i, j, k)`, ball A at `c − (0.75, 0, 0)`
 //! and ball B at `c + (0.75, 0, 0)` (initial length 1.5). Balls of radius 0.25 and mass 1 kg: the colliders

@@ -18,7 +18,7 @@
 //!
 //! The geometry is computed in f32 (rapier's `Real`), in the order the formulas are written. The balls' fate
 //! is chaotic (shifting every ball by 1 µm in z moves `balls_on_bridge` anywhere between 3 and 6), and this
-//! f32 construction is the one that reproduces SCENES.md's recorded "47 of 50 balls fall off" (an f64
+//! f32 construction is the one that reproduces the "47 of 50 balls fall off" recorded in docs/scenes.md (an f64
 //! construction rounded once gives 5 on the bridge, with every other metric within 1 %).
 
 use rapier3d::prelude::*;

@@ -1,4 +1,4 @@
-//! The peer scenes of SCENES.md, one module each, built in rapier3d exactly as specified there.
+//! The peer scenes of docs/scenes.md, one module each, built in rapier3d exactly as specified there.
 //!
 //! Every scene owns its [`World`] and whatever it needs to measure its quality. The runner steps the world
 //! (the timed part) and calls [`Scene::observe`] after each step, outside the timed region, so that metrics
@@ -15,7 +15,7 @@ pub mod chain;
 pub mod pyramid;
 pub mod springs;
 
-/// The five default peer scenes, in SCENES.md's order (what `--scene all` runs).
+/// The five default peer scenes, in the order of docs/scenes.md (what `--scene all` runs).
 pub const DEFAULT_SCENES: [&str; 5] = ["balls", "pyramid", "chain", "springs", "bridge"];
 
 /// Every scene name accepted by `--scene`: the five default ones and the supplementary `chain_spherical`.
@@ -31,7 +31,7 @@ pub const ALL_SCENES: [&str; 6] = [
 /// Options shared by every scene.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct SceneOptions {
-    /// Let dynamic bodies fall asleep (rapier's default). Off by default: SCENES.md disables sleeping on every
+    /// Let dynamic bodies fall asleep (rapier's default). Off by default: docs/scenes.md disables sleeping on every
     /// dynamic body so that the engines do the same work each step.
     pub sleep: bool,
 }
@@ -74,7 +74,7 @@ pub fn build(name: &str, options: SceneOptions) -> Option<Box<dyn Scene>> {
     Some(scene)
 }
 
-/// Adds SCENES.md's ground: a fixed cuboid of half-extents 100 × 0.5 × 100 centred at (0, −0.5, 0), so its
+/// Adds the ground of docs/scenes.md: a fixed cuboid of half-extents 100 × 0.5 × 100 centred at (0, −0.5, 0), so its
 /// top face is y = 0 (collider defaults: friction 0.5, restitution 0).
 pub fn add_ground(world: &mut World) -> RigidBodyHandle {
     world.add_body(
