@@ -404,8 +404,8 @@ fn clip(polygon: &Polygon, plane: &Plane, incident_face: u32, out: &mut Polygon)
 }
 
 /// A feature id of parry's layout (kind in the top two bits, our code below), built directly: our codes are
-/// below 16, so parry's constructors' range check (an assert that stays out of line: 4 % of the pyramid's
-/// step) has nothing to check.
+/// below 16, so parry's constructors' range check (an assert that stays out of line, on the hot path of
+/// every box pair) has nothing to check.
 const fn feature(kind: u32, code: u32) -> PackedFeatureId {
     PackedFeatureId(kind << 30 | code)
 }

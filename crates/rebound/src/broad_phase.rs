@@ -12,8 +12,8 @@
 //! reach during the step (rotation included). A leaf that already contains its collider's fat box is kept;
 //! the others get the fat box — loosened by half the speculative margin for a slow body, so that a resting
 //! body's jitter does not change its leaf every step. If any leaf changed, the tree is refitted and traversed
-//! against itself once (every pair of overlapping leaves; a query per moving collider found the same pairs
-//! with 12 % more instructions on the balls scene). If none did, the overlapping leaves are the last
+//! against itself once (every pair of overlapping leaves: one traversal finds the pairs a query per moving
+//! collider would, with less work). If none did, the overlapping leaves are the last
 //! traversal's, kept sorted (when few leaves changed, as in a pile coming to rest, that traversal keeps them):
 //! a resting pyramid does no traversal at all. The overlaps with at least one moving collider that pass the
 //! filters (same body, enabled, sensor, groups, disabled body pairs, at least one dynamic body) are the
@@ -305,7 +305,7 @@ impl BroadPhase {
     /// after a restore, on request): a leaf that already contains that box — the fattened box of the step's
     /// pair search, which a body rarely leaves within the step — is kept, the others get the tight box, and
     /// the tree is refitted only if a leaf changed. Queries test their candidates exactly, so a leaf larger
-    /// than its collider only adds a candidate; keeping the pair search's boxes saved the chain scene a
+    /// than its collider only adds a candidate; keeping the pair search's boxes spares a swinging chain a
     /// refit of the whole tree every step.
     pub(crate) fn refresh(&mut self, colliders: &ColliderSet, bodies: &BodySet) {
         let mut changed = false;
@@ -518,7 +518,7 @@ const RADIX_BITS: u32 = 11;
 
 /// Sorts `pairs` by (first slot, second slot): an LSD radix sort on the two slot indices packed into one key
 /// (`first << b | second`, `b` bits per slot), one counting pass per 11-bit digit. The pairs of a 4,096-ball
-/// pile (tens of thousands per step) sorted by comparison took 8 % of the step; this is linear. Stable, so
+/// pile (tens of thousands per step) are too many for a comparison sort; this is linear. Stable, so
 /// equal keys keep their order; `scratch` is reused.
 fn radix_sort_pairs(
     pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,

@@ -122,7 +122,7 @@ impl Seam<'_> {
             return;
         };
         let n = basis.local_normal;
-        // Written in place in `out` (a manifold is 432 bytes: built on the stack, its push was a memcpy).
+        // Written in place in `out` (a manifold is 432 bytes: built on the stack, its push would be a memcpy).
         out.push(ContactManifold::new(
             old.body_a,
             old.body_b,
