@@ -33,17 +33,16 @@ use std::env;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitCode};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use rebound_suite::scenes::metrics::{DisplayJson, TimingStats, median};
-use rebound_suite::scenes::{
-    self, ALL_SCENES, Balls, DEFAULT_SCENES, Pyramid, Scene, SceneOptions, Value,
-};
+use rebound_suite::scenes::{ALL_SCENES, DEFAULT_SCENES};
 use serde_json::{Map, Value as Json, json};
 
-/// Steps excluded from the timing statistics (warm-up: the pile, stack or chain is still forming), as in
-/// the rapier side.
-const WARMUP_STEPS: usize = 60;
+mod run;
+mod scaling;
+
+use run::{Phases, Run, WARMUP_STEPS, rebound_engine, run_rebound};
 
 const USAGE: &str = "\
 usage: compare [--engine both|rebound] [--rounds R] [--steps N] [--scene NAME|all]... [--json]
@@ -140,120 +139,6 @@ fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, String> {
         parsed.scenes = DEFAULT_SCENES.iter().map(|&s| s.to_owned()).collect();
     }
     Ok(parsed)
-}
-
-/// Where Rebound's step spends its time: the mean over steps 60..N of each `StepReport::profile` phase (ms),
-/// plus the facade's own work after the world's step (query BVH refresh, sensors): measured wall time minus
-/// the world's `total`.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-struct Phases {
-    collide: f64,
-    prepare: f64,
-    solve: f64,
-    restitution: f64,
-    finalize: f64,
-    /// `PhysicsWorld::step` beyond the world's step.
-    facade: f64,
-    /// The measured step (wall clock).
-    wall: f64,
-}
-
-impl Phases {
-    /// The phase names and values, in step order.
-    fn entries(&self) -> [(&'static str, f64); 7] {
-        [
-            ("collide", self.collide),
-            ("prepare", self.prepare),
-            ("solve", self.solve),
-            ("restitution", self.restitution),
-            ("finalize", self.finalize),
-            ("facade", self.facade),
-            ("wall", self.wall),
-        ]
-    }
-
-    /// The element-wise mean of several.
-    fn mean(all: &[Self]) -> Self {
-        let n = all.len().max(1) as f64;
-        let sum = |f: fn(&Self) -> f64| all.iter().map(f).sum::<f64>() / n;
-        Self {
-            collide: sum(|p| p.collide),
-            prepare: sum(|p| p.prepare),
-            solve: sum(|p| p.solve),
-            restitution: sum(|p| p.restitution),
-            finalize: sum(|p| p.finalize),
-            facade: sum(|p| p.facade),
-            wall: sum(|p| p.wall),
-        }
-    }
-}
-
-/// One engine's run of one scene.
-#[derive(Debug, Clone)]
-struct Run {
-    bodies: usize,
-    joints: usize,
-    timing: TimingStats,
-    /// Metric name → JSON value, in the order the engine reported them.
-    quality: Vec<(String, Json)>,
-    /// Rebound only.
-    phases: Option<Phases>,
-}
-
-/// Steps one Rebound scene `steps` times, timing only [`Scene::step`].
-fn run_scene(scene: &mut dyn Scene, steps: usize) -> (TimingStats, Phases) {
-    let mut step_ms = Vec::with_capacity(steps);
-    let mut phases = Vec::with_capacity(steps);
-    let ms = |d: Duration| d.as_secs_f64() * 1e3;
-    for step in 1..=steps {
-        let start = Instant::now();
-        let report = scene.step();
-        let wall = ms(start.elapsed());
-        step_ms.push(wall);
-        let p = report.profile;
-        phases.push(Phases {
-            collide: ms(p.collide),
-            prepare: ms(p.prepare),
-            solve: ms(p.solve),
-            restitution: ms(p.restitution),
-            finalize: ms(p.finalize),
-            facade: wall - ms(p.total),
-            wall,
-        });
-        scene.observe(step);
-    }
-    let warmup = if steps > WARMUP_STEPS {
-        WARMUP_STEPS
-    } else {
-        0
-    };
-    (
-        TimingStats::of(&step_ms[warmup..]),
-        Phases::mean(&phases[warmup..]),
-    )
-}
-
-/// Builds and runs a scene in Rebound.
-fn run_rebound(name: &str, steps: usize) -> Result<Run, String> {
-    let mut scene = scenes::build(name, SceneOptions::default())
-        .map_err(|e| format!("building `{name}` in Rebound: {e}"))?
-        .ok_or_else(|| format!("unknown scene `{name}`"))?;
-    let (timing, phases) = run_scene(scene.as_mut(), steps);
-    Ok(Run {
-        bodies: scene.body_count(),
-        joints: scene.joint_count(),
-        timing,
-        quality: quality_json(&scene.quality()),
-        phases: Some(phases),
-    })
-}
-
-/// A Rebound scene's metrics as (name, JSON value) pairs.
-fn quality_json(quality: &[(&'static str, Value)]) -> Vec<(String, Json)> {
-    quality
-        .iter()
-        .map(|&(name, value)| (name.to_owned(), value.to_json()))
-        .collect()
 }
 
 /// Runs a scene in rapier through the peers binary and reads its `--json` line.
@@ -518,11 +403,6 @@ fn rebound_alone(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
-/// The Rebound version of this build.
-fn rebound_engine() -> String {
-    format!("rebound {}", env!("CARGO_PKG_VERSION"))
-}
-
 /// One scene's result as a JSON object.
 fn scene_json(result: &SceneResult, steps: usize, rounds: usize, rapier_engine: &str) -> Json {
     let quality = |run: Option<&Run>| -> Json {
@@ -673,117 +553,6 @@ fn comparison_table(
     out
 }
 
-/// One point of a scaling series.
-#[derive(Debug, Clone, Copy)]
-struct ScalingPoint {
-    bodies: usize,
-    ms: f64,
-    phases: Phases,
-}
-
-/// The least-squares slope of `ln ms` against `ln n`: cost ∝ n^slope.
-fn growth_exponent(points: &[ScalingPoint]) -> f64 {
-    let xs: Vec<f64> = points.iter().map(|p| (p.bodies as f64).ln()).collect();
-    let ys: Vec<f64> = points.iter().map(|p| p.ms.ln()).collect();
-    let n = xs.len() as f64;
-    let (mx, my) = (xs.iter().sum::<f64>() / n, ys.iter().sum::<f64>() / n);
-    let sxy: f64 = xs.iter().zip(&ys).map(|(x, y)| (x - mx) * (y - my)).sum();
-    let sxx: f64 = xs.iter().map(|x| (x - mx) * (x - mx)).sum();
-    sxy / sxx
-}
-
-/// The scaling series: Rebound only.
-fn scaling(args: &Args) -> Result<(), String> {
-    let rounds = args.rounds.unwrap_or(1);
-    // 16,384 balls take about a second per step in Rebound today: fewer steps than the comparison by default.
-    let steps = args.steps.unwrap_or(180);
-    type Builder = fn(usize) -> Result<Box<dyn Scene>, rebound::Error>;
-    let balls: Builder = |side| Ok(Box::new(Balls::new(SceneOptions::default(), side)?));
-    let pyramid: Builder = |base| Ok(Box::new(Pyramid::new(SceneOptions::default(), base)?));
-    type Label = fn(usize) -> String;
-    let balls_label: Label = |side| format!("{side} × 16 × {side}");
-    let pyramid_label: Label = |base| format!("base {base}");
-    let series: [(&str, Builder, [usize; 3], Label); 2] = [
-        ("balls", balls, [8, 16, 32], balls_label),
-        ("pyramid", pyramid, [20, 40, 80], pyramid_label),
-    ];
-    let mut table = String::new();
-    let _ = writeln!(
-        table,
-        "{}: scaling, single thread, dt = 1/60, sleeping off, {steps} steps; ms/step = median over rounds ({rounds}) \
-         of each run's median over steps {WARMUP_STEPS}..{steps}; phases: mean ms/step (StepReport::profile)\n",
-        rebound_engine()
-    );
-    let _ = writeln!(
-        table,
-        "| series | size | bodies | ms/step | µs per body | collide | prepare | solve | restitution | finalize | facade |"
-    );
-    let _ = writeln!(table, "|---|---|---|---|---|---|---|---|---|---|---|");
-    let mut exponents = Vec::new();
-    for (name, build, sizes, label) in series {
-        let mut points = Vec::new();
-        for size in sizes {
-            let mut medians = Vec::new();
-            let mut phases = Vec::new();
-            let mut bodies = 0;
-            for _ in 0..rounds {
-                let mut scene = build(size).map_err(|e| format!("building {name} {size}: {e}"))?;
-                let (timing, p) = run_scene(scene.as_mut(), steps);
-                bodies = scene.body_count();
-                medians.push(timing.median_ms);
-                phases.push(p);
-            }
-            let point = ScalingPoint {
-                bodies,
-                ms: median(&medians),
-                phases: Phases::mean(&phases),
-            };
-            eprintln!(
-                "compare: scaling {name} {size}: {bodies} bodies, {:.3} ms/step",
-                point.ms
-            );
-            if args.json {
-                println!(
-                    "{}",
-                    json!({"series": name, "size": size, "bodies": bodies, "steps": steps, "rounds": rounds,
-                           "ms_median": point.ms,
-                           "profile_ms": point.phases.entries().iter().map(|&(k, v)| (k.to_owned(), json!(v))).collect::<Map<_, _>>()})
-                );
-            }
-            let _ = writeln!(
-                table,
-                "| {name} | {} | {bodies} | {:.3} | {:.2} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} |",
-                label(size),
-                point.ms,
-                1e3 * point.ms / bodies as f64,
-                point.phases.collide,
-                point.phases.prepare,
-                point.phases.solve,
-                point.phases.restitution,
-                point.phases.finalize,
-                point.phases.facade,
-            );
-            points.push(point);
-        }
-        let exponent = growth_exponent(&points);
-        if args.json {
-            println!("{}", json!({"series": name, "exponent": exponent}));
-        }
-        exponents.push((name, exponent));
-    }
-    if !args.json {
-        let _ = writeln!(
-            table,
-            "\nCost-growth exponent (least-squares slope of log ms/step against log bodies; 1 = linear):"
-        );
-        for (name, exponent) in exponents {
-            let _ = writeln!(table, "- {name}: {exponent:.2}");
-        }
-        print!("{table}");
-    }
-    Ok(())
-}
-
 fn main() -> ExitCode {
     let args = match parse_args(env::args().skip(1)) {
         Ok(args) => args,
@@ -800,7 +569,7 @@ fn main() -> ExitCode {
         eprintln!("compare: warning: a debug build; run with `cargo run --release --bin compare`");
     }
     let outcome = if args.scaling {
-        scaling(&args)
+        scaling::scaling(args.rounds, args.steps, args.json)
     } else if args.engines == Engines::Rebound {
         rebound_alone(&args)
     } else {
@@ -817,7 +586,7 @@ fn main() -> ExitCode {
 
 #[cfg(test)]
 mod tests {
-    use super::{Engines, ScalingPoint, growth_exponent, parse_args};
+    use super::{Engines, parse_args};
 
     fn args(list: &[&str]) -> Vec<String> {
         list.iter().map(|&s| s.to_owned()).collect()
@@ -848,18 +617,5 @@ mod tests {
         assert!(parse_args(args(&["--scene", "nope"])).is_err());
         assert!(parse_args(args(&["--rounds", "0"])).is_err());
         assert!(parse_args(args(&["--frobnicate"])).is_err());
-    }
-
-    #[test]
-    fn exponent_of_a_power_law() {
-        let points: Vec<ScalingPoint> = [1000usize, 4000, 16000]
-            .iter()
-            .map(|&n| ScalingPoint {
-                bodies: n,
-                ms: 2e-3 * (n as f64).powf(1.3),
-                phases: super::Phases::default(),
-            })
-            .collect();
-        assert!((growth_exponent(&points) - 1.3).abs() < 1e-9);
     }
 }
