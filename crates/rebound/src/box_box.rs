@@ -35,8 +35,8 @@
 //! warm starting matches points by them.
 //!
 //! Its cost beside parry's is in `docs/performance.md` ("Box–box contacts"). Which face is the reference and
-//! the order of the points matter to a tall column of equal boxes (solved point after point): flipping the reference on rounding-level ties tilted the pyramid out of
-//! its plane, hence [`FACE_TOLERANCE`]; the points stay in polygon order.
+//! the order of the points matter to a tall column of equal boxes (solved point after point): flipping the reference on
+//! rounding-level ties tilted the pyramid out of its plane, hence [`FACE_TOLERANCE`]; the points stay in polygon order.
 
 use crate::shape_manifold::{ShapeManifold, ShapePoint};
 use parry3d::shape::PackedFeatureId;
