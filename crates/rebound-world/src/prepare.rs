@@ -1,0 +1,152 @@
+//! Stage *prepare*, after *collide* and waking: the dense solver arrays and the constraints on them.
+//!
+//! Solver indices: the awake moving bodies first, in handle order; then each fixed body when a contact or a
+//! joint first needs it; last the world anchor (a fixed body at the origin), if a world joint exists. Then
+//! the contacts between an awake body and anything it can push, and the joints whose bodies are awake (or
+//! fixed), each handed to its solver's preparation.
+
+use crate::body_set::BodySet;
+use crate::handles::{BodyHandle, JointHandle};
+use crate::report::StepReport;
+use crate::scratch::{NO_INDEX, Scratch};
+use crate::state::WorldState;
+use rebound_constraints::JointBodies;
+use rebound_dynamics::{BodyParams, BodyType, SolverBody, StepContext};
+
+/// Stage *prepare*, part 1: the dense solver arrays. Awake moving bodies in handle order get indices
+/// first; fixed bodies are added when a contact or joint needs them; the world anchor (a fixed body at the
+/// origin) last, if a world joint exists.
+pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Scratch) {
+    s.solver_index.clear();
+    s.solver_index.resize(bodies.slot_count(), NO_INDEX);
+    s.solver_handles.clear();
+    s.states.clear();
+    s.params.clear();
+    for (index, entry) in bodies.arena.iter() {
+        let body = &entry.body;
+        if body.is_sleeping() || body.body_type() == BodyType::Fixed {
+            continue;
+        }
+        s.solver_index[index.index as usize] = s.states.len() as u32;
+        s.solver_handles.push(Some(BodyHandle(index)));
+        s.states.push(SolverBody::from_body(body));
+        s.params.push(BodyParams::from_body(body));
+    }
+}
+
+/// The solver index of `handle`, adding a fixed body on first use. `None` for sleeping bodies (whose
+/// constraints wait) and stale handles.
+fn solver_index_of(scratch: &mut Scratch, bodies: &BodySet, handle: BodyHandle) -> Option<usize> {
+    let slot = BodySet::slot(handle);
+    let existing = *scratch.solver_index.get(slot)?;
+    if existing != NO_INDEX {
+        return Some(existing as usize);
+    }
+    let body = bodies.get(handle)?;
+    if body.body_type() != BodyType::Fixed {
+        return None;
+    }
+    let index = scratch.states.len();
+    scratch.solver_index[slot] = index as u32;
+    scratch.solver_handles.push(Some(handle));
+    scratch.states.push(SolverBody::STATIC);
+    scratch.params.push(BodyParams::from_body(body));
+    Some(index)
+}
+
+/// Stage *prepare*, part 2: the contacts between an awake body and anything it can push (the collide stage
+/// wrote one per manifold, with anchors relative to the centres of mass) get their bodies' solver indices;
+/// the others are dropped, the kept ones moving down in order. Then the contact solver's preparation.
+pub(crate) fn build_contacts(
+    bodies: &BodySet,
+    s: &mut Scratch,
+    ctx: &StepContext,
+    report: &mut StepReport,
+) {
+    s.contact_sources.clear();
+    let mut kept = 0;
+    for source in 0..s.manifolds.len().min(s.contacts.len()) {
+        let (handle_a, handle_b) = (s.manifolds[source].body_a, s.manifolds[source].body_b);
+        let ia = solver_index_of(s, bodies, handle_a);
+        let ib = solver_index_of(s, bodies, handle_b);
+        let (Some(ia), Some(ib)) = (ia, ib) else {
+            continue;
+        };
+        if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
+            continue;
+        }
+        if kept != source {
+            s.contacts.swap(kept, source);
+        }
+        let contact = &mut s.contacts[kept];
+        kept += 1;
+        (contact.body_a, contact.body_b) = (ia, ib);
+        report.contact_point_count += contact.point_count;
+        s.contact_sources.push(source);
+    }
+    s.contacts.truncate(kept);
+    report.contact_count = s.contacts.len();
+    report.rejected_contact_count +=
+        s.contact_solver
+            .prepare(&s.contacts, &s.states, &s.params, ctx);
+}
+
+/// Stage *prepare*, part 3: joints whose bodies are awake (or fixed), then the joint solver's preparation.
+pub(crate) fn build_joints(
+    state: &WorldState,
+    s: &mut Scratch,
+    ctx: &StepContext,
+    report: &mut StepReport,
+) {
+    s.joints.clear();
+    s.joint_states.clear();
+    s.joint_bodies.clear();
+    s.joint_handles.clear();
+    let mut world_anchor: Option<usize> = None;
+    for (index, entry) in state.joints.iter() {
+        if entry.state.broken {
+            continue;
+        }
+        let Some(b) = solver_index_of(s, &state.bodies, entry.body_b) else {
+            continue;
+        };
+        let a = match entry.body_a {
+            Some(handle) => match solver_index_of(s, &state.bodies, handle) {
+                Some(a) => a,
+                None => continue,
+            },
+            None => *world_anchor.get_or_insert_with(|| {
+                let index = s.states.len();
+                s.solver_handles.push(None);
+                s.states.push(SolverBody::STATIC);
+                s.params.push(BodyParams::WORLD);
+                index
+            }),
+        };
+        if !s.params[a].is_dynamic() && !s.params[b].is_dynamic() {
+            continue;
+        }
+        s.joints.push(entry.joint);
+        s.joint_states.push(entry.state);
+        s.joint_bodies.push(JointBodies { a, b });
+        s.joint_handles.push(JointHandle(index));
+    }
+    report.joint_count = s.joints.len();
+    if s.joint_solver.settings() != &state.settings.joints {
+        // `WorldSettings` are validated whenever they are set, so this cannot fail.
+        let applied = s.joint_solver.set_settings(state.settings.joints);
+        debug_assert!(applied.is_ok(), "world settings are validated on entry");
+    }
+    let skipped = s.joint_solver.prepare(
+        &s.joints,
+        &s.joint_states,
+        &s.joint_bodies,
+        &s.states,
+        &s.params,
+        ctx,
+    );
+    debug_assert_eq!(
+        skipped, 0,
+        "the world hands the joint solver only valid joints"
+    );
+}
