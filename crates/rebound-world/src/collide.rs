@@ -9,7 +9,7 @@ use crate::manifold::{CollisionBackend, ContactManifold, MAX_MANIFOLD_POINTS, Ma
 use crate::scratch::Scratch;
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
-use rebound_dynamics::{Contact, ContactPoint, RigidBody};
+use rebound_dynamics::RigidBody;
 use rebound_math::{Mat3, Vec3};
 
 /// The backend's manifolds for the current poses into `s.manifolds`, sorted, validated and warm-started, with
@@ -50,8 +50,6 @@ pub(crate) fn collide<B: CollisionBackend>(
     // manifold is dropped, the kept ones move down over it in order.
     let mut speeds = core::mem::take(&mut s.approach_speeds);
     speeds.clear();
-    let mut contacts = core::mem::take(&mut s.contacts);
-    contacts.clear();
     let mut rotations = core::mem::take(&mut s.rotations);
     rotations.resize(bodies.slot_count(), (0, Mat3::IDENTITY));
     s.collide_calls += 1;
@@ -93,20 +91,6 @@ pub(crate) fn collide<B: CollisionBackend>(
         );
         let count = manifold.point_count.min(MAX_MANIFOLD_POINTS);
         let old_points = old.map_or(&[][..], ContactManifold::points);
-        // The solver's contact is written here, with the points in cache, its bodies' solver indices
-        // left for `build_contacts` (they are known once waking is done); in place in the list (a contact
-        // is 232 bytes: building it on the stack and pushing it copied each one once more).
-        contacts.push(Contact::new(
-            usize::MAX,
-            usize::MAX,
-            manifold.normal,
-            manifold.friction,
-            manifold.restitution,
-        ));
-        let Some(contact) = contacts.last_mut() else {
-            continue;
-        };
-        contact.rolling_friction = manifold.rolling_friction;
         let rotations = [
             rotation_of(manifold.body_a, body_a),
             rotation_of(manifold.body_b, body_b),
@@ -124,20 +108,10 @@ pub(crate) fn collide<B: CollisionBackend>(
                 point.normal_impulse = previous.normal_impulse;
                 point.tangent_impulse = previous.tangent_impulse;
             }
-            let [anchor_a, anchor_b] = point.solver_lever_arms.unwrap_or(fresh);
-            contact.push_point(ContactPoint {
-                anchor_a,
-                anchor_b,
-                separation: point.separation,
-                normal_impulse: point.normal_impulse,
-                tangent_impulse: point.tangent_impulse,
-                feature_id: point.feature_id,
-            });
         }
     }
     let rejected = manifolds.len() - kept;
     manifolds.truncate(kept);
-    s.contacts = contacts;
     s.rotations = rotations;
     s.approach_speeds = speeds;
     s.manifolds = manifolds;

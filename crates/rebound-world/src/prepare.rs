@@ -11,7 +11,7 @@ use crate::report::StepReport;
 use crate::scratch::{NO_INDEX, Scratch};
 use crate::state::WorldState;
 use rebound_constraints::JointBodies;
-use rebound_dynamics::{BodyParams, BodyType, SolverBody, StepContext};
+use rebound_dynamics::{BodyParams, BodyType, Contact, ContactPoint, SolverBody, StepContext};
 
 /// Stage *prepare*, part 1: the dense solver arrays. Awake moving bodies in handle order get indices
 /// first; fixed bodies are added when a contact or joint needs them; the world anchor (a fixed body at the
@@ -54,18 +54,18 @@ fn solver_index_of(scratch: &mut Scratch, bodies: &BodySet, handle: BodyHandle) 
     Some(index)
 }
 
-/// Stage *prepare*, part 2: the contacts between an awake body and anything it can push (the collide stage
-/// wrote one per manifold, with anchors relative to the centres of mass) get their bodies' solver indices;
-/// the others are dropped, the kept ones moving down in order. Then the contact solver's preparation.
+/// Stage *prepare*, part 2: a solver contact for each manifold between an awake body and anything it can
+/// push (anchors relative to the centres of mass: the lever arms the *collide* stage chose), with its bodies'
+/// solver indices; then the contact solver's preparation.
 pub(crate) fn build_contacts(
     bodies: &BodySet,
     s: &mut Scratch,
     ctx: &StepContext,
     report: &mut StepReport,
 ) {
+    s.contacts.clear();
     s.contact_sources.clear();
-    let mut kept = 0;
-    for source in 0..s.manifolds.len().min(s.contacts.len()) {
+    for source in 0..s.manifolds.len() {
         let (handle_a, handle_b) = (s.manifolds[source].body_a, s.manifolds[source].body_b);
         let ia = solver_index_of(s, bodies, handle_a);
         let ib = solver_index_of(s, bodies, handle_b);
@@ -75,16 +75,36 @@ pub(crate) fn build_contacts(
         if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
             continue;
         }
-        if kept != source {
-            s.contacts.swap(kept, source);
+        let manifold = &s.manifolds[source];
+        // Written in place in the list, point by point (not built aside and moved in).
+        s.contacts.push(Contact::new(
+            ia,
+            ib,
+            manifold.normal,
+            manifold.friction,
+            manifold.restitution,
+        ));
+        let Some(contact) = s.contacts.last_mut() else {
+            continue;
+        };
+        contact.rolling_friction = manifold.rolling_friction;
+        for point in manifold.points() {
+            // The collide stage chose every point's lever arms.
+            let Some([anchor_a, anchor_b]) = point.solver_lever_arms else {
+                continue;
+            };
+            contact.push_point(ContactPoint {
+                anchor_a,
+                anchor_b,
+                separation: point.separation,
+                normal_impulse: point.normal_impulse,
+                tangent_impulse: point.tangent_impulse,
+                feature_id: point.feature_id,
+            });
         }
-        let contact = &mut s.contacts[kept];
-        kept += 1;
-        (contact.body_a, contact.body_b) = (ia, ib);
         report.contact_point_count += contact.point_count;
         s.contact_sources.push(source);
     }
-    s.contacts.truncate(kept);
     report.contact_count = s.contacts.len();
     report.rejected_contact_count +=
         s.contact_solver
