@@ -2,7 +2,7 @@
 //! Not part of the world's state (a snapshot leaves them out), except the joint solver's kept rows, which
 //! the snapshot reads through it. Grouped below by the stage that writes each buffer.
 
-use crate::events::Event;
+use crate::events::EventBuffers;
 use crate::handles::{BodyHandle, JointHandle};
 use crate::manifold::ContactManifold;
 use crate::union_find::UnionFind;
@@ -68,10 +68,5 @@ pub(crate) struct Scratch {
     pub(crate) to_wake: Vec<BodyHandle>,
 
     // ---- events ----
-    /// Touching body pairs of this step, sorted.
-    pub(crate) touching: Vec<(BodyHandle, BodyHandle)>,
-    /// Touching body pairs of this step with their approach speeds.
-    pub(crate) touching_speeds: Vec<((BodyHandle, BodyHandle), f32)>,
-    /// Buffer for the contact events of a step.
-    pub(crate) contact_events: Vec<Event>,
+    pub(crate) events: EventBuffers,
 }

@@ -78,7 +78,14 @@ impl<B: CollisionBackend> World<B> {
         phase = Instant::now();
         store::write_back(&mut state.bodies, s);
         islands::update_sleep(state, s, events, dt);
-        events::emit_events(state, s, events, woken);
+        events::emit_events(
+            state,
+            &s.pushed,
+            &s.approach_speeds,
+            &mut s.events,
+            events,
+            woken,
+        );
         state.step_count += 1;
         profile.finalize = phase.elapsed();
 
