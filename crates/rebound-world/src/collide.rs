@@ -6,22 +6,40 @@
 use crate::body_set::BodySet;
 use crate::handles::BodyHandle;
 use crate::manifold::{CollisionBackend, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint};
-use crate::scratch::Scratch;
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
 use rebound_dynamics::RigidBody;
 use rebound_math::{Mat3, Vec3};
 
-/// The backend's manifolds for the current poses into `s.manifolds`, sorted, validated and warm-started, with
-/// their approach speeds (`s.approach_speeds`) and solver contacts (`s.contacts`, their bodies' solver
-/// indices left for the *prepare* stage). Returns how many manifolds were unusable and dropped.
+/// This step's manifolds and what the stages after *collide* learn about each, reused from step to step.
+#[derive(Debug, Default)]
+pub(crate) struct Collision {
+    /// The backend's manifolds of this step, validated and warm-started, sorted by order key. After the
+    /// *store* stage (which swaps them with the world's), last step's.
+    pub(crate) manifolds: Vec<ContactManifold>,
+    /// For each manifold of this step, the approach speed of its bodies before the step (m/s, ≥ 0; 0 where
+    /// neither the events nor waking need it): the contact events' speed and the waking test.
+    pub(crate) approach_speeds: Vec<f32>,
+    /// For each manifold of this step, whether the solver pushed with it (written by *store*): a contact that
+    /// touched during the step, even one that bounced off and ended with no accumulated impulse.
+    pub(crate) pushed: Vec<bool>,
+    /// Body slot → the rotation matrix of the body's orientation and the collide call that computed it
+    /// (`collide_calls`): each body's matrix is computed once per collide stage, at its first manifold.
+    rotations: Vec<(u64, Mat3)>,
+    /// How many collide stages ran (so that a matrix of an earlier one is never read as current).
+    collide_calls: u64,
+}
+
+/// The backend's manifolds for the current poses into `c.manifolds`, sorted, validated and warm-started
+/// (impulses, and the lever arms each point's solver contact will use), with their approach speeds
+/// (`c.approach_speeds`). Returns how many manifolds were unusable and dropped.
 pub(crate) fn collide<B: CollisionBackend>(
     backend: &mut B,
     state: &WorldState,
     dt: f32,
-    s: &mut Scratch,
+    c: &mut Collision,
 ) -> usize {
-    let mut manifolds = core::mem::take(&mut s.manifolds);
+    let mut manifolds = core::mem::take(&mut c.manifolds);
     manifolds.clear();
     backend.collide(
         &state.bodies,
@@ -48,12 +66,12 @@ pub(crate) fn collide<B: CollisionBackend>(
     //
     // The walk also validates (one pass over the manifolds, and the bodies looked up once): an unusable
     // manifold is dropped, the kept ones move down over it in order.
-    let mut speeds = core::mem::take(&mut s.approach_speeds);
+    let mut speeds = core::mem::take(&mut c.approach_speeds);
     speeds.clear();
-    let mut rotations = core::mem::take(&mut s.rotations);
+    let mut rotations = core::mem::take(&mut c.rotations);
     rotations.resize(bodies.slot_count(), (0, Mat3::IDENTITY));
-    s.collide_calls += 1;
-    let call = s.collide_calls;
+    c.collide_calls += 1;
+    let call = c.collide_calls;
     // A body's rotation matrix, computed at its first manifold of the stage: a point's lever arm is then
     // one matrix product, `R·(p_local − c_local)`, where rotating the point and the centre of mass by the
     // quaternion took two rotations of twice the arithmetic.
@@ -112,9 +130,9 @@ pub(crate) fn collide<B: CollisionBackend>(
     }
     let rejected = manifolds.len() - kept;
     manifolds.truncate(kept);
-    s.rotations = rotations;
-    s.approach_speeds = speeds;
-    s.manifolds = manifolds;
+    c.rotations = rotations;
+    c.approach_speeds = speeds;
+    c.manifolds = manifolds;
     rejected
 }
 

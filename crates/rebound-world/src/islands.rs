@@ -8,12 +8,30 @@
 //! touches or is about to hit a sleeping one, or is jointed to it, wakes it after *collide*.
 
 use crate::body_set::{BodyEntry, BodySet, NO_ISLAND};
+use crate::collide::Collision;
 use crate::events::Event;
 use crate::handles::BodyHandle;
-use crate::scratch::Scratch;
+use crate::prepare::Solver;
 use crate::state::WorldState;
+use crate::union_find::UnionFind;
 use rebound_dynamics::{BodyParams, BodyType, Motion};
 use rebound_math::Vec3;
+
+/// The buffers of the waking and sleep stages, reused from step to step.
+#[derive(Debug, Default)]
+pub(crate) struct SleepBuffers {
+    union_find: UnionFind,
+    /// Solver index → whether the body has rested long enough to sleep.
+    can_rest: Vec<bool>,
+    /// Island root → whether every member may sleep.
+    island_ok: Vec<bool>,
+    /// Pairs of solver indices in the same island.
+    links: Vec<(u32, u32)>,
+    /// (island root, body) of the bodies falling asleep.
+    sleepers: Vec<(u32, BodyHandle)>,
+    /// Bodies to wake.
+    to_wake: Vec<BodyHandle>,
+}
 
 /// A fresh sleeping-island id.
 pub(crate) fn new_island(state: &mut WorldState) -> u32 {
@@ -56,10 +74,10 @@ pub(crate) fn wake_island_of(
 pub(crate) fn wake_changed_bodies(
     state: &mut WorldState,
     woken: &mut Vec<BodyHandle>,
-    s: &mut Scratch,
+    buffers: &mut SleepBuffers,
 ) {
     // Reuses the wake buffer of the touch test: no allocation per step.
-    let mut changed = core::mem::take(&mut s.to_wake);
+    let mut changed = core::mem::take(&mut buffers.to_wake);
     changed.clear();
     changed.extend(
         state
@@ -72,7 +90,7 @@ pub(crate) fn wake_changed_bodies(
     for &handle in &changed {
         wake_island_of(state, woken, handle);
     }
-    s.to_wake = changed;
+    buffers.to_wake = changed;
 }
 
 /// Waking by touch and by joints, after *collide*: an awake moving body that touches a sleeping one, or
@@ -81,7 +99,8 @@ pub(crate) fn wake_changed_bodies(
 pub(crate) fn wake_touched(
     state: &mut WorldState,
     woken: &mut Vec<BodyHandle>,
-    s: &mut Scratch,
+    c: &Collision,
+    buffers: &mut SleepBuffers,
     dt: f32,
 ) {
     // Nothing to do when no body sleeps (always so with sleeping off): one scan of the bodies instead of a
@@ -89,10 +108,10 @@ pub(crate) fn wake_touched(
     if !state.bodies.iter().any(|(_, body)| body.is_sleeping()) {
         return;
     }
-    let mut to_wake = core::mem::take(&mut s.to_wake);
+    let mut to_wake = core::mem::take(&mut buffers.to_wake);
     loop {
         to_wake.clear();
-        for (m, &speed) in s.manifolds.iter().zip(&s.approach_speeds) {
+        for (m, &speed) in c.manifolds.iter().zip(&c.approach_speeds) {
             // Touching, or closing the gap within this step: a sleeping body about to be hit must be in
             // the solver when the hit comes.
             let gap = m
@@ -119,21 +138,22 @@ pub(crate) fn wake_touched(
             wake_island_of(state, woken, handle);
         }
     }
-    s.to_wake = to_wake;
+    buffers.to_wake = to_wake;
 }
 
 /// Stage *islands and sleep*: rest timers, then islands of awake bodies linked by touching contacts and
 /// joints; an island whose bodies have all rested long enough falls asleep.
 pub(crate) fn update_sleep(
     state: &mut WorldState,
-    s: &mut Scratch,
+    s: &Solver,
+    buffers: &mut SleepBuffers,
     events: &mut Vec<Event>,
     dt: f32,
 ) {
     let settings = state.settings;
     let n = s.solver_handles.len();
     // Rest timers of the awake moving bodies; `can_rest[i]` is false for bodies that keep an island awake.
-    let mut can_rest = core::mem::take(&mut s.can_rest);
+    let mut can_rest = core::mem::take(&mut buffers.can_rest);
     can_rest.clear();
     can_rest.resize(n, false);
     for (i, handle) in s.solver_handles.iter().enumerate() {
@@ -155,13 +175,13 @@ pub(crate) fn update_sleep(
     }
     if !can_rest.contains(&true) {
         // No island can fall asleep (sleeping off, or everything moving): no islands to build.
-        s.can_rest = can_rest;
+        buffers.can_rest = can_rest;
         return;
     }
-    s.union_find.reset(n);
+    buffers.union_find.reset(n);
     // Only dynamic bodies link islands: fixed and kinematic bodies are shared by many islands.
     let moving = |i: usize| s.params.get(i).is_some_and(BodyParams::is_dynamic);
-    let mut links = core::mem::take(&mut s.links);
+    let mut links = core::mem::take(&mut buffers.links);
     links.clear();
     // Every manifold links its bodies, speculative ones too: bodies within the speculative margin of
     // each other can meet within a step, so they sleep and wake together (a row of balls 1 mm apart
@@ -177,21 +197,21 @@ pub(crate) fn update_sleep(
         }
     }
     for &(a, b) in &links {
-        s.union_find.union(a, b);
+        buffers.union_find.union(a, b);
     }
-    s.links = links;
+    buffers.links = links;
     // An island may sleep only if every member may.
-    let mut island_ok = core::mem::take(&mut s.island_ok);
+    let mut island_ok = core::mem::take(&mut buffers.island_ok);
     island_ok.clear();
     island_ok.resize(n, true);
     for (i, &rest) in can_rest.iter().enumerate() {
         if s.params.get(i).is_some_and(|p| p.motion != Motion::Fixed) {
-            let root = s.union_find.find(i as u32) as usize;
+            let root = buffers.union_find.find(i as u32) as usize;
             island_ok[root] &= rest;
         }
     }
-    s.can_rest = can_rest;
-    let mut sleepers = core::mem::take(&mut s.sleepers);
+    buffers.can_rest = can_rest;
+    let mut sleepers = core::mem::take(&mut buffers.sleepers);
     sleepers.clear();
     for i in 0..n {
         let Some(handle) = s.solver_handles[i] else {
@@ -200,12 +220,12 @@ pub(crate) fn update_sleep(
         if s.params[i].motion == Motion::Fixed {
             continue;
         }
-        let root = s.union_find.find(i as u32);
+        let root = buffers.union_find.find(i as u32);
         if island_ok[root as usize] {
             sleepers.push((root, handle));
         }
     }
-    s.island_ok = island_ok;
+    buffers.island_ok = island_ok;
     // Roots are the lowest solver index of each island, handles are in handle order: deterministic.
     sleepers.sort_unstable();
     let mut current_root = None;
@@ -230,7 +250,7 @@ pub(crate) fn update_sleep(
         }
         events.push(Event::BodyFellAsleep { body: handle });
     }
-    s.sleepers = sleepers;
+    buffers.sleepers = sleepers;
 }
 
 /// If exactly one of two bodies is awake and moving and the other asleep, the sleeper must wake.

@@ -7,16 +7,49 @@
 
 use crate::body_set::BodySet;
 use crate::handles::{BodyHandle, JointHandle};
+use crate::manifold::ContactManifold;
 use crate::report::StepReport;
-use crate::scratch::{NO_INDEX, Scratch};
 use crate::state::WorldState;
-use rebound_constraints::JointBodies;
-use rebound_dynamics::{BodyParams, BodyType, Contact, ContactPoint, SolverBody, StepContext};
+use rebound_constraints::{Joint, JointBodies, JointSolver, JointState};
+use rebound_dynamics::{
+    BodyParams, BodyType, Contact, ContactPoint, ContactSolver, SolverBody, StepContext,
+};
+
+/// Body slot → solver index: no solver index (a sleeping body, or a fixed one no constraint needs).
+const NO_INDEX: u32 = u32::MAX;
+
+/// The solver of a step: the dense body arrays, the constraints on them and the contact and joint solvers.
+/// Built by *prepare*, solved by the solver passes, read back by *store*, *finalize* and *islands and sleep*;
+/// the buffers are reused from step to step. The joint solver also keeps rows across the step boundary (see
+/// `rebound_constraints::direct`), which snapshots save.
+#[derive(Debug, Default)]
+pub(crate) struct Solver {
+    /// Body slot → solver index, or [`NO_INDEX`].
+    solver_index: Vec<u32>,
+    /// Solver index → body handle (`None` for the world anchor entry).
+    pub(crate) solver_handles: Vec<Option<BodyHandle>>,
+    /// Solver index → the body's solver state (velocities, pose deltas).
+    pub(crate) states: Vec<SolverBody>,
+    /// Solver index → the body's constant parameters for the step (mass, inertia, gravity, damping).
+    pub(crate) params: Vec<BodyParams>,
+    /// Solver contacts and, for each, the manifold it came from.
+    pub(crate) contacts: Vec<Contact>,
+    pub(crate) contact_sources: Vec<usize>,
+    /// Joints handed to the solver, their states and bodies, and the handles they came from.
+    pub(crate) joints: Vec<Joint>,
+    pub(crate) joint_states: Vec<JointState>,
+    pub(crate) joint_bodies: Vec<JointBodies>,
+    pub(crate) joint_handles: Vec<JointHandle>,
+    /// Indices (into `joints`) of the joints that broke this step (written by *store*).
+    pub(crate) broken: Vec<usize>,
+    pub(crate) contact_solver: ContactSolver,
+    pub(crate) joint_solver: JointSolver,
+}
 
 /// Stage *prepare*, part 1: the dense solver arrays. Awake moving bodies in handle order get indices
 /// first; fixed bodies are added when a contact or joint needs them; the world anchor (a fixed body at the
 /// origin) last, if a world joint exists.
-pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Scratch) {
+pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
     s.solver_index.clear();
     s.solver_index.resize(bodies.slot_count(), NO_INDEX);
     s.solver_handles.clear();
@@ -36,9 +69,9 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Scratch) {
 
 /// The solver index of `handle`, adding a fixed body on first use. `None` for sleeping bodies (whose
 /// constraints wait) and stale handles.
-fn solver_index_of(scratch: &mut Scratch, bodies: &BodySet, handle: BodyHandle) -> Option<usize> {
+fn solver_index_of(s: &mut Solver, bodies: &BodySet, handle: BodyHandle) -> Option<usize> {
     let slot = BodySet::slot(handle);
-    let existing = *scratch.solver_index.get(slot)?;
+    let existing = *s.solver_index.get(slot)?;
     if existing != NO_INDEX {
         return Some(existing as usize);
     }
@@ -46,11 +79,11 @@ fn solver_index_of(scratch: &mut Scratch, bodies: &BodySet, handle: BodyHandle) 
     if body.body_type() != BodyType::Fixed {
         return None;
     }
-    let index = scratch.states.len();
-    scratch.solver_index[slot] = index as u32;
-    scratch.solver_handles.push(Some(handle));
-    scratch.states.push(SolverBody::STATIC);
-    scratch.params.push(BodyParams::from_body(body));
+    let index = s.states.len();
+    s.solver_index[slot] = index as u32;
+    s.solver_handles.push(Some(handle));
+    s.states.push(SolverBody::STATIC);
+    s.params.push(BodyParams::from_body(body));
     Some(index)
 }
 
@@ -59,23 +92,22 @@ fn solver_index_of(scratch: &mut Scratch, bodies: &BodySet, handle: BodyHandle) 
 /// solver indices; then the contact solver's preparation.
 pub(crate) fn build_contacts(
     bodies: &BodySet,
-    s: &mut Scratch,
+    manifolds: &[ContactManifold],
+    s: &mut Solver,
     ctx: &StepContext,
     report: &mut StepReport,
 ) {
     s.contacts.clear();
     s.contact_sources.clear();
-    for source in 0..s.manifolds.len() {
-        let (handle_a, handle_b) = (s.manifolds[source].body_a, s.manifolds[source].body_b);
-        let ia = solver_index_of(s, bodies, handle_a);
-        let ib = solver_index_of(s, bodies, handle_b);
+    for (source, manifold) in manifolds.iter().enumerate() {
+        let ia = solver_index_of(s, bodies, manifold.body_a);
+        let ib = solver_index_of(s, bodies, manifold.body_b);
         let (Some(ia), Some(ib)) = (ia, ib) else {
             continue;
         };
         if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
             continue;
         }
-        let manifold = &s.manifolds[source];
         // Written in place in the list, point by point (not built aside and moved in).
         s.contacts.push(Contact::new(
             ia,
@@ -114,7 +146,7 @@ pub(crate) fn build_contacts(
 /// Stage *prepare*, part 3: joints whose bodies are awake (or fixed), then the joint solver's preparation.
 pub(crate) fn build_joints(
     state: &WorldState,
-    s: &mut Scratch,
+    s: &mut Solver,
     ctx: &StepContext,
     report: &mut StepReport,
 ) {

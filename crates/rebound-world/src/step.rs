@@ -23,6 +23,7 @@
 
 use crate::manifold::CollisionBackend;
 use crate::report::{Profile, StepReport, StepSkipped};
+use crate::scratch::Scratch;
 use crate::world::World;
 use crate::{collide, events, islands, kinematic, prepare, solve, store};
 use rebound_dynamics::StepContext;
@@ -44,52 +45,59 @@ impl<B: CollisionBackend> World<B> {
         let start = Instant::now();
         let mut report = StepReport::default();
         let mut profile = Profile::default();
-        let (state, s, events, woken) = (
-            &mut self.state,
-            &mut self.scratch,
-            &mut self.events,
-            &mut self.woken,
-        );
+        let (state, events, woken) = (&mut self.state, &mut self.events, &mut self.woken);
+        let Scratch {
+            collision,
+            solver,
+            sleep,
+            events: event_buffers,
+        } = &mut self.scratch;
 
         let ctx = StepContext::new(dt, &state.settings.solver_settings());
         let mut phase = Instant::now();
         kinematic::apply_kinematic_targets(&mut state.bodies, dt);
-        islands::wake_changed_bodies(state, woken, s);
-        report.rejected_contact_count = collide::collide(&mut self.backend, state, dt, s);
-        islands::wake_touched(state, woken, s, dt);
+        islands::wake_changed_bodies(state, woken, sleep);
+        report.rejected_contact_count = collide::collide(&mut self.backend, state, dt, collision);
+        islands::wake_touched(state, woken, collision, sleep, dt);
         profile.collide = phase.elapsed();
 
         phase = Instant::now();
-        prepare::build_solver_bodies(&state.bodies, s);
-        prepare::build_contacts(&state.bodies, s, &ctx, &mut report);
-        prepare::build_joints(state, s, &ctx, &mut report);
+        prepare::build_solver_bodies(&state.bodies, solver);
+        prepare::build_contacts(
+            &state.bodies,
+            &collision.manifolds,
+            solver,
+            &ctx,
+            &mut report,
+        );
+        prepare::build_joints(state, solver, &ctx, &mut report);
         profile.prepare = phase.elapsed();
 
         phase = Instant::now();
-        solve::solve_substeps(s, &ctx);
-        solve::project_positions(s, &ctx);
+        solve::solve_substeps(solver, &ctx);
+        solve::project_positions(solver, &ctx);
         profile.solve = phase.elapsed();
 
         phase = Instant::now();
-        solve::apply_restitution(s, &ctx);
-        store::store_impulses(state, s, events, &mut report);
+        solve::apply_restitution(solver, &ctx);
+        store::store_impulses(state, collision, solver, events, &mut report);
         profile.restitution = phase.elapsed();
 
         phase = Instant::now();
-        store::write_back(&mut state.bodies, s);
-        islands::update_sleep(state, s, events, dt);
+        store::write_back(&mut state.bodies, solver);
+        islands::update_sleep(state, solver, sleep, events, dt);
         events::emit_events(
             state,
-            &s.pushed,
-            &s.approach_speeds,
-            &mut s.events,
+            &collision.pushed,
+            &collision.approach_speeds,
+            event_buffers,
             events,
             woken,
         );
         state.step_count += 1;
         profile.finalize = phase.elapsed();
 
-        report.count_bodies(&state.bodies, &s.solver_handles, &s.params);
+        report.count_bodies(&state.bodies, &solver.solver_handles, &solver.params);
         profile.total = start.elapsed();
         report.profile = profile;
         report

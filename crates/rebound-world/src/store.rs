@@ -4,24 +4,26 @@
 //! *finalize*) the poses and velocities of the solved bodies.
 
 use crate::body_set::BodySet;
+use crate::collide::Collision;
 use crate::events::Event;
+use crate::prepare::Solver;
 use crate::report::StepReport;
-use crate::scratch::Scratch;
 use crate::state::WorldState;
 
 /// Stage *store impulses*: manifolds keep theirs for the next step; joint states likewise; joints that
 /// exceeded their break limits are marked broken and reported.
 pub(crate) fn store_impulses(
     state: &mut WorldState,
-    s: &mut Scratch,
+    c: &mut Collision,
+    s: &mut Solver,
     events: &mut Vec<Event>,
     report: &mut StepReport,
 ) {
     // Straight into the manifolds (the solver's contacts are not read again): impulses for the next
     // step's warm start, and whether each manifold pushed (for the touching test of the events).
-    s.pushed.clear();
-    s.pushed.resize(s.manifolds.len(), false);
-    let (manifolds, pushed, sources) = (&mut s.manifolds, &mut s.pushed, &s.contact_sources);
+    c.pushed.clear();
+    c.pushed.resize(c.manifolds.len(), false);
+    let (manifolds, pushed, sources) = (&mut c.manifolds, &mut c.pushed, &s.contact_sources);
     s.contact_solver
         .for_each_point_result(|contact, k, normal, tangent, max| {
             let Some(&source) = sources.get(contact) else {
@@ -47,11 +49,11 @@ pub(crate) fn store_impulses(
             events.push(Event::JointBroken { joint: *handle });
         }
     }
-    core::mem::swap(&mut state.manifolds, &mut s.manifolds);
+    core::mem::swap(&mut state.manifolds, &mut c.manifolds);
 }
 
 /// Stage *finalize*: poses and velocities back into the bodies.
-pub(crate) fn write_back(bodies: &mut BodySet, s: &Scratch) {
+pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver) {
     for ((handle, state), params) in s.solver_handles.iter().zip(&s.states).zip(&s.params) {
         let Some(handle) = handle else { continue };
         if let Some(entry) = bodies.entry_mut(*handle) {

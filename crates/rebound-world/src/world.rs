@@ -516,7 +516,7 @@ impl<B: CollisionBackend> World<B> {
         WorldSnapshot {
             version: SNAPSHOT_VERSION,
             state: self.state.clone(),
-            joint_rows: self.scratch.joint_solver.kept_rows(),
+            joint_rows: self.scratch.solver.joint_solver.kept_rows(),
         }
     }
 
@@ -553,6 +553,7 @@ impl<B: CollisionBackend> World<B> {
         }
         self.state = snapshot.state.clone();
         self.scratch
+            .solver
             .joint_solver
             .restore_kept_rows(&snapshot.joint_rows);
         self.events.clear();
