@@ -141,8 +141,9 @@ pub(crate) fn wake_touched(
     buffers.to_wake = to_wake;
 }
 
-/// Stage *islands and sleep*: rest timers, then islands of awake bodies linked by touching contacts and
-/// joints; an island whose bodies have all rested long enough falls asleep.
+/// Stage *islands and sleep*, after write-back: rest timers of the solved bodies, then islands of awake
+/// bodies linked by contacts and joints (the solver's, `s`); an island whose bodies have all rested long
+/// enough falls asleep, and each of its bodies is reported (`BodyFellAsleep`).
 pub(crate) fn update_sleep(
     state: &mut WorldState,
     s: &Solver,
@@ -233,14 +234,13 @@ pub(crate) fn update_sleep(
     for &(root, handle) in &sleepers {
         if current_root != Some(root) {
             current_root = Some(root);
-            island_id = state.next_island;
-            state.next_island = state.next_island.wrapping_add(1);
+            island_id = new_island(state);
             state.islands.insert(island_id, Vec::new());
         }
         if let Some(entry) = state.bodies.entry_mut(handle) {
             entry.island = island_id;
-            entry.body.set_sleeping(true);
-            // A sleeping body is at rest: clear the residual velocity so that it wakes exactly as it slept.
+            // A sleeping body is at rest: clear the residual velocity so that it wakes exactly as it slept
+            // (the velocity setters wake a body, so the flag is set after them).
             let _ = entry.body.set_linear_velocity(Vec3::ZERO);
             let _ = entry.body.set_angular_velocity(Vec3::ZERO);
             entry.body.set_sleeping(true);

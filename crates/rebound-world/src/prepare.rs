@@ -15,13 +15,13 @@ use rebound_dynamics::{
     BodyParams, BodyType, Contact, ContactPoint, ContactSolver, SolverBody, StepContext,
 };
 
-/// Body slot → solver index: no solver index (a sleeping body, or a fixed one no constraint needs).
+/// The solver index of a body that has none (a sleeping body, or a fixed one no constraint needs).
 const NO_INDEX: u32 = u32::MAX;
 
 /// The solver of a step: the dense body arrays, the constraints on them and the contact and joint solvers.
 /// Built by *prepare*, solved by the solver passes, read back by *store*, *finalize* and *islands and sleep*;
-/// the buffers are reused from step to step. The joint solver also keeps rows across the step boundary (see
-/// `rebound_constraints::direct`), which snapshots save.
+/// the buffers are reused from step to step. The joint solver also keeps the rows of its directly solved
+/// joint paths across the step boundary, which snapshots save.
 #[derive(Debug, Default)]
 pub(crate) struct Solver {
     /// Body slot → solver index, or [`NO_INDEX`].
