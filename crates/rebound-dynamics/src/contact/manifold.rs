@@ -1,0 +1,100 @@
+//! The contact manifold as the collision stage hands it to the solver: [`Contact`] (two bodies by solver
+//! index, the normal, the combined material coefficients) and its up to [`MAX_CONTACT_POINTS`]
+//! [`ContactPoint`]s, which carry the warm-start impulses in and the step's impulses out. Input and output of
+//! the contact stages (*prepare* reads it, *store impulses* writes it).
+
+use rebound_math::Vec3;
+
+/// The most points a contact manifold carries (a face on a face needs four).
+pub const MAX_CONTACT_POINTS: usize = 4;
+
+/// One point of a contact manifold, as the collision stage reports it. `#[repr(C)]`: the contact lanes read
+/// it in 16-byte groups, in this field order.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[repr(C)]
+pub struct ContactPoint {
+    /// The contact point relative to body A's centre of mass at the start of the step, world axes (m).
+    pub anchor_a: Vec3,
+    /// The contact point relative to body B's centre of mass at the start of the step, world axes (m).
+    pub anchor_b: Vec3,
+    /// Signed distance between the surfaces along the normal (m): negative when they overlap, positive for a
+    /// speculative point not yet touching.
+    pub separation: f32,
+    /// Normal impulse (N·s): the warm-start value on input, the step's accumulated impulse after
+    /// [`ContactSolver::store_impulses`](crate::ContactSolver::store_impulses).
+    pub normal_impulse: f32,
+    /// Friction impulse as a world vector (N·s), likewise. Stored as a vector so that it survives a change of
+    /// tangent basis between steps.
+    pub tangent_impulse: Vec3,
+    /// Identifies the pair of features that touch, for matching points between steps (warm starting).
+    pub feature_id: u32,
+}
+
+/// A contact manifold between two bodies, as the collision stage reports it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// Index of body A in the solver arrays.
+    pub body_a: usize,
+    /// Index of body B in the solver arrays.
+    pub body_b: usize,
+    /// Unit normal from A to B.
+    pub normal: Vec3,
+    /// Combined friction coefficient μ (dimensionless, ≥ 0).
+    pub friction: f32,
+    /// Combined coefficient of restitution `C_r` (dimensionless, in `[0, 1]`).
+    pub restitution: f32,
+    /// Rolling resistance as a lever arm (m, ≥ 0): the relative angular velocity of the two bodies (rolling
+    /// and spinning) is resisted by a torque of at most `rolling_friction × normal force`. Default: 0 (ideal
+    /// rolling: a ball set rolling on flat ground rolls forever, as in rapier and Box2D's default).
+    pub rolling_friction: f32,
+    /// The points; only the first `point_count` are used.
+    pub points: [ContactPoint; MAX_CONTACT_POINTS],
+    /// How many points are in use (0 to [`MAX_CONTACT_POINTS`]).
+    pub point_count: usize,
+}
+
+impl Contact {
+    /// A manifold between bodies `body_a` and `body_b` with normal `normal` (unit, A → B) and no points yet.
+    #[must_use]
+    pub fn new(
+        body_a: usize,
+        body_b: usize,
+        normal: Vec3,
+        friction: f32,
+        restitution: f32,
+    ) -> Self {
+        Self {
+            body_a,
+            body_b,
+            normal,
+            friction,
+            restitution,
+            rolling_friction: 0.0,
+            points: [ContactPoint::default(); MAX_CONTACT_POINTS],
+            point_count: 0,
+        }
+    }
+
+    /// Sets the rolling resistance lever arm (m).
+    #[must_use]
+    pub fn with_rolling_friction(mut self, rolling_friction: f32) -> Self {
+        self.rolling_friction = rolling_friction;
+        self
+    }
+
+    /// Adds a point; returns `false` (and adds nothing) when the manifold is full.
+    pub fn push_point(&mut self, point: ContactPoint) -> bool {
+        if self.point_count == MAX_CONTACT_POINTS {
+            return false;
+        }
+        self.points[self.point_count] = point;
+        self.point_count += 1;
+        true
+    }
+
+    /// The points in use.
+    #[must_use]
+    pub fn points(&self) -> &[ContactPoint] {
+        &self.points[..self.point_count.min(MAX_CONTACT_POINTS)]
+    }
+}

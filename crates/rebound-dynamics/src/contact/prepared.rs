@@ -1,0 +1,84 @@
+//! What stage *prepare* makes of a manifold, shared by the scalar and the wide path: the manifold's header
+//! ([`PreparedContact`]: bodies, tangent basis, masses, softness, where its points and patch live) and what
+//! *prepare* reads ([`PrepareInput`]).
+
+use super::manifold::Contact;
+use crate::{BodyParams, Softness, SolverBody, StepContext};
+use rebound_math::Vec3;
+
+/// `first_point` of a manifold whose points live in a wide batch.
+pub(crate) const NO_POINTS: usize = usize::MAX;
+
+/// A prepared contact manifold. On the scalar path its points live in the solver's flat point array
+/// (`first_point .. first_point + point_count`), so a one-point manifold (a ball on the ground) costs one
+/// point, not four, and a pass streams no unused slots; on the wide path they live in its batch's lanes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PreparedContact {
+    /// Index of the source [`Contact`] in the slice given to `prepare`.
+    pub(crate) source: usize,
+    pub(crate) body_a: usize,
+    pub(crate) body_b: usize,
+    pub(crate) first_point: usize,
+    pub(crate) point_count: usize,
+    /// Index of the manifold's friction patch in the solver's patches (scalar path only).
+    pub(crate) patch: usize,
+    /// Index of the manifold's rolling-resistance block, or `None` without rolling friction.
+    pub(crate) rolling: Option<usize>,
+    pub(crate) normal: Vec3,
+    pub(crate) tangents: [Vec3; 2],
+    pub(crate) friction: f32,
+    pub(crate) restitution: f32,
+    pub(crate) inv_mass_a: f32,
+    pub(crate) inv_mass_b: f32,
+    pub(crate) softness: Softness,
+    /// Whether both bodies are moved by the solver (not fixed or kinematic).
+    pub(crate) both_dynamic: bool,
+}
+
+impl PreparedContact {
+    /// The header of `contact` (index `source` in the slice given to `prepare`) between bodies with
+    /// parameters `pa` and `pb`: a tangent basis for the normal, the bodies' inverse masses and the softness
+    /// of a contact between two moving bodies or against a fixed one. Its points and patch are placed later
+    /// (`first_point` and `patch` start as [`NO_POINTS`]).
+    pub(crate) fn new(
+        source: usize,
+        contact: &Contact,
+        pa: &BodyParams,
+        pb: &BodyParams,
+        rolling: Option<usize>,
+        ctx: &StepContext,
+    ) -> Self {
+        let normal = contact.normal;
+        let (t1, t2) = normal.any_orthonormal_pair();
+        let both_dynamic = pa.is_dynamic() && pb.is_dynamic();
+        Self {
+            source,
+            body_a: contact.body_a,
+            body_b: contact.body_b,
+            first_point: NO_POINTS,
+            point_count: contact.points().len(),
+            patch: NO_POINTS,
+            rolling,
+            normal,
+            tangents: [t1, t2],
+            friction: contact.friction,
+            restitution: contact.restitution,
+            inv_mass_a: pa.inv_mass,
+            inv_mass_b: pb.inv_mass,
+            softness: if both_dynamic {
+                ctx.contact_softness
+            } else {
+                ctx.static_softness
+            },
+            both_dynamic,
+        }
+    }
+}
+
+/// What *prepare* reads: the contacts as given and the bodies' start-of-step state.
+pub(crate) struct PrepareInput<'a> {
+    pub(crate) contacts: &'a [Contact],
+    pub(crate) bodies: &'a [SolverBody],
+    pub(crate) params: &'a [BodyParams],
+    pub(crate) ctx: &'a StepContext,
+}

@@ -1,0 +1,499 @@
+//! A batch of the wide contact path: up to four manifolds without a moving body in common, side by side in
+//! the four lanes of a `Vec4`. Built in stage *prepare* with the scalar path's formulas, lane by lane; its
+//! *warm start* and its passes (*solve*, *relax*) are the scalar path's equations in four lanes; its results
+//! are read back per manifold for *store impulses*.
+
+use super::lanes::{LANES, LaneStates, Mat3x4, PointLanes, Vec3x4, gather1, gather3};
+use crate::contact::bias::Bias;
+use crate::contact::manifold::ContactPoint;
+use crate::contact::patch::{PatchShare, patch_sums};
+use crate::contact::prepared::{PrepareInput, PreparedContact};
+use crate::{SolverBody, StepContext};
+use rebound_math::glam::BVec4A;
+use rebound_math::{Mat3, Vec3, Vec4};
+
+/// One point slot of a batch: a [`PreparedPoint`]'s solve data in each lane.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct PointX4 {
+    pub(crate) anchor_a: Vec3x4,
+    pub(crate) anchor_b: Vec3x4,
+    pub(crate) separation: Vec4,
+    pub(crate) normal_impulse: Vec4,
+    pub(crate) max_normal_impulse: Vec4,
+    pub(crate) normal_mass: Vec4,
+    /// The point's distance from the patch centre (m): its lever against twist.
+    pub(crate) twist_radius: Vec4,
+    pub(crate) rn_a: Vec3x4,
+    pub(crate) rn_b: Vec3x4,
+    pub(crate) wn_a: Vec3x4,
+    pub(crate) wn_b: Vec3x4,
+}
+
+/// A batch's friction patch in each lane: two tangent rows at the centre of the manifold's points and one
+/// twist row about the normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct PatchX4 {
+    /// The patch centre relative to body A's centre of mass (m).
+    pub(crate) center_a: Vec3x4,
+    /// `Σ|ρ|²` over the points, `ρ` a point's offset from the centre (m²).
+    pub(crate) spread: Vec4,
+    pub(crate) tangent_impulse: [Vec4; 2],
+    pub(crate) tangent_mass: [Vec4; 2],
+    pub(crate) rt_a: [Vec3x4; 2],
+    pub(crate) rt_b: [Vec3x4; 2],
+    pub(crate) wt_a: [Vec3x4; 2],
+    pub(crate) wt_b: [Vec3x4; 2],
+    pub(crate) twist_impulse: Vec4,
+    pub(crate) twist_mass: Vec4,
+    /// `I⁻¹·n` of each body.
+    pub(crate) twist_a: Vec3x4,
+    pub(crate) twist_b: Vec3x4,
+}
+
+impl PatchX4 {
+    /// No patch: zero impulses (what a batch without one reports).
+    pub(crate) const EMPTY: Self = Self {
+        center_a: Vec3x4::ZERO,
+        spread: Vec4::ZERO,
+        tangent_impulse: [Vec4::ZERO; 2],
+        tangent_mass: [Vec4::ZERO; 2],
+        rt_a: [Vec3x4::ZERO; 2],
+        rt_b: [Vec3x4::ZERO; 2],
+        wt_a: [Vec3x4::ZERO; 2],
+        wt_b: [Vec3x4::ZERO; 2],
+        twist_impulse: Vec4::ZERO,
+        twist_mass: Vec4::ZERO,
+        twist_a: Vec3x4::ZERO,
+        twist_b: Vec3x4::ZERO,
+    };
+}
+
+/// Up to four manifolds without a moving body in common, solved side by side.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Batch {
+    /// Indices of the manifolds (into the solver's prepared contacts); `lanes` of them are used.
+    pub(crate) contacts: [usize; LANES],
+    pub(crate) lanes: usize,
+    pub(crate) body_a: [usize; LANES],
+    pub(crate) body_b: [usize; LANES],
+    /// The batch's point slots in the solver's slot array: `first_slot .. first_slot + slots`, as many as
+    /// its largest manifold has points.
+    pub(crate) first_slot: usize,
+    pub(crate) slots: usize,
+    /// The batch's friction patch (index into the solver's patches).
+    pub(crate) patch: usize,
+    /// Whether some lane has two points or more (else no twist row).
+    pub(crate) twist: bool,
+    pub(crate) normal: Vec3x4,
+    pub(crate) tangents: [Vec3x4; 2],
+    pub(crate) friction: Vec4,
+    pub(crate) inv_mass_a: Vec4,
+    pub(crate) inv_mass_b: Vec4,
+    pub(crate) bias_rate: Vec4,
+    pub(crate) mass_scale: Vec4,
+    pub(crate) impulse_scale: Vec4,
+}
+
+impl Batch {
+    /// The batch of the manifolds `group` (one to four indices into `contacts`); its point slots are pushed
+    /// onto `slots`. The points are prepared in the lanes, with the scalar path's formulas in the same order of
+    /// operations (`PreparedPoint::new`: `r × n`, `I⁻¹·(r × n)`, `1/K`), so each lane holds bit for bit
+    /// what the scalar path would compute.
+    pub(crate) fn new(
+        group: &[usize],
+        contacts: &[PreparedContact],
+        input: &PrepareInput<'_>,
+        slots: &mut Vec<PointX4>,
+        patches: &mut Vec<PatchX4>,
+    ) -> Self {
+        let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
+        let lanes = [lane(0), lane(1), lane(2), lane(3)];
+        let headers = lanes.map(|c| c.copied().unwrap_or(EMPTY_LANE));
+        let first_slot = slots.len();
+        let slot_count = lanes
+            .iter()
+            .flatten()
+            .map(|c| c.point_count)
+            .max()
+            .unwrap_or(0);
+        let normal = gather3(&headers, |c| c.normal);
+        let tangents = [
+            gather3(&headers, |c| c.tangents[0]),
+            gather3(&headers, |c| c.tangents[1]),
+        ];
+        let inv_mass_a = gather1(&headers, |c| c.inv_mass_a);
+        let inv_mass_b = gather1(&headers, |c| c.inv_mass_b);
+        // Each lane's inverse world inertia, once per batch (every slot of a lane shares its bodies).
+        let inertia = |body: fn(&PreparedContact) -> usize| {
+            let m =
+                lanes.map(|c| c.map_or(Mat3::ZERO, |c| input.params[body(c)].inv_inertia_world));
+            Mat3x4 {
+                x_axis: Vec3x4::from_lanes(m.map(|m| m.x_axis)),
+                y_axis: Vec3x4::from_lanes(m.map(|m| m.y_axis)),
+                z_axis: Vec3x4::from_lanes(m.map(|m| m.z_axis)),
+            }
+        };
+        let (inertia_a, inertia_b) = (inertia(|c| c.body_a), inertia(|c| c.body_b));
+        let mass_sum = inv_mass_a + inv_mass_b;
+        let invert = |k: Vec4, present: BVec4A| {
+            Vec4::select(k.cmpgt(Vec4::ZERO) & present, Vec4::ONE / k, Vec4::ZERO)
+        };
+        // The patch centres, and the friction the points carry from the last step, lane by lane; in a batch of
+        // one-point manifolds (a pile of balls), the point itself and its friction — the same bits.
+        let single = slot_count == 1;
+        let mut sums = (!single).then(|| {
+            let sums = lanes.map(|c| {
+                c.map_or([Vec3::ZERO; 3], |c| {
+                    patch_sums(input.contacts[c.source].points())
+                })
+            });
+            [0, 1, 2].map(|k| gather3(&sums, |s| s[k]))
+        });
+        let present = gather1(&headers, |c| c.point_count as f32).cmpgt(Vec4::ZERO);
+        let (mut spread, mut warm_twist) = (Vec4::ZERO, Vec4::ZERO);
+        for slot in 0..slot_count {
+            let points = lanes.map(|c| c.and_then(|c| input.contacts[c.source].points().get(slot)));
+            let here = BVec4A::from_array(points.map(|p| p.is_some()));
+            let PointLanes {
+                anchor_a,
+                anchor_b,
+                separation,
+                normal_impulse,
+                friction,
+            } = PointLanes::of(points.map(|p| p.unwrap_or(&NO_POINT)));
+            let [center_a, _, _] = *sums.get_or_insert([anchor_a, anchor_b, friction]);
+            let rn_a = anchor_a.cross(&normal);
+            let rn_b = anchor_b.cross(&normal);
+            let wn_a = inertia_a.mul(&rn_a);
+            let wn_b = inertia_b.mul(&rn_b);
+            let normal_mass = invert(mass_sum + rn_a.dot(&wn_a) + rn_b.dot(&wn_b), here);
+            // A lone point is the centre: no lever, no spread.
+            let rho2 = if single {
+                Vec4::ZERO
+            } else {
+                let rho = anchor_a.sub(&center_a).select(here);
+                warm_twist += rho.cross(&friction).dot(&normal);
+                rho.dot(&rho)
+            };
+            spread += rho2;
+            slots.push(PointX4 {
+                anchor_a,
+                anchor_b,
+                separation,
+                normal_impulse: if input.ctx.warm_starting {
+                    normal_impulse
+                } else {
+                    Vec4::ZERO
+                },
+                max_normal_impulse: Vec4::ZERO,
+                normal_mass,
+                twist_radius: rho2.sqrt(),
+                rn_a,
+                rn_b,
+                wn_a,
+                wn_b,
+            });
+        }
+        let [center_a, center_b, warm_linear] = sums.unwrap_or([Vec3x4::ZERO; 3]);
+        let twist = lanes.iter().flatten().any(|c| c.point_count > 1);
+        let mut patch = PatchX4 {
+            center_a,
+            spread,
+            ..PatchX4::EMPTY
+        };
+        for (i, t) in tangents.iter().enumerate() {
+            patch.rt_a[i] = center_a.cross(t);
+            patch.rt_b[i] = center_b.cross(t);
+            patch.wt_a[i] = inertia_a.mul(&patch.rt_a[i]);
+            patch.wt_b[i] = inertia_b.mul(&patch.rt_b[i]);
+            patch.tangent_mass[i] = invert(
+                mass_sum + patch.rt_a[i].dot(&patch.wt_a[i]) + patch.rt_b[i].dot(&patch.wt_b[i]),
+                present,
+            );
+        }
+        // A batch of one-point manifolds has no twist row (no lever to resist twist with).
+        if twist {
+            patch.twist_a = inertia_a.mul(&normal);
+            patch.twist_b = inertia_b.mul(&normal);
+            patch.twist_mass = invert(
+                normal.dot(&patch.twist_a) + normal.dot(&patch.twist_b),
+                present,
+            );
+        }
+        if input.ctx.warm_starting {
+            patch.tangent_impulse = [warm_linear.dot(&tangents[0]), warm_linear.dot(&tangents[1])];
+            patch.twist_impulse = warm_twist;
+        }
+        let patch_index = patches.len();
+        patches.push(patch);
+        Self {
+            contacts: [0, 1, 2, 3].map(|i| group.get(i).copied().unwrap_or(0)),
+            lanes: group.len(),
+            body_a: headers.map(|c| c.body_a),
+            body_b: headers.map(|c| c.body_b),
+            first_slot,
+            slots: slot_count,
+            patch: patch_index,
+            twist,
+            normal,
+            tangents,
+            friction: gather1(&headers, |c| c.friction),
+            inv_mass_a,
+            inv_mass_b,
+            bias_rate: gather1(&headers, |c| c.softness.bias_rate),
+            mass_scale: gather1(&headers, |c| c.softness.mass_scale),
+            impulse_scale: gather1(&headers, |c| c.softness.impulse_scale),
+        }
+    }
+
+    /// One pass (solve or relax) over the batch: normal rows of every slot, then friction — the scalar
+    /// solve's equations in four lanes.
+    #[inline(never)]
+    pub(crate) fn solve(
+        &self,
+        slots: &mut [PointX4],
+        patches: &mut [PatchX4],
+        bodies: &mut [SolverBody],
+        ctx: &StepContext,
+        bias: Bias,
+    ) {
+        let points = &mut slots[self.first_slot..][..self.slots];
+        let (sa, sb) = (
+            self.states(&self.body_a, bodies),
+            self.states(&self.body_b, bodies),
+        );
+        let (la, lb) = (LaneStates::of(&sa), LaneStates::of(&sb));
+        let (mut va, mut wa, mut vb, mut wb) = (la.v, la.w, lb.v, lb.w);
+        let normal = self.normal;
+        // Separation terms, as in the scalar solve: n·(Δp_b − Δp_a) and Δq⁻¹·n − n per body.
+        let shift = normal.dot(&lb.dp.sub(&la.dp));
+        let turn_a = la.turn(&normal);
+        let turn_b = lb.turn(&normal);
+        let zero = Vec4::ZERO;
+        let one = Vec4::ONE;
+        let inv_h = Vec4::splat(ctx.inv_h);
+        let max_push = Vec4::splat(-ctx.max_push_out_speed);
+        let mut total = zero;
+        let mut twist_total = zero;
+        // The normal rows change the linear velocities only along n: the loop carries `u = n·(v_b − v_a)` and
+        // the sum of the applied impulses, and the velocities take that sum once after it (fewer live
+        // registers in the loop; the scalar path does the same).
+        let mut u = normal.dot(&vb.sub(&va));
+        let u_gain = (self.inv_mass_a + self.inv_mass_b) * normal.dot(&normal);
+        let mut pushed = zero;
+        for p in points.iter_mut() {
+            let s = p.separation + shift + turn_b.dot(&p.anchor_b) - turn_a.dot(&p.anchor_a);
+            let vn = u + wb.dot(&p.rn_b) - wa.dot(&p.rn_a);
+            let speculative: BVec4A = s.cmpgt(zero);
+            let (velocity_bias, mass_scale, impulse_scale) = match bias {
+                Bias::On => (
+                    Vec4::select(speculative, s * inv_h, (self.bias_rate * s).max(max_push)),
+                    Vec4::select(speculative, one, self.mass_scale),
+                    Vec4::select(speculative, zero, self.impulse_scale),
+                ),
+                Bias::Off => (Vec4::select(speculative, s * inv_h, zero), one, zero),
+            };
+            let delta = -p.normal_mass * mass_scale * (vn + velocity_bias)
+                - impulse_scale * p.normal_impulse;
+            let accumulated = (p.normal_impulse + delta).max(zero);
+            let applied = accumulated - p.normal_impulse;
+            p.normal_impulse = accumulated;
+            total += accumulated;
+            twist_total += accumulated * p.twist_radius;
+            p.max_normal_impulse = p.max_normal_impulse.max(applied);
+            pushed += applied;
+            u += applied * u_gain;
+            wa.sub_scaled(&p.wn_a, applied);
+            wb.add_scaled(&p.wn_b, applied);
+        }
+        va.sub_scaled(&normal, pushed * self.inv_mass_a);
+        vb.add_scaled(&normal, pushed * self.inv_mass_b);
+        let [t0, t1] = self.tangents;
+        // The patch's rows, limited by this pass's normal impulses.
+        if let Some(p) = patches.get_mut(self.patch) {
+            let dv = vb.sub(&va);
+            let vt0 = t0.dot(&dv) + wb.dot(&p.rt_b[0]) - wa.dot(&p.rt_a[0]);
+            let vt1 = t1.dot(&dv) + wb.dot(&p.rt_b[1]) - wa.dot(&p.rt_a[1]);
+            let x = p.tangent_impulse[0] - p.tangent_mass[0] * vt0;
+            let y = p.tangent_impulse[1] - p.tangent_mass[1] * vt1;
+            // Clamp to the friction circle (glam's `clamp_length_max`, lane by lane).
+            let limit = self.friction * total;
+            let length_squared = x * x + y * y;
+            let slipping = length_squared.cmpgt(limit * limit);
+            // Most patches of a resting pile stick: the square root and division (a long dependency chain)
+            // only when some lane slips. Multiplying by the kept lanes' 1 changes no bit, so this is the
+            // unbranched clamp's result.
+            let (x, y) = if slipping.any() {
+                let scale = Vec4::select(slipping, limit / length_squared.sqrt(), one);
+                (x * scale, y * scale)
+            } else {
+                (x, y)
+            };
+            let (ax, ay) = (x - p.tangent_impulse[0], y - p.tangent_impulse[1]);
+            p.tangent_impulse = [x, y];
+            let linear = t0.scale(ax).add(&t1.scale(ay));
+            va.sub_scaled(&linear, self.inv_mass_a);
+            vb.add_scaled(&linear, self.inv_mass_b);
+            wa.sub_scaled(&p.wt_a[0], ax);
+            wa.sub_scaled(&p.wt_a[1], ay);
+            wb.add_scaled(&p.wt_b[0], ax);
+            wb.add_scaled(&p.wt_b[1], ay);
+            if self.twist {
+                let spin = normal.dot(&wb.sub(&wa));
+                let limit = self.friction * twist_total;
+                let candidate = (p.twist_impulse - p.twist_mass * spin)
+                    .max(-limit)
+                    .min(limit);
+                let applied = candidate - p.twist_impulse;
+                p.twist_impulse = candidate;
+                wa.sub_scaled(&p.twist_a, applied);
+                wb.add_scaled(&p.twist_b, applied);
+            }
+        }
+        self.scatter(bodies, &va, &wa, &vb, &wb);
+    }
+
+    /// Stage *warm start* for the batch's manifolds: applies their accumulated impulses again.
+    pub(crate) fn warm_start(
+        &self,
+        slots: &[PointX4],
+        patches: &[PatchX4],
+        bodies: &mut [SolverBody],
+    ) {
+        let ((mut va, mut wa), (mut vb, mut wb)) = (
+            LaneStates::velocities(&self.states(&self.body_a, bodies)),
+            LaneStates::velocities(&self.states(&self.body_b, bodies)),
+        );
+        // All normal impulses act along n: their sum moves the linear velocities once.
+        let mut pushed = Vec4::ZERO;
+        for p in &slots[self.first_slot..][..self.slots] {
+            pushed += p.normal_impulse;
+            wa.sub_scaled(&p.wn_a, p.normal_impulse);
+            wb.add_scaled(&p.wn_b, p.normal_impulse);
+        }
+        va.sub_scaled(&self.normal, pushed * self.inv_mass_a);
+        vb.add_scaled(&self.normal, pushed * self.inv_mass_b);
+        if let Some(p) = patches.get(self.patch) {
+            let [t0, t1] = self.tangents;
+            let [x, y] = p.tangent_impulse;
+            let linear = t0.scale(x).add(&t1.scale(y));
+            va.sub_scaled(&linear, self.inv_mass_a);
+            vb.add_scaled(&linear, self.inv_mass_b);
+            wa.sub_scaled(&p.wt_a[0], x);
+            wa.sub_scaled(&p.wt_a[1], y);
+            wb.add_scaled(&p.wt_b[0], x);
+            wb.add_scaled(&p.wt_b[1], y);
+            if self.twist {
+                wa.sub_scaled(&p.twist_a, p.twist_impulse);
+                wb.add_scaled(&p.twist_b, p.twist_impulse);
+            }
+        }
+        self.scatter(bodies, &va, &wa, &vb, &wb);
+    }
+
+    /// The lanes' bodies, by reference (the transposes read the 16-byte groups they need, not whole states);
+    /// empty lanes see [`SolverBody::STATIC`].
+    #[inline(always)]
+    fn states<'a>(
+        &self,
+        index: &[usize; LANES],
+        bodies: &'a [SolverBody],
+    ) -> [&'a SolverBody; LANES] {
+        let lane = |k: usize| {
+            if k < self.lanes {
+                bodies.get(index[k]).unwrap_or(&SolverBody::STATIC)
+            } else {
+                &SolverBody::STATIC
+            }
+        };
+        [lane(0), lane(1), lane(2), lane(3)]
+    }
+
+    /// Writes the lanes' velocities back.
+    #[inline(always)]
+    fn scatter(
+        &self,
+        bodies: &mut [SolverBody],
+        va: &Vec3x4,
+        wa: &Vec3x4,
+        vb: &Vec3x4,
+        wb: &Vec3x4,
+    ) {
+        let (va, wa, vb, wb) = (va.lanes(), wa.lanes(), vb.lanes(), wb.lanes());
+        for lane in 0..self.lanes {
+            let a = &mut bodies[self.body_a[lane]];
+            a.linear_velocity = va[lane];
+            a.angular_velocity = wa[lane];
+            let b = &mut bodies[self.body_b[lane]];
+            b.linear_velocity = vb[lane];
+            b.angular_velocity = wb[lane];
+        }
+    }
+
+    /// For each lane: the manifold's index, and per point its accumulated normal impulse, its share of the
+    /// patch's friction (world vector, [`PatchShare`]) and its largest applied normal impulse.
+    pub(crate) fn results<'a>(
+        &'a self,
+        slots: &'a [PointX4],
+        patches: &'a [PatchX4],
+        contacts: &'a [PreparedContact],
+    ) -> impl Iterator<Item = (usize, impl Iterator<Item = (f32, Vec3, f32)> + 'a)> + 'a {
+        let points = &slots[self.first_slot..][..self.slots];
+        let patch = patches.get(self.patch).unwrap_or(&PatchX4::EMPTY);
+        self.contacts[..self.lanes]
+            .iter()
+            .enumerate()
+            .map(move |(lane, &index)| {
+                let c = &contacts[index];
+                let share = PatchShare::new(
+                    c.normal,
+                    c.tangents,
+                    [
+                        patch.tangent_impulse[0][lane],
+                        patch.tangent_impulse[1][lane],
+                    ],
+                    patch.twist_impulse[lane],
+                    patch.spread[lane],
+                    c.point_count,
+                );
+                let center = patch.center_a.lane(lane);
+                let impulses = points[..c.point_count].iter().map(move |w| {
+                    (
+                        w.normal_impulse[lane],
+                        share.at(w.anchor_a.lane(lane) - center),
+                        w.max_normal_impulse[lane],
+                    )
+                });
+                (index, impulses)
+            })
+    }
+}
+
+/// What an empty lane holds: zero masses, so it applies zero impulses.
+const EMPTY_LANE: PreparedContact = PreparedContact {
+    source: 0,
+    body_a: 0,
+    body_b: 0,
+    first_point: 0,
+    point_count: 0,
+    patch: 0,
+    rolling: None,
+    normal: Vec3::ZERO,
+    tangents: [Vec3::ZERO; 2],
+    friction: 0.0,
+    restitution: 0.0,
+    inv_mass_a: 0.0,
+    inv_mass_b: 0.0,
+    softness: crate::Softness::RIGID,
+    both_dynamic: false,
+};
+
+/// What an empty lane's point reads: zeros.
+const NO_POINT: ContactPoint = ContactPoint {
+    anchor_a: Vec3::ZERO,
+    anchor_b: Vec3::ZERO,
+    separation: 0.0,
+    normal_impulse: 0.0,
+    tangent_impulse: Vec3::ZERO,
+    feature_id: 0,
+};
