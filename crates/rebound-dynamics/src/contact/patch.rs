@@ -37,6 +37,7 @@ impl Patch {
     /// each body, the tangent rows there, the twist row, and the warm-start impulses recovered from the
     /// points' stored friction impulses ([`PatchShare`] in reverse: their sum, and their moment about the
     /// centre).
+    #[inline]
     pub(crate) fn new(
         input: &PrepareInput<'_>,
         c: &PreparedContact,

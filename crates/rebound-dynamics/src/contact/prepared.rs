@@ -40,6 +40,7 @@ impl PreparedContact {
     /// parameters `pa` and `pb`: a tangent basis for the normal, the bodies' inverse masses and the softness
     /// of a contact between two moving bodies or against a fixed one. Its points and patch are placed later
     /// (`first_point` and `patch` start as [`NO_POINTS`]).
+    #[inline]
     pub(crate) fn new(
         source: usize,
         contact: &Contact,

@@ -81,6 +81,7 @@ impl PreparedPoint {
     }
 
     /// [`PreparedPoint::new`] with the pre-step normal velocity, for the scalar path (which bounces).
+    #[inline]
     pub(crate) fn with_approach(
         input: &PrepareInput<'_>,
         c: &PreparedContact,
@@ -110,6 +111,7 @@ pub(crate) struct Rolling {
 impl Rolling {
     /// Stage *prepare*: the rolling block of a manifold with lever arm `friction` (m) between bodies with
     /// parameters `pa` and `pb`, with no impulse yet.
+    #[inline]
     pub(crate) fn new(friction: f32, pa: &BodyParams, pb: &BodyParams) -> Self {
         Self {
             friction,

@@ -99,6 +99,7 @@ impl Batch {
     /// onto `slots`. The points are prepared in the lanes, with the scalar path's formulas in the same order of
     /// operations (`PreparedPoint::new`: `r × n`, `I⁻¹·(r × n)`, `1/K`), so each lane holds bit for bit
     /// what the scalar path would compute.
+    #[inline]
     pub(crate) fn new(
         group: &[usize],
         contacts: &[PreparedContact],
