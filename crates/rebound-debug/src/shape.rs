@@ -99,7 +99,10 @@ fn height_field_points(
 
 /// The rows of a height field that `heights` holds completely (at most `rows`).
 fn sample_rows(rows: usize, cols: usize, heights: &[f32]) -> usize {
-    heights.len().checked_div(cols).map_or(0, |full| rows.min(full))
+    heights
+        .len()
+        .checked_div(cols)
+        .map_or(0, |full| rows.min(full))
 }
 
 /// Sample `(row, col)` of a height field with `rows` rows (collider frame), if it exists.
@@ -111,6 +114,9 @@ fn height_field_point(
     row: usize,
     col: usize,
 ) -> Option<Vec3> {
+    if row >= rows || col >= cols {
+        return None;
+    }
     let h = *heights.get(row.checked_mul(cols)?.checked_add(col)?)?;
     let fraction = |i: usize, n: usize| {
         if n > 1 {
@@ -221,15 +227,20 @@ impl Pen<'_> {
 /// circle.
 fn capsule_profile(radius: f32, half_height: f32, quarter: u32) -> Vec<(f32, f32)> {
     let step = FRAC_PI_2 / quarter as f32;
-    let bottom = (0..=quarter).map(|k| {
-        let phi = step * k as f32;
-        (radius * phi.sin(), -half_height - radius * phi.cos())
-    });
-    let top = (0..=quarter).map(|k| {
-        let phi = FRAC_PI_2 + step * k as f32;
-        (radius * phi.sin(), half_height - radius * phi.cos())
-    });
-    bottom.chain(top).collect()
+    // Angle φ from the bottom pole: (r·sin φ, −h − r·cos φ) on the lower cap, then the upper cap. The
+    // poles are set exactly (sin π is not 0 in floating point), so the triangles meeting there are
+    // exactly degenerate and left out.
+    let ring = |phi: f32, centre: f32| (radius * phi.sin(), centre - radius * phi.cos());
+    let bottom = (0..=quarter).map(|k| ring(step * k as f32, -half_height));
+    let top = (0..=quarter).map(|k| ring(FRAC_PI_2 + step * k as f32, half_height));
+    let mut profile: Vec<(f32, f32)> = bottom.chain(top).collect();
+    if let Some(first) = profile.first_mut() {
+        *first = (0.0, -half_height - radius);
+    }
+    if let Some(last) = profile.last_mut() {
+        *last = (0.0, half_height + radius);
+    }
+    profile
 }
 
 /// The edges of a triangle list, each once: `(i, j)` with `i < j`, sorted.
