@@ -15,7 +15,8 @@ use rebound_suite::scenes::{Balls, Scene, SceneOptions, balls};
 const SETTLE_STEPS: usize = 200;
 
 fn settled_pile() -> Balls {
-    let mut scene = Balls::new(SceneOptions::default(), balls::SIDE).expect("the balls scene builds");
+    let mut scene =
+        Balls::new(SceneOptions::default(), balls::SIDE).expect("the balls scene builds");
     for _ in 0..SETTLE_STEPS {
         scene.step();
     }
@@ -29,7 +30,11 @@ fn bench(c: &mut Criterion) {
     group.sample_size(20);
     let mut recorder = Recorder::new(world, std::io::sink()).expect("a sink never fails");
     group.bench_function("balls/record_frame", |b| {
-        b.iter(|| recorder.record(black_box(world)).expect("a sink never fails"));
+        b.iter(|| {
+            recorder
+                .record(black_box(world))
+                .expect("a sink never fails")
+        });
     });
     let mut bytes = Vec::new();
     let mut to_memory = Recorder::new(world, &mut bytes).expect("memory never fails");
