@@ -10,7 +10,7 @@ use crate::manifest::{
 };
 use rebound::{
     BodyHandle, ColliderDesc, ColliderHandle, Event, Joint, JointHandle, MassProperties,
-    PhysicsWorld, Quat, RigidBody, Vec3,
+    PhysicsWorld, Pose, Quat, RigidBody, Vec3,
 };
 
 /// A collider as last described to the file.
@@ -194,27 +194,32 @@ impl Tracker {
                 })
         }));
         frame.contacts.clear();
+        // The poses just sampled, by index: no second look-up of the bodies in the world.
+        let pose = |index: u32| {
+            frame
+                .bodies
+                .get(index as usize)
+                .map(|b| Pose::new(b.position, b.rotation))
+        };
         for manifold in world.contacts() {
-            let (Some(a), Some(b), Some(body_a), Some(body_b)) = (
-                self.body(manifold.body_a),
-                self.body(manifold.body_b),
-                world.body(manifold.body_a),
-                world.body(manifold.body_b),
-            ) else {
+            let (Some(a), Some(b)) = (self.body(manifold.body_a), self.body(manifold.body_b))
+            else {
                 continue;
             };
-            let (pose_a, pose_b) = (body_a.pose(), body_b.pose());
+            let (Some(pose_a), Some(pose_b)) = (pose(a), pose(b)) else {
+                continue;
+            };
             let count = manifold.point_count.min(manifold.points.len());
-            frame
-                .contacts
-                .extend(manifold.points[..count].iter().map(|p| ContactSample {
+            for p in &manifold.points[..count] {
+                frame.contacts.push(ContactSample {
                     body_a: a,
                     body_b: b,
                     point: p.world_point(pose_a, pose_b),
                     normal: manifold.normal,
                     normal_impulse: p.normal_impulse,
                     separation: p.separation,
-                }));
+                });
+            }
         }
         frame.joints.clear();
         let mut springs = 0.0;
