@@ -9,6 +9,7 @@ use rebound_math::Vec3;
 
 impl RigidBody {
     /// Linear momentum `p = m·v` (kg·m/s); zero for fixed and kinematic bodies.
+    #[inline]
     #[must_use]
     pub fn linear_momentum(&self) -> Vec3 {
         if self.is_dynamic() {
@@ -20,6 +21,7 @@ impl RigidBody {
 
     /// Spin angular momentum about the centre of mass, `I_w·ω` (kg·m²/s); zero for fixed and kinematic
     /// bodies.
+    #[inline]
     #[must_use]
     pub fn spin_angular_momentum(&self) -> Vec3 {
         if self.is_dynamic() {
@@ -31,12 +33,14 @@ impl RigidBody {
 
     /// Angular momentum about the world point `about` (kg·m²/s): spin `I_w·ω` plus orbit `(c − about) × m·v`;
     /// zero for fixed and kinematic bodies.
+    #[inline]
     #[must_use]
     pub fn angular_momentum(&self, about: Vec3) -> Vec3 {
         self.angular_momentum_with_spin(self.spin_angular_momentum(), about)
     }
 
     /// [`RigidBody::angular_momentum`] given the spin [`RigidBody::spin_angular_momentum`].
+    #[inline]
     fn angular_momentum_with_spin(&self, spin: Vec3, about: Vec3) -> Vec3 {
         if !self.is_dynamic() {
             return Vec3::ZERO;
@@ -45,12 +49,14 @@ impl RigidBody {
     }
 
     /// Kinetic energy `½·m·|v|² + ½·ωᵀ·I_w·ω` (J); zero for fixed and kinematic bodies.
+    #[inline]
     #[must_use]
     pub fn kinetic_energy(&self) -> f32 {
         self.kinetic_energy_with_spin(self.spin_angular_momentum())
     }
 
     /// [`RigidBody::kinetic_energy`] given the spin `I_w·ω`: `½·m·|v|² + ½·ω·(I_w·ω)`.
+    #[inline]
     fn kinetic_energy_with_spin(&self, spin: Vec3) -> f32 {
         if !self.is_dynamic() {
             return 0.0;
@@ -63,6 +69,7 @@ impl RigidBody {
     /// body's gravity scale and `c` its centre of mass in world space: zero at the height of the world
     /// origin, so for `g = (0, −g, 0)` it is `m·s·g·c_y`. Zero for fixed and kinematic bodies. With the
     /// kinetic energy it is conserved by a body in free flight (`dU/dt = −m·s·g·v = −dK/dt`).
+    #[inline]
     #[must_use]
     pub fn gravitational_potential_energy(&self, gravity: Vec3) -> f32 {
         if !self.is_dynamic() {

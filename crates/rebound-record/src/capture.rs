@@ -39,6 +39,8 @@ pub(crate) struct Tracker {
     collider_index: HandleIndex,
     /// By collider index; `None` once removed.
     colliders: Vec<Option<WrittenCollider>>,
+    /// How many entries of `colliders` are `Some`.
+    live_colliders: usize,
     joint_index: HandleIndex,
     joints: Vec<WrittenJoint>,
 }
@@ -95,10 +97,13 @@ impl Tracker {
                 }
             }
         }
+        // The world's colliders found among the live ones: if that is all of them, none was removed.
+        let mut seen = 0;
         for (handle, collider) in world.colliders().iter() {
             let Some(body) = self.body(collider.body()) else {
                 continue;
             };
+            seen += 1;
             match self.collider_index.get(handle.into_raw_parts()) {
                 None => changes
                     .colliders
@@ -117,12 +122,15 @@ impl Tracker {
                 }
             }
         }
-        for (index, slot) in self.colliders.iter_mut().enumerate() {
-            if let Some(known) = slot
-                && !world.colliders().contains(known.handle)
-            {
-                *slot = None;
-                changes.removed_colliders.push(index as u32);
+        if seen != self.live_colliders {
+            for (index, slot) in self.colliders.iter_mut().enumerate() {
+                if let Some(known) = slot
+                    && !world.colliders().contains(known.handle)
+                {
+                    *slot = None;
+                    self.live_colliders -= 1;
+                    changes.removed_colliders.push(index as u32);
+                }
             }
         }
         for (handle, joint) in world.world().joints() {
@@ -174,6 +182,7 @@ impl Tracker {
             body,
             desc: desc.clone(),
         }));
+        self.live_colliders += 1;
         collider_entry(index, body, desc)
     }
 
