@@ -1,7 +1,7 @@
 //! Pictures and plots of a Rebound simulation: a [`RenderScene`] (shaded solids, contacts, joints) seen from
 //! a [`Camera`] rendered to an [`Image`], saved as PNG or gathered into an animated GIF with
 //! [`GifWriter`]; and energy, momentum, joint error and penetration against time as SVG with
-//! SVG plots (to come).
+//! [`plot_svg`].
 //!
 //! ```no_run
 //! use rebound_render::{Camera, RenderOptions, RenderScene, render};
@@ -22,6 +22,7 @@ mod grid;
 mod image;
 mod mesh;
 mod overlay;
+mod plot;
 mod raster;
 mod render;
 mod scene;
@@ -33,5 +34,6 @@ pub use error::{PlotError, RenderError};
 pub use grid::Grid;
 pub use image::Image;
 pub use mesh::{DEFAULT_ROUND_SUBDIVISIONS, MAX_ROUND_SUBDIVISIONS, MIN_ROUND_SUBDIVISIONS, Mesh};
+pub use plot::{MAX_PLOT_SIDE, MIN_PLOT_SIDE, Panel, PlotOptions, Series, TimeHistory, plot_svg};
 pub use render::{RenderOptions, render};
 pub use scene::{ContactMark, FIXED_COLOUR, JointSegment, PALETTE, RenderScene, SceneObject};
