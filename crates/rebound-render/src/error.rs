@@ -29,6 +29,9 @@ pub enum RenderError {
     /// A shape description is invalid (the facade's own check, as when a collider is inserted).
     #[error("shape: {0}")]
     Shape(#[from] ShapeError),
+    /// A recording's descriptions or changes are inconsistent.
+    #[error("recording: {0}")]
+    Recording(#[from] rebound_record::RecordingError),
     /// A frame given to an animation is not of the animation's size.
     #[error(
         "frame is {width}×{height} pixels but the animation is {expected_width}×{expected_height}"
