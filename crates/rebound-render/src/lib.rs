@@ -30,7 +30,9 @@ mod render;
 mod scene;
 
 pub use animation::{GifWriter, MAX_FRAME_INTERVAL, MIN_FRAME_INTERVAL};
-pub use camera::{Camera, MAX_PICTURE_SIDE, NEAR_PLANE, Projection};
+pub use camera::{
+    Camera, FRAMING_DIRECTION, FRAMING_MARGIN, MAX_PICTURE_SIDE, NEAR_PLANE, Projection,
+};
 pub use colour::Rgba;
 pub use error::{PlotError, RenderError};
 pub use grid::Grid;
