@@ -64,8 +64,8 @@ pub enum PlotError {
     /// The time axis is empty.
     #[error("the time axis has no samples")]
     NoSamples,
-    /// A time is not finite or is less than the one before it.
-    #[error("time[{index}] is {value}: times must be finite and non-decreasing")]
+    /// A time is not finite, is beyond ±[`crate::MAX_PLOT_MAGNITUDE`] or is less than the one before it.
+    #[error("time[{index}] is {value}: times must be finite, within ±3.4e38 s and non-decreasing")]
     Time {
         /// Index of the sample.
         index: usize,
@@ -82,8 +82,8 @@ pub enum PlotError {
         /// The number of time samples.
         expected: usize,
     },
-    /// A series value is not finite.
-    #[error("series `{series}`[{index}] is {value}: values must be finite")]
+    /// A series value is not finite or is beyond ±[`crate::MAX_PLOT_MAGNITUDE`].
+    #[error("series `{series}`[{index}] is {value}: values must be finite and within ±3.4e38")]
     Value {
         /// The series' name.
         series: String,

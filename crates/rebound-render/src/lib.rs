@@ -38,7 +38,10 @@ pub use error::{PlotError, RenderError};
 pub use grid::Grid;
 pub use image::Image;
 pub use mesh::{DEFAULT_ROUND_SUBDIVISIONS, MAX_ROUND_SUBDIVISIONS, MIN_ROUND_SUBDIVISIONS, Mesh};
-pub use plot::{MAX_PLOT_SIDE, MIN_PLOT_SIDE, Panel, PlotOptions, Series, TimeHistory, plot_svg};
+pub use plot::{
+    MAX_PLOT_MAGNITUDE, MAX_PLOT_SIDE, MIN_PLOT_SIDE, Panel, PlotOptions, Series, TimeHistory,
+    plot_svg,
+};
 pub use recording::{RecordingScenes, time_history};
 pub use render::{RenderOptions, render};
 pub use scene::{

@@ -474,3 +474,26 @@ fn a_framed_sphere_fills_the_picture_to_the_margin() {
         }
     }
 }
+
+#[test]
+fn a_non_finite_contact_or_joint_is_left_out_and_the_others_drawn() {
+    let mut scene = RenderScene::new();
+    for point in [Vec3::NAN, Vec3::new(0.0, 0.0, 1.0)] {
+        scene.contacts.push(ContactMark {
+            point,
+            normal: Vec3::Y,
+        });
+    }
+    scene.joints.push(JointSegment {
+        anchor_a: Vec3::new(f32::INFINITY, 0.0, 0.0),
+        anchor_b: Vec3::ZERO,
+    });
+    let options = RenderOptions {
+        contacts: true,
+        joints: true,
+        contact_colour: Rgba::RED,
+        ..plain()
+    };
+    let image = render(&scene, &front_camera(), &options).expect("renders");
+    assert_eq!(pixel(&image, 32, 24), Rgba::RED);
+}
