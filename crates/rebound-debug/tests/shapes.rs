@@ -38,7 +38,7 @@ fn volume(draw: &DebugDraw) -> f64 {
     draw.triangles
         .iter()
         .map(|t| {
-            let [a, b, c] = t.vertices.map(|v| v.as_dvec3());
+            let [a, b, c] = t.vertices.map(Vec3::as_dvec3);
             a.dot(b.cross(c)) / 6.0
         })
         .sum()
