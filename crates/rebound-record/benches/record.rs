@@ -33,7 +33,7 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             recorder
                 .record(black_box(world))
-                .expect("a sink never fails")
+                .expect("a sink never fails");
         });
     });
     let mut bytes = Vec::new();

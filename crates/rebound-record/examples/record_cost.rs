@@ -31,10 +31,12 @@ fn net_bytes(region: &Region<'_, System>) -> i64 {
         + change.bytes_reallocated as i64
 }
 
-/// A run's results: wall-clock seconds per step and the peak of the net bytes allocated since it began.
+/// A run's results: wall-clock seconds per step, the peak of the net bytes allocated since it began, and
+/// the net bytes still held after its last step.
 struct Run {
     seconds: Vec<f64>,
     peak_bytes: i64,
+    held_bytes: i64,
 }
 
 fn run(steps: usize, out: Option<&str>) -> Result<Run, Box<dyn Error>> {
@@ -61,12 +63,14 @@ fn run(steps: usize, out: Option<&str>) -> Result<Run, Box<dyn Error>> {
         seconds.push(start.elapsed().as_secs_f64());
         peak_bytes = peak_bytes.max(net_bytes(&region));
     }
+    let held_bytes = net_bytes(&region);
     if let Some(recorder) = recorder {
         recorder.finish()?;
     }
     Ok(Run {
         seconds,
         peak_bytes,
+        held_bytes,
     })
 }
 
@@ -111,8 +115,9 @@ fn main() -> Result<(), Box<dyn Error>> {
                 size as f64 / frames.len() as f64
             );
             println!(
-                "recorder memory (peak net bytes beyond the plain run's): {}",
-                recorded.peak_bytes - plain.peak_bytes
+                "recorder memory beyond the plain run's: peak {} bytes (writing the manifest), {} bytes held while recording",
+                recorded.peak_bytes - plain.peak_bytes,
+                recorded.held_bytes - plain.held_bytes
             );
             println!(
                 "read back: {held} bytes held by the Recording ({:.2} × the file), read in {read_seconds:.2} s",

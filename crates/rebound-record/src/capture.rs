@@ -10,7 +10,7 @@ use crate::manifest::{
 };
 use rebound::{
     BodyHandle, ColliderDesc, ColliderHandle, Event, Joint, JointHandle, MassProperties,
-    PhysicsWorld, Quat, RigidBody, Vec3,
+    PhysicsWorld, Pose, Quat, RigidBody, Vec3,
 };
 
 /// A collider as last described to the file.
@@ -39,6 +39,8 @@ pub(crate) struct Tracker {
     collider_index: HandleIndex,
     /// By collider index; `None` once removed.
     colliders: Vec<Option<WrittenCollider>>,
+    /// How many entries of `colliders` are `Some`.
+    live_colliders: usize,
     joint_index: HandleIndex,
     joints: Vec<WrittenJoint>,
 }
@@ -95,10 +97,13 @@ impl Tracker {
                 }
             }
         }
+        // The world's colliders found among the live ones: if that is all of them, none was removed.
+        let mut seen = 0;
         for (handle, collider) in world.colliders().iter() {
             let Some(body) = self.body(collider.body()) else {
                 continue;
             };
+            seen += 1;
             match self.collider_index.get(handle.into_raw_parts()) {
                 None => changes
                     .colliders
@@ -117,12 +122,15 @@ impl Tracker {
                 }
             }
         }
-        for (index, slot) in self.colliders.iter_mut().enumerate() {
-            if let Some(known) = slot
-                && !world.colliders().contains(known.handle)
-            {
-                *slot = None;
-                changes.removed_colliders.push(index as u32);
+        if seen != self.live_colliders {
+            for (index, slot) in self.colliders.iter_mut().enumerate() {
+                if let Some(known) = slot
+                    && !world.colliders().contains(known.handle)
+                {
+                    *slot = None;
+                    self.live_colliders -= 1;
+                    changes.removed_colliders.push(index as u32);
+                }
             }
         }
         for (handle, joint) in world.world().joints() {
@@ -174,6 +182,7 @@ impl Tracker {
             body,
             desc: desc.clone(),
         }));
+        self.live_colliders += 1;
         collider_entry(index, body, desc)
     }
 
@@ -194,27 +203,32 @@ impl Tracker {
                 })
         }));
         frame.contacts.clear();
+        // The poses just sampled, by index: no second look-up of the bodies in the world.
+        let pose = |index: u32| {
+            frame
+                .bodies
+                .get(index as usize)
+                .map(|b| Pose::new(b.position, b.rotation))
+        };
         for manifold in world.contacts() {
-            let (Some(a), Some(b), Some(body_a), Some(body_b)) = (
-                self.body(manifold.body_a),
-                self.body(manifold.body_b),
-                world.body(manifold.body_a),
-                world.body(manifold.body_b),
-            ) else {
+            let (Some(a), Some(b)) = (self.body(manifold.body_a), self.body(manifold.body_b))
+            else {
                 continue;
             };
-            let (pose_a, pose_b) = (body_a.pose(), body_b.pose());
+            let (Some(pose_a), Some(pose_b)) = (pose(a), pose(b)) else {
+                continue;
+            };
             let count = manifold.point_count.min(manifold.points.len());
-            frame
-                .contacts
-                .extend(manifold.points[..count].iter().map(|p| ContactSample {
+            for p in &manifold.points[..count] {
+                frame.contacts.push(ContactSample {
                     body_a: a,
                     body_b: b,
                     point: p.world_point(pose_a, pose_b),
                     normal: manifold.normal,
                     normal_impulse: p.normal_impulse,
                     separation: p.separation,
-                }));
+                });
+            }
         }
         frame.joints.clear();
         let mut springs = 0.0;

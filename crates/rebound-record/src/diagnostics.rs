@@ -1,14 +1,11 @@
 //! The measures a frame carries besides the state (`docs/recording.md`, frame header and JOINT STATE): the
 //! positional error of each joint kind and the energy of a spring joint, plus the frame's totals of energy,
 //! momentum, joint error and penetration. Kinetic and potential energy and momentum come from the engine's
-//! own helpers (`rebound::dynamics::momentum`); the joint measures are defined here because the engine does
-//! not measure them.
+//! own helpers (`rebound::dynamics::momentum::totals`); the joint measures are defined here because the
+//! engine does not measure them.
 
 use crate::frame::{ContactSample, Diagnostics, JointSample};
-use rebound::dynamics::momentum::{
-    total_angular_momentum, total_gravitational_potential_energy, total_kinetic_energy,
-    total_linear_momentum,
-};
+use rebound::dynamics::momentum::totals;
 use rebound::{Joint, JointKind, PhysicsWorld, Quat, RigidBody, SoftSpring, SpringModel, Vec3};
 
 /// The positional error of `joint` (m) with its anchors at the world points `anchor_a`, `anchor_b` and
@@ -74,13 +71,14 @@ pub(crate) fn diagnostics(
     joints: &[JointSample],
     contacts: &[ContactSample],
 ) -> Diagnostics {
-    let bodies = || world.bodies().iter().map(|(_, body)| body);
+    let bodies = world.bodies().iter().map(|(_, body)| body);
+    let sums = totals(bodies, world.settings().gravity, Vec3::ZERO);
     Diagnostics {
-        kinetic_energy: total_kinetic_energy(bodies()),
-        potential_energy: total_gravitational_potential_energy(bodies(), world.settings().gravity),
+        kinetic_energy: sums.kinetic_energy,
+        potential_energy: sums.gravitational_potential_energy,
         spring_energy,
-        linear_momentum: total_linear_momentum(bodies()),
-        angular_momentum: total_angular_momentum(bodies(), Vec3::ZERO),
+        linear_momentum: sums.linear_momentum,
+        angular_momentum: sums.angular_momentum,
         worst_joint_error: joints
             .iter()
             .filter(|j| j.present && !j.broken)

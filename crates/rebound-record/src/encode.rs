@@ -45,16 +45,23 @@ fn put_f32(out: &mut Vec<u8>, v: f32) {
     out.extend_from_slice(&v.to_le_bytes());
 }
 
-fn put_vec3(out: &mut Vec<u8>, v: Vec3) {
-    for c in v.to_array() {
-        put_f32(out, c);
+/// `N` little-endian 32-bit words as bytes, so that an entry is appended in one piece (one capacity check
+/// per entry rather than per number: the body and contact blocks are most of a frame).
+fn words<const N: usize, const B: usize>(values: [u32; N]) -> [u8; B] {
+    debug_assert_eq!(B, 4 * N);
+    let mut bytes = [0; B];
+    for (chunk, v) in bytes.chunks_exact_mut(4).zip(values) {
+        chunk.copy_from_slice(&v.to_le_bytes());
     }
+    bytes
+}
+
+fn put_vec3(out: &mut Vec<u8>, v: Vec3) {
+    out.extend_from_slice(&words::<3, 12>(v.to_array().map(f32::to_bits)));
 }
 
 fn put_quat(out: &mut Vec<u8>, q: Quat) {
-    for c in q.to_array() {
-        put_f32(out, c);
-    }
+    out.extend_from_slice(&words::<4, 16>(q.to_array().map(f32::to_bits)));
 }
 
 /// Writes the 16-byte file header and the padded manifest into `out` (cleared first).
@@ -137,19 +144,24 @@ pub(crate) fn encode_frame(
     }
     out.resize(out.len() + (pad4(nb) - nb), 0);
     for c in &frame.contacts {
-        put_u32(out, c.body_a);
-        put_u32(out, c.body_b);
-        put_vec3(out, c.point);
-        put_vec3(out, c.normal);
-        put_f32(out, c.normal_impulse);
-        put_f32(out, c.separation);
+        let [px, py, pz] = c.point.to_array().map(f32::to_bits);
+        let [nx, ny, nz] = c.normal.to_array().map(f32::to_bits);
+        out.extend_from_slice(&words::<10, 40>([
+            c.body_a,
+            c.body_b,
+            px,
+            py,
+            pz,
+            nx,
+            ny,
+            nz,
+            c.normal_impulse.to_bits(),
+            c.separation.to_bits(),
+        ]));
     }
     for j in &frame.joints {
-        put_vec3(out, j.anchor_a);
-        put_vec3(out, j.anchor_b);
-        put_f32(out, j.error);
-        put_f32(out, j.reaction_force);
-        put_f32(out, j.reaction_torque);
+        let [ax, ay, az] = j.anchor_a.to_array().map(f32::to_bits);
+        let [bx, by, bz] = j.anchor_b.to_array().map(f32::to_bits);
         let mut flags = 0;
         if j.present {
             flags |= JOINT_PRESENT;
@@ -157,14 +169,27 @@ pub(crate) fn encode_frame(
         if j.broken {
             flags |= JOINT_BROKEN;
         }
-        put_u32(out, flags);
+        out.extend_from_slice(&words::<10, 40>([
+            ax,
+            ay,
+            az,
+            bx,
+            by,
+            bz,
+            j.error.to_bits(),
+            j.reaction_force.to_bits(),
+            j.reaction_torque.to_bits(),
+            flags,
+        ]));
     }
     for e in &frame.events {
         let (kind, a, b, value) = event_fields(e);
-        put_u32(out, kind);
-        put_u32(out, a.unwrap_or(NONE));
-        put_u32(out, b.unwrap_or(NONE));
-        put_f32(out, value);
+        out.extend_from_slice(&words::<4, 16>([
+            kind,
+            a.unwrap_or(NONE),
+            b.unwrap_or(NONE),
+            value.to_bits(),
+        ]));
     }
     let len = count("frame payload bytes", out.len() - 4)?;
     out[0..4].copy_from_slice(&len.to_le_bytes());

@@ -65,7 +65,8 @@ impl<W: Write> Recorder<W> {
             offset: buffer.len() as u64,
             tracker,
             frame: Frame::default(),
-            buffer,
+            // The manifest can be many times a frame's size: the frames start a buffer of their own.
+            buffer: Vec::new(),
             last_step: None,
             frames: 0,
         })

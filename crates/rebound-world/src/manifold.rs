@@ -62,6 +62,7 @@ impl ManifoldPoint {
     /// The contact point in world space (m) for bodies A and B at `pose_a` and `pose_b`: the midpoint of the
     /// point's anchor on A and its anchor on B (which lie `separation` apart along the normal), as debug
     /// drawing and recordings show it.
+    #[inline]
     #[must_use]
     pub fn world_point(&self, pose_a: Pose, pose_b: Pose) -> Vec3 {
         (pose_a.transform_point(self.local_anchor_a) + pose_b.transform_point(self.local_anchor_b))
