@@ -79,9 +79,16 @@ impl Grid {
         let line = [self.colour.r, self.colour.g, self.colour.b].map(f32::from);
         let inv_spacing = 1.0 / self.spacing;
         let nearest = 1.0 / crate::NEAR_PLANE;
+        let last_x = canvas.width as f32 - 0.5;
         for y in 0..canvas.height {
+            let py = y as f32 + 0.5;
+            // A ray's y is linear along a row: a row whose two ends miss the plane misses it throughout.
+            let (first, last) = (projection.ray(0.5, py), projection.ray(last_x, py));
+            if first.y * inv_rise <= 0.0 && last.y * inv_rise <= 0.0 {
+                continue;
+            }
             for x in 0..canvas.width {
-                let ray = projection.ray(x as f32 + 0.5, y as f32 + 0.5);
+                let ray = projection.ray(x as f32 + 0.5, py);
                 // 1/depth of the plane along this pixel's ray (the ray's forward component is 1): positive
                 // where the ray meets the plane in front of the camera.
                 let inv_t = ray.y * inv_rise;
