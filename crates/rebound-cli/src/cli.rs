@@ -96,7 +96,11 @@ pub fn parse_camera(text: &str) -> Result<CameraArg, String> {
     let (eye, target, fov) = match parts.as_slice() {
         [eye, target] => (eye, target, None),
         [eye, target, fov] => (eye, target, Some(fov)),
-        _ => return Err(format!("`{text}` is not EYE:TARGET[:FOV], e.g. 0,2,10:0,1,0:45")),
+        _ => {
+            return Err(format!(
+                "`{text}` is not EYE:TARGET[:FOV], e.g. 0,2,10:0,1,0:45"
+            ));
+        }
     };
     let fov_degrees = fov
         .map(|f| {
@@ -104,7 +108,9 @@ pub fn parse_camera(text: &str) -> Result<CameraArg, String> {
                 .parse::<f32>()
                 .ok()
                 .filter(|v| *v > 0.0 && *v < 180.0)
-                .ok_or_else(|| format!("field of view `{f}` is not a number of degrees in (0, 180)"))
+                .ok_or_else(|| {
+                    format!("field of view `{f}` is not a number of degrees in (0, 180)")
+                })
         })
         .transpose()?;
     let camera = CameraArg {
@@ -113,7 +119,9 @@ pub fn parse_camera(text: &str) -> Result<CameraArg, String> {
         fov_degrees,
     };
     if camera.position == camera.target {
-        return Err(format!("the eye and the target are the same point in `{text}`"));
+        return Err(format!(
+            "the eye and the target are the same point in `{text}`"
+        ));
     }
     Ok(camera)
 }

@@ -29,7 +29,11 @@ fn main() -> ExitCode {
             let mut message = format!("error: {error}");
             let mut source = std::error::Error::source(&error);
             while let Some(cause) = source {
-                message.push_str(&format!("\n  caused by: {cause}"));
+                // Most errors quote their cause already; print only what is new.
+                let cause_text = cause.to_string();
+                if !message.contains(&cause_text) {
+                    message.push_str(&format!("\n  caused by: {cause_text}"));
+                }
                 source = cause.source();
             }
             let _ = writeln!(std::io::stderr(), "{message}");

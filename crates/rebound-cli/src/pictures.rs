@@ -17,7 +17,11 @@ const DEFAULT_FOV_DEGREES: f32 = 45.0;
 ///
 /// # Errors
 /// [`CliError::Render`] if the resulting camera is unusable (the picture size, checked by the renderer).
-pub fn camera(view: &ViewArgs, scene: Option<SceneCamera>, world: &PhysicsWorld) -> Result<Camera, CliError> {
+pub fn camera(
+    view: &ViewArgs,
+    scene: Option<SceneCamera>,
+    world: &PhysicsWorld,
+) -> Result<Camera, CliError> {
     let (width, height) = view.size;
     let (position, target, fov_degrees) = match (view.camera, scene) {
         (Some(c), scene) => (
@@ -139,8 +143,11 @@ impl Pictures {
     /// # Errors
     /// A picture that cannot be drawn, encoded or written.
     pub fn capture(&mut self, step: u32, world: &PhysicsWorld) -> Result<(), CliError> {
-        let gif_wants = self.gif.is_some() && step % self.gif_every == 0;
-        let png_wants = self.png.as_ref().is_some_and(|(k, _)| step % k == 0);
+        let gif_wants = self.gif.is_some() && step.is_multiple_of(self.gif_every);
+        let png_wants = self
+            .png
+            .as_ref()
+            .is_some_and(|(k, _)| step.is_multiple_of(*k));
         if !(gif_wants || png_wants) {
             return Ok(());
         }

@@ -26,7 +26,10 @@ fn step_count(args: &RunArgs, dt: f32, default: u32) -> Result<u32, CliError> {
     if !(seconds.is_finite() && seconds > 0.0 && steps <= f64::from(u32::MAX)) {
         return Err(CliError::Argument {
             argument: "--seconds",
-            message: format!("must be finite, > 0 and at most {} steps long, got {seconds}", u32::MAX),
+            message: format!(
+                "must be finite, > 0 and at most {} steps long, got {seconds}",
+                u32::MAX
+            ),
         });
     }
     // At least one step; the cast is exact (a whole number within u32's range).
@@ -44,10 +47,14 @@ fn png_every(args: &RunArgs) -> Result<Option<(u32, PathBuf)>, CliError> {
             message: "needs K and DIR".to_owned(),
         });
     };
-    let k = k.parse::<u32>().ok().filter(|k| *k >= 1).ok_or_else(|| CliError::Argument {
-        argument: "--png-every",
-        message: format!("K must be a whole number ≥ 1, got `{k}`"),
-    })?;
+    let k = k
+        .parse::<u32>()
+        .ok()
+        .filter(|k| *k >= 1)
+        .ok_or_else(|| CliError::Argument {
+            argument: "--png-every",
+            message: format!("K must be a whole number ≥ 1, got `{k}`"),
+        })?;
     Ok(Some((k, PathBuf::from(dir))))
 }
 
