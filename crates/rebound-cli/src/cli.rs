@@ -14,11 +14,64 @@ pub struct Cli {
     pub command: Command,
 }
 
-/// The subcommands.
+/// The subcommands. (A browser viewer of recordings, `view`, has its place here.)
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Load a scene file, check it, step it, and write what was asked (GIF, PNG frames).
+    /// Load a scene file, check it, step it, and write what was asked (recording, GIF, PNG frames, plot).
     Run(RunArgs),
+    /// Summarise a recording: bodies, steps, energy drift, worst penetration and joint error.
+    Info(InfoArgs),
+    /// Draw a recording as an animated GIF and/or PNG frames.
+    Render(RenderArgs),
+    /// Plot a recording's energy, momentum, joint error and penetration against time, as SVG.
+    Plot(PlotArgs),
+}
+
+/// `rebound info`.
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    /// The recording (`.rrec`).
+    pub recording: PathBuf,
+    /// Print the summary as one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `rebound render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// The recording (`.rrec`).
+    pub recording: PathBuf,
+    /// What to write.
+    #[command(flatten)]
+    pub output: PictureArgs,
+    /// Picture options.
+    #[command(flatten)]
+    pub view: ViewArgs,
+}
+
+/// `rebound plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// The recording (`.rrec`).
+    pub recording: PathBuf,
+    /// The SVG file to write.
+    #[arg(long, short, value_name = "FILE.svg")]
+    pub output: PathBuf,
+}
+
+/// Which pictures to write.
+#[derive(Debug, Args, Clone)]
+pub struct PictureArgs {
+    /// Write an animated GIF here.
+    #[arg(long, value_name = "FILE")]
+    pub gif: Option<PathBuf>,
+    /// Write every K-th step as a PNG into DIR (`step_00000.png` is the start), creating DIR if needed.
+    #[arg(long, num_args = 2, value_names = ["K", "DIR"])]
+    pub png_every: Option<Vec<String>>,
+    /// Frames per second of the GIF (the frame interval is rounded to whole steps).
+    #[arg(long, default_value_t = 30.0)]
+    pub fps: f32,
 }
 
 /// `rebound run`.
@@ -32,15 +85,15 @@ pub struct RunArgs {
     /// How long to run (s of simulated time, rounded to whole steps).
     #[arg(long)]
     pub seconds: Option<f64>,
-    /// Write an animated GIF of the run here.
+    /// Write a recording of the run (`.rrec`, see docs/recording.md) here.
     #[arg(long, value_name = "FILE")]
-    pub gif: Option<PathBuf>,
-    /// Write every K-th step as a PNG into DIR (`step_00000.png` is the start), creating DIR if needed.
-    #[arg(long, num_args = 2, value_names = ["K", "DIR"])]
-    pub png_every: Option<Vec<String>>,
-    /// Frames per second of the GIF (the frame interval is rounded to whole steps). Default: 30.
-    #[arg(long, default_value_t = 30.0)]
-    pub fps: f32,
+    pub record: Option<PathBuf>,
+    /// Write an SVG plot of energy, momentum, joint error and penetration against time here.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
+    /// Pictures to write.
+    #[command(flatten)]
+    pub output: PictureArgs,
     /// Picture options.
     #[command(flatten)]
     pub view: ViewArgs,

@@ -11,6 +11,21 @@ pub enum CliError {
     /// A picture could not be drawn or encoded.
     #[error(transparent)]
     Render(#[from] rebound_render::RenderError),
+    /// A recording could not be written or read.
+    #[error(transparent)]
+    Recording(#[from] rebound_record::RecordingError),
+    /// A plot could not be drawn.
+    #[error(transparent)]
+    Plot(#[from] rebound_render::PlotError),
+    /// A file could not be opened.
+    #[error("cannot read {path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What the system said.
+        #[source]
+        source: std::io::Error,
+    },
     /// A file or folder could not be written.
     #[error("cannot write {path}: {source}")]
     Write {

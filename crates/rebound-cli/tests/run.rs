@@ -231,3 +231,87 @@ fn bad_arguments_exit_non_zero_without_a_panic() {
         assert!(stderr.contains("error"), "{args:?}: {stderr}");
     }
 }
+
+#[test]
+fn a_recorded_run_is_summarised_rendered_and_plotted() {
+    let dir = scratch("record");
+    let path = |name: &str| dir.join(name).to_str().unwrap().to_owned();
+    let out = rebound(&[
+        "run",
+        "scenes/newtons_cradle.ron",
+        "--record",
+        &path("cradle.rrec"),
+        "--gif",
+        &path("run.gif"),
+        "--plot",
+        &path("run.svg"),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+
+    // `info --json`: the recording's counts, and the elastic cradle's energy kept within 1 % over 2.5 s.
+    let out = rebound(&["info", &path("cradle.rrec"), "--json"]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let info: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(info["bodies"], 5);
+    assert_eq!(info["dynamic_bodies"], 5);
+    assert_eq!(info["joints"], 5);
+    assert_eq!(info["frames"], 151);
+    assert_eq!(info["steps"], 150);
+    let drift = info["relative_energy_drift"].as_f64().unwrap();
+    assert!(drift.abs() < 0.01, "energy drift {drift}");
+    let penetration = info["worst_penetration"].as_f64().unwrap();
+    assert!(
+        (0.0..0.01).contains(&penetration),
+        "penetration {penetration} m"
+    );
+    let out = rebound(&["info", &path("cradle.rrec")]);
+    assert!(
+        text(&out.stdout).contains("bodies: 5 (5 dynamic), joints: 5"),
+        "{}",
+        text(&out.stdout)
+    );
+
+    // `render` with the scene's camera draws the recording's frames exactly as the run drew them.
+    let out = rebound(&[
+        "render",
+        &path("cradle.rrec"),
+        "--gif",
+        &path("render.gif"),
+        "--camera",
+        "0.4,-0.55,2.6:0.4,-0.75,0:40",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let (_, _, ran) = gif_frames(&dir.join("run.gif"));
+    let (_, _, rendered) = gif_frames(&dir.join("render.gif"));
+    assert_eq!(rendered.len(), ran.len());
+    assert!(ran == rendered, "the rendered frames are the run's");
+
+    // `plot` writes the same SVG as the run's --plot: one sample per frame.
+    let out = rebound(&["plot", &path("cradle.rrec"), "-o", &path("plot.svg")]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("151 samples"),
+        "{}",
+        text(&out.stdout)
+    );
+    let plotted = std::fs::read_to_string(dir.join("plot.svg")).unwrap();
+    assert!(
+        plotted.starts_with("<svg"),
+        "{}",
+        &plotted[..plotted.len().min(80)]
+    );
+    assert_eq!(
+        plotted,
+        std::fs::read_to_string(dir.join("run.svg")).unwrap()
+    );
+
+    // Not a recording: a clear error, status 1.
+    let out = rebound(&["info", "scenes/newtons_cradle.ron"]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        text(&out.stderr).starts_with("error: not a Rebound recording"),
+        "{}",
+        text(&out.stderr)
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
