@@ -16,7 +16,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let velocity = |world: &PhysicsWorld, i: usize| {
         world.body(balls[i]).map_or(0.0, |b| b.linear_velocity().x)
     };
-    let (length, lift) = (newtons_cradle::LENGTH, newtons_cradle::LIFT_DEGREES.to_radians());
+    let (length, lift) = (
+        newtons_cradle::LENGTH,
+        newtons_cradle::LIFT_DEGREES.to_radians(),
+    );
     let v0 = (2.0 * 9.81 * length * (1.0 - lift.cos())).sqrt();
     println!("first ball released from 30°: speed at the bottom √(2gL(1 − cos 30°)) = {v0:.3} m/s");
     let mut impact_seen = false;

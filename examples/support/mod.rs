@@ -130,7 +130,8 @@ impl Output {
         };
         if frame.step.is_multiple_of(GIF_EVERY) {
             let scene = animation.scenes.scene(frame)?;
-            let image = rebound_render::render(&scene, &animation.camera, &RenderOptions::default())?;
+            let image =
+                rebound_render::render(&scene, &animation.camera, &RenderOptions::default())?;
             animation.gif.add_frame(&image)?;
         } else {
             animation.scenes.advance(frame)?;
@@ -154,7 +155,10 @@ impl Output {
         if let Some(animation) = self.animation {
             let frames = animation.gif.frame_count();
             animation.gif.finish()?;
-            lines.push(format!("wrote {} ({frames} frames)", animation.path.display()));
+            lines.push(format!(
+                "wrote {} ({frames} frames)",
+                animation.path.display()
+            ));
         }
         Ok(lines)
     }
