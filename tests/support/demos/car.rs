@@ -1,16 +1,38 @@
-//! A car: a chassis on four wheel joints (suspension spring, free axle, rear-wheel drive) driving over a
-//! bumpy height field.
-//!
-//! Run: `cargo run --release --example car`
+//! A car: a chassis on four wheel joints (suspension spring, free axle, rear-wheel drive) on a bumpy height
+//! field.
 
-#![allow(clippy::print_stdout, reason = "an example prints its results")]
-
+use super::About;
 use rebound::prelude::*;
 
-fn main() -> Result<(), Error> {
-    let mut world = PhysicsWorld::new(WorldSettings::default())?;
+/// Wheel radius (m).
+pub const WHEEL_RADIUS: f32 = 0.4;
 
-    // Terrain: 120 m × 20 m, 1 m cells, gentle bumps up to 15 cm.
+/// The scene file's name, run and view.
+pub const ABOUT: About = About {
+    name: "car",
+    description: "A car: a chassis on four wheel joints with suspension springs, rear-wheel drive at 12 rad/s, \
+                  over a bumpy 120 m height field.",
+    steps: 240,
+    camera: (Vec3::new(8.0, 5.0, 17.0), Vec3::new(8.0, 0.5, 0.0), 50.0),
+};
+
+/// The car.
+#[derive(Debug)]
+pub struct Car {
+    /// The world.
+    pub world: PhysicsWorld,
+    /// The chassis.
+    pub chassis: BodyHandle,
+    /// The wheels: front left, front right, rear left, rear right.
+    pub wheels: Vec<BodyHandle>,
+}
+
+/// Builds the terrain (120 m × 20 m, 1 m cells, bumps up to 15 cm) and the car on it.
+///
+/// # Errors
+/// Whatever Rebound refuses (a bug).
+pub fn build() -> Result<Car, Error> {
+    let mut world = PhysicsWorld::new(WorldSettings::default())?;
     let (rows, cols) = (21usize, 121usize);
     let heights: Vec<f32> = (0..rows * cols)
         .map(|i| 0.15 * (0.5 * (i % cols) as f32).sin() * (0.7 * (i / cols) as f32).cos())
@@ -43,7 +65,7 @@ fn main() -> Result<(), Error> {
         let wheel = world
             .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 1.2, 0.0) + mount))?;
         world.insert_collider(
-            ColliderDesc::ball(0.4)
+            ColliderDesc::ball(WHEEL_RADIUS)
                 .with_density(400.0)
                 .with_friction(1.0),
             wheel,
@@ -61,33 +83,9 @@ fn main() -> Result<(), Error> {
         world.set_joint_contacts_enabled(handle, false)?;
         wheels.push(wheel);
     }
-
-    let (mut max_tilt, mut lowest_wheel) = (0.0f32, f32::INFINITY);
-    for step in 1..=600 {
-        world.step(1.0 / 60.0);
-        if let Some(body) = world.body(chassis) {
-            max_tilt = max_tilt.max((body.rotation() * Vec3::Y).angle_between(Vec3::Y));
-            if step % 120 == 0 {
-                println!(
-                    "t = {:>4.1} s: chassis at x = {:6.2} m, y = {:.2} m, speed {:.2} m/s",
-                    step as f32 / 60.0,
-                    body.position().x,
-                    body.position().y,
-                    body.linear_velocity().length()
-                );
-            }
-        }
-        for w in &wheels {
-            if let Some(b) = world.body(*w) {
-                lowest_wheel = lowest_wheel.min(b.position().y - 0.4);
-            }
-        }
-    }
-    println!(
-        "largest chassis tilt {:.1}°; lowest wheel bottom {:.2} m (the terrain dips to −0.15 m: the wheels ride on it)",
-        max_tilt.to_degrees(),
-        lowest_wheel
-    );
-    println!("drive target: 12 rad/s × 0.4 m = 4.8 m/s");
-    Ok(())
+    Ok(Car {
+        world,
+        chassis,
+        wheels,
+    })
 }
