@@ -37,11 +37,12 @@ pub fn render(args: &RenderArgs) -> Result<(), CliError> {
     let camera = pictures::camera(&args.view, None, &bodies)?;
     let pictures = Pictures::open(camera, args.view.contacts, &args.output, manifest.dt)?;
     let mut drawing = Drawing::new(&manifest, pictures)?;
-    let bar = progress::bar(0, "drawing");
+    let size = std::fs::metadata(&args.recording).map_or(0, |m| m.len());
+    let bar = progress::byte_bar(size, "drawing");
     drawing.frame(&first)?;
     while let Some(frame) = reader.next_frame()? {
         drawing.frame(&frame)?;
-        bar.inc(1);
+        bar.set_position(reader.offset());
     }
     bar.finish_and_clear();
     print(&drawing.finish()?);
