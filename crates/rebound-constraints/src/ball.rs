@@ -1,10 +1,11 @@
 //! The ball (spherical) joint: two anchor points held together, rotation free. Stages: *prepare*, *warm
 //! start*, *solve* and *relax*.
 
-use crate::direct::{JointRows, Row, TargetRule};
+use crate::pair::BodyPair;
 use crate::part::{PointPart, block_target};
-use crate::solver::Stage;
-use crate::{BodyPair, JointState};
+use crate::path::{JointRows, Row, TargetRule};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 
@@ -66,7 +67,7 @@ pub(crate) fn direct_errors(
     [(d.x, rule), (d.y, rule), (d.z, rule)]
 }
 
-/// The three point rows (world axes) for the direct solve of a chain ([`crate::direct`]) at the current pose:
+/// The three point rows (world axes) for the direct solve of a chain ([`crate::path`]) at the current pose:
 /// as [`solve`] builds its block.
 pub(crate) fn direct_rows(
     pair: &BodyPair,

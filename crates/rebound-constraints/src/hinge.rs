@@ -2,15 +2,18 @@
 //! kept parallel, leaving one rotation free — with optional angle limits, a motor and a spring on the angle.
 //! Stages: *prepare*, *warm start*, *solve* and *relax*.
 
+use crate::ball;
 use crate::coordinate::CoordinateRows;
-use crate::direct::{JointRows, Row, TargetRule};
+use crate::error::ConstraintError;
 use crate::error::check_in_range;
 use crate::limits::Limits;
 use crate::motor::Motor;
+use crate::pair::BodyPair;
 use crate::part::{AlignPart, AnglePart};
+use crate::path::{JointRows, Row, TargetRule};
 use crate::soft_spring::JointSpring;
-use crate::solver::Stage;
-use crate::{BodyPair, ConstraintError, JointState, ball};
+use crate::stage::Stage;
+use crate::state::JointState;
 use core::f32::consts::{PI, TAU};
 use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
 use rebound_math::glam::{Mat3A, Vec3A};
@@ -215,7 +218,7 @@ impl PreparedHinge {
         b.angular_velocity += Vec3::from(Mat3A::from(pair.inv_inertia_b) * (twist + r_b.cross(p)));
     }
 
-    /// The point rows and the two alignment rows for the direct solve of a chain ([`crate::direct`]) at the
+    /// The point rows and the two alignment rows for the direct solve of a chain ([`crate::path`]) at the
     /// current pose; the limit, motor and spring rows stay with [`PreparedHinge::solve_coordinate`].
     pub(crate) fn direct_rows(
         pair: &BodyPair,

@@ -1,11 +1,13 @@
 //! The rod: a fixed distance between two anchors (a massless rigid rod with ball ends; Box2D's rigid distance
 //! joint). Stages: *prepare*, *warm start*, *solve* and *relax*.
 
-use crate::direct::{JointRows, TargetRule};
+use crate::error::ConstraintError;
+use crate::pair::BodyPair;
 use crate::part::{AxisPart, RowTarget};
-use crate::solver::Stage;
+use crate::path::{JointRows, TargetRule};
 use crate::spring::initial_axis;
-use crate::{BodyPair, ConstraintError, JointState};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 use rebound_math::validity::check_positive;
@@ -88,7 +90,7 @@ impl PreparedRod {
         );
     }
 
-    /// The rod's row for the direct solve of a chain ([`crate::direct`]) at the current pose, pushed into
+    /// The rod's row for the direct solve of a chain ([`crate::path`]) at the current pose, pushed into
     /// `out` with its position error `C = |d| − length` for the passes that reuse it.
     pub(crate) fn direct_row(
         &mut self,

@@ -2,11 +2,13 @@
 //! nothing; once the anchors would move farther apart than its length an impulse acts on both bodies, like a
 //! collision — a hard constraint. Stages: *prepare*, *warm start*, *solve* and *relax*, *restitution*.
 
-use crate::direct::{JointRows, TargetRule};
+use crate::error::ConstraintError;
 use crate::error::check_in_range;
+use crate::pair::BodyPair;
 use crate::part::{AxisPart, RowTarget};
-use crate::solver::Stage;
-use crate::{BodyPair, ConstraintError, JointState};
+use crate::path::{JointRows, TargetRule};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
 use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
@@ -170,7 +172,7 @@ impl PreparedRope {
         self.taut |= state.upper_impulse < 0.0;
     }
 
-    /// The rope's row for the direct solve of a chain ([`crate::direct`]) at the current pose, pushed into
+    /// The rope's row for the direct solve of a chain ([`crate::path`]) at the current pose, pushed into
     /// `out`: as [`PreparedRope::solve`] builds it, bounded to `λ ≤ 0`, with its position error
     /// `C = |d| − max_length` for the passes that reuse it.
     pub(crate) fn direct_row(

@@ -2,7 +2,7 @@
 //! position correction of hard joint parts, the iteration counts and the long-range tethers. Read at *prepare*
 //! (softness, tethers) and in *solve* / *relax* (iterations).
 
-use crate::ConstraintError;
+use crate::error::ConstraintError;
 use rebound_dynamics::{Softness, StepContext};
 use rebound_math::validity::{check_non_negative, check_positive};
 
@@ -38,7 +38,7 @@ pub struct JointSettings {
     /// `direct_chains`). Default: true.
     pub tethers: bool,
     /// Whether paths of rope, rod, ball and hinge joints (chains, ropes of links, bridges) are solved as one
-    /// system each pass instead of joint by joint ([`crate::direct`] explains why: stretch that does not
+    /// system each pass instead of joint by joint ([`crate::path`] explains why: stretch that does not
     /// grow with the load). Default: true.
     #[cfg_attr(feature = "serde", serde(default = "default_true"))]
     pub direct_chains: bool,

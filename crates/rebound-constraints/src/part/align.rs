@@ -11,7 +11,7 @@
 //! ```
 
 use super::{inverse2_or_zero, solve_block2};
-use crate::BodyPair;
+use crate::pair::BodyPair;
 use rebound_dynamics::{Bias, Softness, SolverBody};
 use rebound_math::{Mat2, Vec2, Vec3};
 

@@ -9,7 +9,7 @@
 //! ```
 
 use super::{RowTarget, inverse_or_zero, solve_row};
-use crate::BodyPair;
+use crate::pair::BodyPair;
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 

@@ -49,7 +49,7 @@ pub use axis::AxisPart;
 pub use point::PointPart;
 pub use rotation::{RotationPart, rotation_error};
 
-use crate::BodyPair;
+use crate::pair::BodyPair;
 use rebound_dynamics::{Bias, Softness, SolverBody};
 use rebound_math::{Mat2, Mat3, Vec2, Vec3};
 

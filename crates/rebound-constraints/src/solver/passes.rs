@@ -1,0 +1,219 @@
+//! The velocity stages of every substep — *apply forces*, *warm start*, *solve* (bias on) and *relax*
+//! (bias off) — and the stages after the substeps that are not the projection: *restitution* and *store
+//! impulses*. Each dispatches over the joint kinds; the paths are solved by `path_pass`.
+
+use super::joint_solver::JointSolver;
+use super::prepared::{Prepared, reaction_impulses, state_lambda};
+use crate::ball;
+use crate::fixed::PreparedFixed;
+use crate::path::PoseKey;
+use crate::prismatic::PreparedPrismatic;
+use crate::stage::Stage;
+use crate::state::JointState;
+use crate::wheel::PreparedWheel;
+use rebound_dynamics::{Bias, SolverBody, StepContext};
+
+impl JointSolver {
+    /// Stage *apply forces* (every substep, right after integrate velocities): the explicit Hooke force of
+    /// each [`crate::SpringModel::Force`] spring, `Δv = f·h·n/m` on both bodies (course items 1–2).
+    pub fn apply_forces(&self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
+        for j in &self.joints {
+            let Prepared::Spring(spring) = &j.kind else {
+                continue;
+            };
+            if spring.is_soft() {
+                continue;
+            }
+            let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
+                continue;
+            };
+            spring.apply_forces(&j.pair, &mut a, &mut b, ctx.h);
+            j.pair.store(solver_bodies, a, b);
+        }
+    }
+
+    /// Stage *warm start* (every substep): applies the impulses accumulated in the last substep again, along
+    /// the current directions.
+    pub fn warm_start(&self, solver_bodies: &mut [SolverBody]) {
+        for j in &self.joints {
+            // The bodies in place: a warm start changes velocities only (`prepare` never keeps a joint whose
+            // two bodies are one).
+            let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
+                continue;
+            };
+            let (pair, state) = (&j.pair, &j.state);
+            // A rope or rod on a path whose link has its row built at this pose (the pose of the last relax
+            // pass: every substep but the first) applies the impulse along that row: the Jacobian and the
+            // turned vectors the warm start would compute again, so the same bits without the distance.
+            let built = match j.kind {
+                Prepared::Rope(_) | Prepared::Rod(_) => j
+                    .link
+                    .and_then(|k| self.links.get(k))
+                    .filter(|link| link.is_built_at(&PoseKey::of(a, b))),
+                _ => None,
+            };
+            if let Some(link) = built {
+                link.warm_start_row(a, b, state_lambda(j)[0]);
+                continue;
+            }
+            match &j.kind {
+                Prepared::Spring(p) => p.warm_start(pair, state, a, b),
+                Prepared::Rope(p) => p.warm_start(pair, state, a, b),
+                Prepared::Rod(p) => p.warm_start(pair, state, a, b),
+                Prepared::Ball => ball::warm_start(pair, state, a, b),
+                Prepared::Hinge(p) => p.warm_start(pair, state, a, b),
+                Prepared::Fixed(_) => PreparedFixed::warm_start(pair, state, a, b),
+                Prepared::Prismatic(_) => PreparedPrismatic::warm_start(pair, state, a, b),
+                Prepared::Wheel(_) => PreparedWheel::warm_start(pair, state, a, b),
+            }
+        }
+        for t in &self.tethers {
+            let Some((mut a, mut b)) = t.pair.load(solver_bodies) else {
+                continue;
+            };
+            t.warm_start(&mut a, &mut b);
+            t.pair.store(solver_bodies, a, b);
+        }
+    }
+
+    /// Stages *solve* (`Bias::On`: [`crate::JointSettings::solve_iterations`] Gauss–Seidel passes with soft position
+    /// correction) and *relax* (`Bias::Off`: [`crate::JointSettings::relax_iterations`] passes on velocities only;
+    /// soft springs are left alone, see [`crate::spring`]). Each pass visits the joints in the order given to
+    /// [`JointSolver::prepare`] (all but those a direct path solves entirely), then the paths, then the
+    /// tethers.
+    ///
+    /// A *closed* path (every row of its joints in the direct solve, no other joint or tether on its bodies)
+    /// is relaxed in the last substep only. The relax pass of an inner substep leaves the velocities at the
+    /// pose where the next substep's solve pass starts, and that pass solves the same rows of the same path
+    /// exactly: for rigid rows its result does not depend on the velocity along the rows at all (a
+    /// projection: `P·(P·v + g·h) = P·(v + g·h)`), and the soft step keeps `1 − mass_scale` of it (about a
+    /// tenth at the default joint softness). The last relax pass stays: it takes the bias velocity out of
+    /// the step's final velocities, and builds the rows the position projection starts from. On the SCENES.md
+    /// bridge and chain this is a third of the direct solves (instructions −9 % and −12 %) with joint gaps
+    /// and stretch no worse (`docs/physics.md`, "Relaxing a closed path"). A path with other rows on its
+    /// bodies is relaxed every substep: a hinge limit solved by Gauss–Seidel before the path's exact solve
+    /// was pushed past by up to 1.5° without the path's relax (`tests/hinge.rs`).
+    pub fn solve(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
+        let stage = Stage {
+            bias,
+            h: ctx.h,
+            inv_h: ctx.inv_h,
+            joint_softness: self.joint_softness,
+        };
+        let iterations = match bias {
+            Bias::On => self.settings.solve_iterations,
+            Bias::Off => self.settings.relax_iterations,
+        };
+        // The last relax pass of the step builds the paths' rows at the final pose instead of carrying them:
+        // the position projection ([`JointSolver::project_positions`]) starts at that pose and then reuses
+        // the rows and, for paths whose rows all stay in the system (hinges, ball joints, taut ropes), their
+        // factorisation — one factorisation of every such path a step fewer than building them there.
+        let mut carry_angle = self.carry_angle;
+        let mut last_relax = false;
+        if bias == Bias::Off {
+            self.relax_passes += 1;
+            if self.relax_passes >= ctx.substep_count {
+                last_relax = true;
+                carry_angle = 0.0;
+                // Every link is built again at the final pose, and with this step's inverse inertias.
+                for link in &mut self.links {
+                    link.end_last_step();
+                }
+            }
+        }
+        for _ in 0..iterations {
+            // Joints on a direct path are solved below, all but a hinge's limit, motor and spring rows (they
+            // are not in `iterated`).
+            for &index in &self.iterated {
+                let Some(j) = self.joints.get_mut(index) else {
+                    continue;
+                };
+                // Springs act in the bias pass only: skip them in the relax pass without touching the bodies.
+                if bias == Bias::Off && matches!(j.kind, Prepared::Spring(_)) {
+                    continue;
+                }
+                // The bodies in place (a pass changes velocities only).
+                let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
+                    continue;
+                };
+                let (pair, state) = (&j.pair, &mut j.state);
+                match &mut j.kind {
+                    Prepared::Spring(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Rope(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Rod(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Ball => ball::solve(pair, state, a, b, &stage),
+                    Prepared::Hinge(p) if j.path.is_some() => {
+                        p.solve_coordinate(pair, state, a, b, &stage);
+                    }
+                    Prepared::Hinge(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Fixed(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Prismatic(p) => p.solve(pair, state, a, b, &stage),
+                    Prepared::Wheel(p) => p.solve(pair, state, a, b, &stage),
+                }
+            }
+            for path in 0..self.paths.len() {
+                // A closed path is relaxed in the step's last substep only: see the method docs.
+                if bias == Bias::Off && !last_relax && self.closed.get(path) == Some(&true) {
+                    continue;
+                }
+                self.solve_path(path, solver_bodies, &stage, carry_angle);
+            }
+            for t in &mut self.tethers {
+                let Some((mut a, mut b)) = t.pair.load(solver_bodies) else {
+                    continue;
+                };
+                t.solve(&mut a, &mut b, &stage);
+                t.pair.store(solver_bodies, a, b);
+            }
+        }
+    }
+
+    /// Stage *restitution* (once, after the substeps): a rope with restitution `e` that snapped taut during
+    /// the step while its anchors separated faster than `ctx.restitution_threshold` gets `Ċ = −e·Ċ⁻`.
+    pub fn apply_restitution(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
+        for j in &mut self.joints {
+            let Prepared::Rope(rope) = &j.kind else {
+                continue;
+            };
+            let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
+                continue;
+            };
+            rope.apply_restitution(&j.pair, &mut j.state, &mut a, &mut b, ctx);
+            j.pair.store(solver_bodies, a, b);
+        }
+    }
+
+    /// Stage *store impulses*: writes each prepared joint's impulses and reaction force and torque (N, N·m)
+    /// into `states` (the slice given to [`JointSolver::prepare`]) for warm starting the next step. A joint
+    /// whose reaction exceeds its break force or torque is marked broken and its index pushed into `broken`
+    /// (which is not cleared first).
+    pub fn store_impulses(&self, states: &mut [JointState], broken: &mut Vec<usize>) {
+        let inv_h = if self.h > 0.0 { 1.0 / self.h } else { 0.0 };
+        for j in &self.joints {
+            let Some(out) = states.get_mut(j.source) else {
+                continue;
+            };
+            let (linear, angular) = reaction_impulses(&j.kind, &j.state);
+            *out = JointState {
+                reaction_force: linear * inv_h,
+                reaction_torque: angular * inv_h,
+                tether_impulse: 0.0,
+                broken: false,
+                ..j.state
+            };
+            if out.reaction_force > j.break_force || out.reaction_torque > j.break_torque {
+                out.broken = true;
+                broken.push(j.source);
+            }
+        }
+        for t in &self.tethers {
+            if let Some(out) = self
+                .joints
+                .get(t.joint)
+                .and_then(|j| states.get_mut(j.source))
+            {
+                out.tether_impulse = t.impulse;
+            }
+        }
+    }
+}

@@ -1,0 +1,388 @@
+//! Stage *prepare* (once per step): each joint's anchors, frames, masses and softness, the paths solved
+//! directly and the links kept from the last step, the joints Gauss–Seidel visits, the tethers and which
+//! paths are closed.
+
+use super::joint_solver::JointSolver;
+use super::prepared::{Keep, Prepared, PreparedJoint, dynamic_bodies, keep_only};
+use crate::fixed::FixedJoint;
+use crate::joint::{Joint, JointBodies, JointKind};
+use crate::pair::BodyPair;
+use crate::part::rotation_error;
+use crate::path::resize_links;
+use crate::state::JointState;
+use crate::tether::Edge;
+use rebound_dynamics::{BodyParams, SolverBody, StepContext};
+use rebound_math::{Mat3, Vec3};
+
+impl JointSolver {
+    /// Stage *prepare*: reads `joints[i]`, its state `states[i]` and its bodies `bodies[i]` (indices into
+    /// `solver_bodies` and `params`, which hold the bodies' start-of-step state), and computes anchors, frames,
+    /// masses and softness. Warm-start impulses come from the states if `ctx.warm_starting`, else zero.
+    ///
+    /// Returns how many joints were skipped and will not be solved: broken ones, ones without a state or body
+    /// pair (slices shorter than `joints`), and ones whose body indices are equal or out of range. Never panics.
+    pub fn prepare(
+        &mut self,
+        joints: &[Joint],
+        states: &[JointState],
+        bodies: &[JointBodies],
+        solver_bodies: &[SolverBody],
+        params: &[BodyParams],
+        ctx: &StepContext,
+    ) -> usize {
+        self.joints.clear();
+        self.relax_passes = 0;
+        self.joint_softness = self.settings.joint_softness(ctx);
+        self.h = ctx.h;
+        let body_count = solver_bodies.len().min(params.len());
+        let mut skipped = 0;
+        for (source, joint) in joints.iter().enumerate() {
+            let (Some(state), Some(jb)) = (states.get(source), bodies.get(source)) else {
+                skipped += 1;
+                continue;
+            };
+            if state.broken || jb.a >= body_count || jb.b >= body_count || jb.a == jb.b {
+                skipped += 1;
+                continue;
+            }
+            let pair = BodyPair::new(
+                jb.a,
+                jb.b,
+                &params[jb.a],
+                &params[jb.b],
+                (joint.local_anchor_a(), joint.local_anchor_b()),
+                (joint.local_basis_a(), joint.local_basis_b()),
+            );
+            let (sa, sb) = (&solver_bodies[jb.a], &solver_bodies[jb.b]);
+            let mut state = if ctx.warm_starting {
+                JointState {
+                    broken: false,
+                    ..*state
+                }
+            } else {
+                JointState::default()
+            };
+            let kind = match joint.kind() {
+                JointKind::Spring(s) => {
+                    keep_only(&mut state, Keep::Axial);
+                    let prepared = s.prepare(&pair, sa, sb, ctx);
+                    if !prepared.is_soft() {
+                        state.axial_impulse = 0.0;
+                    }
+                    Prepared::Spring(prepared)
+                }
+                JointKind::Rope(r) => {
+                    keep_only(&mut state, Keep::Upper);
+                    Prepared::Rope(r.prepare(&pair, sa, sb))
+                }
+                JointKind::Rod(r) => {
+                    keep_only(&mut state, Keep::Axial);
+                    Prepared::Rod(r.prepare(&pair, sa, sb))
+                }
+                JointKind::Ball(_) => {
+                    keep_only(&mut state, Keep::Linear);
+                    Prepared::Ball
+                }
+                JointKind::Hinge(h) => Prepared::Hinge(h.prepare(&pair, ctx, &mut state)),
+                JointKind::Fixed(_) => Prepared::Fixed(FixedJoint::prepare(&pair, &mut state)),
+                JointKind::Prismatic(p) => Prepared::Prismatic(p.prepare(&pair, ctx, &mut state)),
+                JointKind::Wheel(w) => Prepared::Wheel(w.prepare(ctx, &mut state)),
+            };
+            self.joints.push(PreparedJoint {
+                source,
+                pair,
+                state,
+                break_force: joint.break_force(),
+                break_torque: joint.break_torque(),
+                kind,
+                path: None,
+                link: None,
+            });
+        }
+        // The paths first: the graph search leaves out the tethers they make redundant.
+        self.find_paths(body_count);
+        // One link per path member. A path whose links all hold carried rows of the last step for the same
+        // joint, bodies and inverse masses keeps them ([`Link::new_step`]; see `crate::path`, "Rows carried
+        // through the step"); any other path starts from nothing.
+        resize_links(&mut self.links, self.path_joints.len());
+        self.path_links = self.path_joints.len();
+        for range in &self.paths {
+            let keeps = |k: usize| {
+                let (Some(j), Some(link)) = (
+                    self.path_joints
+                        .get(k)
+                        .and_then(|&index| self.joints.get(index)),
+                    self.links.get(k),
+                ) else {
+                    return false;
+                };
+                // Turned by less than the carry angle since the build, so that the inverse inertias the
+                // rows keep until the last relax pass are those of a rotation at most that far off.
+                let limit = self.carry_angle * self.carry_angle;
+                link.built.is_some_and(|built| {
+                    built.owner == (j.source, j.pair.index_a, j.pair.index_b)
+                        && link.rows.mass_a.mass.to_bits() == j.pair.inv_mass_a.to_bits()
+                        && link.rows.mass_b.mass.to_bits() == j.pair.inv_mass_b.to_bits()
+                        && rotation_error(built.frames.0, j.pair.basis_a).length_squared() <= limit
+                        && rotation_error(built.frames.1, j.pair.basis_b).length_squared() <= limit
+                })
+            };
+            let keep = range.clone().all(keeps);
+            for link in self.links.get_mut(range.clone()).into_iter().flatten() {
+                if keep {
+                    link.new_step();
+                } else {
+                    link.drop_built();
+                }
+            }
+        }
+        for link in self.links.iter_mut().skip(self.path_joints.len()) {
+            link.drop_built();
+        }
+        self.link_paths();
+        self.list_iterated();
+        self.analyse_graph(params);
+        self.find_closed_paths(body_count);
+        skipped
+    }
+
+    /// Marks each path closed or not ([`JointSolver::closed`]): a path is closed when every member's rows are
+    /// all in the direct solve (ropes, rods, ball joints, hinges without limit, motor or spring) and each of its
+    /// dynamic bodies is acted on by the path's joints alone — no other joint, no tether. Fixed and kinematic
+    /// bodies (zero inverse mass and inertia) take no impulse and may be shared.
+    pub(super) fn find_closed_paths(&mut self, body_count: usize) {
+        let Self {
+            joints,
+            tethers,
+            paths,
+            path_joints,
+            closed,
+            touches,
+            ..
+        } = self;
+        touches.clear();
+        touches.resize(body_count, 0);
+        let pairs = joints
+            .iter()
+            .map(|j| &j.pair)
+            .chain(tethers.iter().map(|t| &t.pair));
+        for pair in pairs {
+            for body in dynamic_bodies(pair).into_iter().flatten() {
+                if let Some(count) = touches.get_mut(body) {
+                    *count += 1;
+                }
+            }
+        }
+        closed.clear();
+        closed.extend(paths.iter().map(|range| {
+            let members = path_joints.get(range.clone()).unwrap_or_default();
+            let whole = members.iter().all(|&index| match &joints[index].kind {
+                Prepared::Rope(_) | Prepared::Rod(_) | Prepared::Ball => true,
+                Prepared::Hinge(hinge) => hinge.has_no_coordinate_rows(),
+                _ => false,
+            });
+            // Each dynamic body of the path: as many joints and tethers act on it as path joints do.
+            count_dynamic_bodies(touches, joints, members, false);
+            let alone = members.iter().all(|&index| {
+                dynamic_bodies(&joints[index].pair)
+                    .into_iter()
+                    .flatten()
+                    .all(|body| touches.get(body) == Some(&0))
+            });
+            count_dynamic_bodies(touches, joints, members, true);
+            whole && alone
+        }));
+    }
+
+    /// The paths solved directly: maximal sequences of direct-capable joints (rope, rod, ball, hinge) through
+    /// dynamic bodies that belong to exactly two such joints. A path ends at a fixed body, a free end or a
+    /// branching body; joints on a closed loop stay with Gauss–Seidel.
+    pub(super) fn find_paths(&mut self, body_count: usize) {
+        self.paths.clear();
+        self.path_joints.clear();
+        if !self.settings.direct_chains {
+            return;
+        }
+        self.degree.clear();
+        self.degree.resize(body_count, 0);
+        self.incident.clear();
+        self.incident.resize(body_count, [usize::MAX; 2]);
+        for (index, joint) in self.joints.iter().enumerate() {
+            if !joint.kind.is_direct_capable() {
+                continue;
+            }
+            for body in dynamic_bodies(&joint.pair).into_iter().flatten() {
+                let (Some(degree), Some(incident)) =
+                    (self.degree.get_mut(body), self.incident.get_mut(body))
+                else {
+                    continue;
+                };
+                if let Some(slot) = incident.get_mut(*degree as usize) {
+                    *slot = index;
+                }
+                *degree += 1;
+            }
+        }
+        let inner = |degree: &[u32], body: Option<usize>| {
+            body.is_some_and(|b| degree.get(b).copied() == Some(2))
+        };
+        self.visited.clear();
+        self.visited.resize(self.joints.len(), false);
+        for start in 0..self.joints.len() {
+            if self.visited[start] || !self.joints[start].kind.is_direct_capable() {
+                continue;
+            }
+            let [body_a, body_b] = dynamic_bodies(&self.joints[start].pair);
+            // Walk away from an end of the path; a joint with inner bodies on both sides is not an end.
+            let mut toward = if !inner(&self.degree, body_a) {
+                body_b
+            } else if !inner(&self.degree, body_b) {
+                body_a
+            } else {
+                continue;
+            };
+            let first = self.path_joints.len();
+            let mut current = start;
+            loop {
+                self.visited[current] = true;
+                self.path_joints.push(current);
+                let Some(body) = toward.filter(|&b| inner(&self.degree, Some(b))) else {
+                    break;
+                };
+                let [j0, j1] = self.incident[body];
+                let next = if j0 == current { j1 } else { j0 };
+                let Some(next_joint) = self.joints.get(next) else {
+                    break;
+                };
+                let pair = next_joint.pair;
+                let other = if pair.index_a == body {
+                    pair.index_b
+                } else {
+                    pair.index_a
+                };
+                // Two joints between the same two bodies share both: not a path link.
+                let here = self.joints[current].pair;
+                if self.visited[next] || other == here.index_a || other == here.index_b {
+                    break;
+                }
+                toward = dynamic_bodies(&pair)
+                    .into_iter()
+                    .flatten()
+                    .find(|&b| b == other);
+                current = next;
+            }
+            self.paths.push(first..self.path_joints.len());
+        }
+        for (path, range) in self.paths.iter().enumerate() {
+            for (link, &index) in range.clone().zip(&self.path_joints[range.clone()]) {
+                self.joints[index].path = Some(path);
+                self.joints[index].link = Some(link);
+            }
+        }
+    }
+
+    /// Links each path's consecutive members through the body they share (which side of each it is), and
+    /// leaves its last member unlinked: the shape every pass of the step solves ([`Link::shared_with_next`]),
+    /// set once here rather than before each solve.
+    pub(super) fn link_paths(&mut self) {
+        let Self {
+            joints,
+            paths,
+            path_joints,
+            links,
+            ..
+        } = self;
+        for range in paths.iter() {
+            let (Some(members), Some(links)) =
+                (path_joints.get(range.clone()), links.get_mut(range.clone()))
+            else {
+                continue;
+            };
+            for (slot, link) in links.iter_mut().enumerate() {
+                link.shared_with_next = members.get(slot + 1).map(|&next| {
+                    let (this, next) = (&joints[members[slot]].pair, &joints[next].pair);
+                    let shared = if this.index_a == next.index_a || this.index_a == next.index_b {
+                        this.index_a
+                    } else {
+                        this.index_b
+                    };
+                    (this.index_b == shared, next.index_b == shared)
+                });
+            }
+        }
+    }
+
+    /// The joints a Gauss–Seidel pass visits: all but the ones whose rows a path solves entirely (a hinge on a
+    /// path with coordinate rows — limit, motor, spring — keeps them in the pass).
+    pub(super) fn list_iterated(&mut self) {
+        self.iterated.clear();
+        self.iterated.extend(
+            self.joints
+                .iter()
+                .enumerate()
+                .filter(|(_, j)| match &j.kind {
+                    // A hinge on a path is visited for its limit, motor and spring rows, if it has any.
+                    Prepared::Hinge(hinge) => j.path.is_none() || !hinge.has_no_coordinate_rows(),
+                    _ => j.path.is_none(),
+                })
+                .map(|(index, _)| index),
+        );
+    }
+
+    /// The joint graph and its tethers (see [`crate::tether`]).
+    pub(super) fn analyse_graph(&mut self, params: &[BodyParams]) {
+        self.tethers.clear();
+        if !self.settings.tethers {
+            return;
+        }
+        // Every joint on one directly solved path (a rope chain, a bridge): each body's way to a fixed body
+        // runs along that path alone, so the search would make no tether (see `crate::tether`).
+        if self.paths.len() == 1 && self.path_joints.len() == self.joints.len() {
+            return;
+        }
+        self.edges.clear();
+        self.edges.extend(self.joints.iter().map(|j| Edge {
+            index_a: j.pair.index_a,
+            index_b: j.pair.index_b,
+            inv_mass_a: j.pair.inv_mass_a,
+            inv_mass_b: j.pair.inv_mass_b,
+            anchor_a: j.pair.anchor_a,
+            anchor_b: j.pair.anchor_b,
+            length: j.kind.bounded_length(),
+            path: j.path,
+        }));
+        self.graph.analyse(&self.edges, params.len());
+        let body = |i: usize| {
+            params.get(i).map_or((0.0, Mat3::ZERO, Vec3::ZERO), |p| {
+                (p.inv_mass, p.inv_inertia_world, p.center_of_mass)
+            })
+        };
+        self.tethers.extend(self.graph.tethers(body));
+        for t in &mut self.tethers {
+            t.impulse = self
+                .joints
+                .get(t.joint)
+                .map_or(0.0, |j| j.state.tether_impulse);
+        }
+    }
+}
+
+/// Adds (`add`) or takes off one count per joint of `members` from each of its dynamic bodies in `touches`.
+pub(super) fn count_dynamic_bodies(
+    touches: &mut [u32],
+    joints: &[PreparedJoint],
+    members: &[usize],
+    add: bool,
+) {
+    for &index in members {
+        for body in dynamic_bodies(&joints[index].pair).into_iter().flatten() {
+            if let Some(count) = touches.get_mut(body) {
+                *count = if add {
+                    *count + 1
+                } else {
+                    count.wrapping_sub(1)
+                };
+            }
+        }
+    }
+}

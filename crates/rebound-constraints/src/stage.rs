@@ -1,0 +1,36 @@
+//! The pass type: what one solve pass of the joint solver needs besides the bodies — bias or relax, the
+//! substep length and the joint softness. Every stage of the step that solves rows (solve, relax, the
+//! position projection) hands one to the joints and to the path solver.
+
+use rebound_dynamics::{Bias, Softness};
+
+/// What one solve pass needs besides the bodies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Stage {
+    /// Bias pass or relax pass.
+    pub bias: Bias,
+    /// Substep length (s).
+    pub h: f32,
+    /// 1/h (1/s).
+    pub inv_h: f32,
+    /// Softness of hard parts in the bias pass.
+    pub joint_softness: Softness,
+}
+
+impl Stage {
+    /// The stage of the position projection for substeps of `h` (s): a bias rate of 1 and `inv_h` = 1 make
+    /// every row's bias its position error `C` (m or rad), slack ropes included (their speculative bias is
+    /// `C·inv_h`).
+    pub(crate) fn projection(h: f32) -> Self {
+        Self {
+            bias: Bias::On,
+            h,
+            inv_h: 1.0,
+            joint_softness: Softness {
+                bias_rate: 1.0,
+                mass_scale: 1.0,
+                impulse_scale: 0.0,
+            },
+        }
+    }
+}
