@@ -23,7 +23,6 @@ mod solver;
 pub mod spring;
 mod stage;
 mod state;
-pub mod tether;
 mod wheel;
 
 /// The dynamics layer this crate builds on.

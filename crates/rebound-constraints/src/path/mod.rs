@@ -104,6 +104,8 @@ mod sweep;
 mod system;
 #[cfg(test)]
 mod tests;
+pub mod tether;
+pub(crate) mod topology;
 
 pub(crate) use active_set::activate_violations;
 #[cfg(test)]

@@ -261,7 +261,7 @@ impl JointRows {
     /// Pushes the row along `dist`'s axis between the joint's anchors (a rope's, a rod's), with the impulse
     /// bounds `[lower, upper]`: [`Row::linear`], or for a joint between both centres of mass
     /// ([`BodyPair::is_between_centres`]) [`Row::between_centres`], which has nothing to turn.
-    #[inline]
+    #[inline(always)]
     pub fn push_distance(
         &mut self,
         pair: &BodyPair,

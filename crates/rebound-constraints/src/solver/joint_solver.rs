@@ -4,9 +4,10 @@
 
 use super::prepared::PreparedJoint;
 use crate::error::ConstraintError;
+use crate::path::tether::{Edge, JointGraph, Tether};
+use crate::path::topology::Topology;
 use crate::path::{BuiltAt, CARRY_ANGLE, JointRows, Link, MAX_ROWS, Real, resize_links};
 use crate::settings::JointSettings;
-use crate::tether::{Edge, JointGraph, Tether};
 use rebound_dynamics::{Softness, SolverBody};
 
 /// The rows a [`JointSolver`] keeps from one step to the next — a directly solved path's hinge rows, which
@@ -54,20 +55,15 @@ pub struct JointSolver {
     /// The joints a Gauss–Seidel pass visits (indices into `joints`, in order): those on no direct path, and
     /// hinges on one that have limit, motor or spring rows. A rope chain or a bridge solved directly has none.
     pub(super) iterated: Vec<usize>,
-    /// Long-range tethers of chains hanging from fixed bodies (see [`crate::tether`]).
+    /// Long-range tethers of chains hanging from fixed bodies (see [`crate::path::tether`]).
     pub(super) tethers: Vec<Tether>,
     /// Scratch: the joints as graph edges, and the graph search's buffers.
     pub(super) edges: Vec<Edge>,
     pub(super) graph: JointGraph,
-    /// Paths of joints solved directly ([`crate::path`]), as ranges into `path_joints` (joint indices in
-    /// path order).
-    pub(super) paths: Vec<core::ops::Range<usize>>,
-    pub(super) path_joints: Vec<usize>,
-    /// Scratch of the path search: per body, its number of direct-capable joints and the first two of them;
-    /// per joint, whether a path has taken it.
-    pub(super) degree: Vec<u32>,
-    pub(super) incident: Vec<[usize; 2]>,
-    pub(super) visited: Vec<bool>,
+    /// The paths of joints solved directly ([`crate::path`]) and whether each is closed: all of its joints'
+    /// rows are in the direct solve and no other joint or tether acts on its dynamic bodies (only the last
+    /// relax pass of a step solves a closed path, see [`JointSolver::solve`]).
+    pub(super) topology: Topology,
     /// The links of the direct solve, one per entry of `path_joints` (a path's links are the slice of its
     /// range), kept from pass to pass: a pass at the pose a link's rows were built at reuses them, and their
     /// factorisation if the rows in the system are also the same (see [`crate::path`]).
@@ -89,12 +85,6 @@ pub struct JointSolver {
     /// Relax passes since [`JointSolver::prepare`]: the last one of a step (the `substep_count`-th) builds
     /// every path's rows at the final pose, where the position projection starts.
     pub(super) relax_passes: u32,
-    /// Per path, whether it is *closed*: all of its joints' rows are in the direct solve (no hinge limit,
-    /// motor or spring) and no other joint or tether acts on its dynamic bodies. Only the last relax pass of
-    /// a step solves a closed path (see [`JointSolver::solve`]).
-    pub(super) closed: Vec<bool>,
-    /// Scratch of [`JointSolver::find_closed_paths`]: per body, the joints and tethers acting on it.
-    pub(super) touches: Vec<u32>,
 }
 
 impl Default for JointSolver {
@@ -106,11 +96,7 @@ impl Default for JointSolver {
             tethers: Vec::new(),
             edges: Vec::new(),
             graph: JointGraph::default(),
-            paths: Vec::new(),
-            path_joints: Vec::new(),
-            degree: Vec::new(),
-            incident: Vec::new(),
-            visited: Vec::new(),
+            topology: Topology::default(),
             links: Vec::new(),
             path_links: 0,
             solution: Vec::new(),
@@ -120,8 +106,6 @@ impl Default for JointSolver {
             h: 0.0,
             carry_angle: CARRY_ANGLE,
             relax_passes: 0,
-            closed: Vec::new(),
-            touches: Vec::new(),
         }
     }
 }

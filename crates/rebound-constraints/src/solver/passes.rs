@@ -151,9 +151,10 @@ impl JointSolver {
                     Prepared::Wheel(p) => p.solve(pair, state, a, b, &stage),
                 }
             }
-            for path in 0..self.paths.len() {
+            for path in 0..self.topology.paths.len() {
                 // A closed path is relaxed in the step's last substep only: see the method docs.
-                if bias == Bias::Off && !last_relax && self.closed.get(path) == Some(&true) {
+                if bias == Bias::Off && !last_relax && self.topology.closed.get(path) == Some(&true)
+                {
                     continue;
                 }
                 self.solve_path(path, solver_bodies, &stage, carry_angle);

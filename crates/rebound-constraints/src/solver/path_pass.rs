@@ -35,17 +35,18 @@ impl JointSolver {
         stage: &Stage,
         carry_angle: f32,
     ) {
-        let Some(range) = self.paths.get(path).cloned() else {
+        let Some(range) = self.topology.paths.get(path).cloned() else {
             return;
         };
         let Self {
             joints,
-            path_joints,
+            topology,
             links,
             solution,
             ..
         } = self;
         // `prepare` sized the links to the path members; a solver never prepared has no paths.
+        let path_joints = &topology.path_joints;
         resize_links(links, path_joints.len());
         let (Some(members), Some(links)) = (path_joints.get(range.clone()), links.get_mut(range))
         else {
@@ -99,7 +100,8 @@ impl JointSolver {
     /// How many links of the paths have rows built at the bodies' current pose (the next pass reuses them).
     #[cfg(test)]
     pub(super) fn reusable_links(&self, solver_bodies: &[SolverBody]) -> usize {
-        self.path_joints
+        self.topology
+            .path_joints
             .iter()
             .zip(&self.links)
             .filter(|&(&index, link)| {
@@ -129,6 +131,9 @@ pub(super) fn direct_rows(
 /// [`direct_rows`] with the joint's bodies already loaded (`None`: no rows), with the joint's inverse masses
 /// or, if `keep_masses`, those the link has (a link of a path kept from the last step: `K` must turn each
 /// body by one inverse inertia until the last relax pass builds every link again, see `crate::path`).
+// Inlined into the pass loops (as `link_rows`): they run once per link and pass, and a rope's rows cost
+// less to build than the calls.
+#[inline(always)]
 pub(super) fn rows_at(
     j: &mut PreparedJoint,
     bodies: Option<(&SolverBody, &SolverBody)>,
@@ -170,6 +175,7 @@ pub(super) fn rows_at(
 /// built again
 /// ([`rows_at`]). `bodies` are the joint's bodies (`None`: no rows). The position projection passes
 /// `carry_angle` = 0: its Newton steps need the Jacobians of the pose.
+#[inline(always)]
 pub(super) fn link_rows(
     j: &mut PreparedJoint,
     bodies: Option<(&SolverBody, &SolverBody)>,

@@ -3,14 +3,15 @@
 //! paths are closed.
 
 use super::joint_solver::JointSolver;
-use super::prepared::{Keep, Prepared, PreparedJoint, dynamic_bodies, keep_only};
+use super::prepared::{Keep, Prepared, PreparedJoint, keep_only};
 use crate::fixed::FixedJoint;
 use crate::joint::{Joint, JointBodies, JointKind};
 use crate::pair::BodyPair;
 use crate::part::rotation_error;
 use crate::path::resize_links;
+use crate::path::tether::Edge;
+use crate::path::topology::Topology;
 use crate::state::JointState;
-use crate::tether::Edge;
 use rebound_dynamics::{BodyParams, SolverBody, StepContext};
 use rebound_math::{Mat3, Vec3};
 
@@ -104,12 +105,13 @@ impl JointSolver {
         // One link per path member. A path whose links all hold carried rows of the last step for the same
         // joint, bodies and inverse masses keeps them ([`Link::new_step`]; see `crate::path`, "Rows carried
         // through the step"); any other path starts from nothing.
-        resize_links(&mut self.links, self.path_joints.len());
-        self.path_links = self.path_joints.len();
-        for range in &self.paths {
+        resize_links(&mut self.links, self.topology.path_joints.len());
+        self.path_links = self.topology.path_joints.len();
+        for range in &self.topology.paths {
             let keeps = |k: usize| {
                 let (Some(j), Some(link)) = (
-                    self.path_joints
+                    self.topology
+                        .path_joints
                         .get(k)
                         .and_then(|&index| self.joints.get(index)),
                     self.links.get(k),
@@ -136,7 +138,7 @@ impl JointSolver {
                 }
             }
         }
-        for link in self.links.iter_mut().skip(self.path_joints.len()) {
+        for link in self.links.iter_mut().skip(self.topology.path_joints.len()) {
             link.drop_built();
         }
         self.link_paths();
@@ -146,137 +148,28 @@ impl JointSolver {
         skipped
     }
 
-    /// Marks each path closed or not ([`JointSolver::closed`]): a path is closed when every member's rows are
-    /// all in the direct solve (ropes, rods, ball joints, hinges without limit, motor or spring) and each of its
-    /// dynamic bodies is acted on by the path's joints alone — no other joint, no tether. Fixed and kinematic
-    /// bodies (zero inverse mass and inertia) take no impulse and may be shared.
-    pub(super) fn find_closed_paths(&mut self, body_count: usize) {
+    /// The paths solved directly ([`Topology::find_paths`]), each joint on one told its path and link.
+    fn find_paths(&mut self, body_count: usize) {
         let Self {
+            settings,
             joints,
-            tethers,
-            paths,
-            path_joints,
-            closed,
-            touches,
+            topology,
             ..
         } = self;
-        touches.clear();
-        touches.resize(body_count, 0);
-        let pairs = joints
-            .iter()
-            .map(|j| &j.pair)
-            .chain(tethers.iter().map(|t| &t.pair));
-        for pair in pairs {
-            for body in dynamic_bodies(pair).into_iter().flatten() {
-                if let Some(count) = touches.get_mut(body) {
-                    *count += 1;
-                }
-            }
-        }
-        closed.clear();
-        closed.extend(paths.iter().map(|range| {
-            let members = path_joints.get(range.clone()).unwrap_or_default();
-            let whole = members.iter().all(|&index| match &joints[index].kind {
-                Prepared::Rope(_) | Prepared::Rod(_) | Prepared::Ball => true,
-                Prepared::Hinge(hinge) => hinge.has_no_coordinate_rows(),
-                _ => false,
-            });
-            // Each dynamic body of the path: as many joints and tethers act on it as path joints do.
-            count_dynamic_bodies(touches, joints, members, false);
-            let alone = members.iter().all(|&index| {
-                dynamic_bodies(&joints[index].pair)
-                    .into_iter()
-                    .flatten()
-                    .all(|body| touches.get(body) == Some(&0))
-            });
-            count_dynamic_bodies(touches, joints, members, true);
-            whole && alone
-        }));
-    }
-
-    /// The paths solved directly: maximal sequences of direct-capable joints (rope, rod, ball, hinge) through
-    /// dynamic bodies that belong to exactly two such joints. A path ends at a fixed body, a free end or a
-    /// branching body; joints on a closed loop stay with Gauss–Seidel.
-    pub(super) fn find_paths(&mut self, body_count: usize) {
-        self.paths.clear();
-        self.path_joints.clear();
-        if !self.settings.direct_chains {
+        if !settings.direct_chains {
+            topology.clear();
             return;
         }
-        self.degree.clear();
-        self.degree.resize(body_count, 0);
-        self.incident.clear();
-        self.incident.resize(body_count, [usize::MAX; 2]);
-        for (index, joint) in self.joints.iter().enumerate() {
-            if !joint.kind.is_direct_capable() {
-                continue;
-            }
-            for body in dynamic_bodies(&joint.pair).into_iter().flatten() {
-                let (Some(degree), Some(incident)) =
-                    (self.degree.get_mut(body), self.incident.get_mut(body))
-                else {
-                    continue;
-                };
-                if let Some(slot) = incident.get_mut(*degree as usize) {
-                    *slot = index;
-                }
-                *degree += 1;
-            }
-        }
-        let inner = |degree: &[u32], body: Option<usize>| {
-            body.is_some_and(|b| degree.get(b).copied() == Some(2))
-        };
-        self.visited.clear();
-        self.visited.resize(self.joints.len(), false);
-        for start in 0..self.joints.len() {
-            if self.visited[start] || !self.joints[start].kind.is_direct_capable() {
-                continue;
-            }
-            let [body_a, body_b] = dynamic_bodies(&self.joints[start].pair);
-            // Walk away from an end of the path; a joint with inner bodies on both sides is not an end.
-            let mut toward = if !inner(&self.degree, body_a) {
-                body_b
-            } else if !inner(&self.degree, body_b) {
-                body_a
-            } else {
-                continue;
-            };
-            let first = self.path_joints.len();
-            let mut current = start;
-            loop {
-                self.visited[current] = true;
-                self.path_joints.push(current);
-                let Some(body) = toward.filter(|&b| inner(&self.degree, Some(b))) else {
-                    break;
-                };
-                let [j0, j1] = self.incident[body];
-                let next = if j0 == current { j1 } else { j0 };
-                let Some(next_joint) = self.joints.get(next) else {
-                    break;
-                };
-                let pair = next_joint.pair;
-                let other = if pair.index_a == body {
-                    pair.index_b
-                } else {
-                    pair.index_a
-                };
-                // Two joints between the same two bodies share both: not a path link.
-                let here = self.joints[current].pair;
-                if self.visited[next] || other == here.index_a || other == here.index_b {
-                    break;
-                }
-                toward = dynamic_bodies(&pair)
-                    .into_iter()
-                    .flatten()
-                    .find(|&b| b == other);
-                current = next;
-            }
-            self.paths.push(first..self.path_joints.len());
-        }
-        for (path, range) in self.paths.iter().enumerate() {
-            for (link, &index) in range.clone().zip(&self.path_joints[range.clone()]) {
-                self.joints[index].path = Some(path);
-                self.joints[index].link = Some(link);
+        topology.find_paths(
+            body_count,
+            joints.len(),
+            |i| &joints[i].pair,
+            |i| joints[i].kind.is_direct_capable(),
+        );
+        for (path, range) in topology.paths.iter().enumerate() {
+            for (link, &index) in range.clone().zip(&topology.path_joints[range.clone()]) {
+                joints[index].path = Some(path);
+                joints[index].link = Some(link);
             }
         }
     }
@@ -284,32 +177,43 @@ impl JointSolver {
     /// Links each path's consecutive members through the body they share (which side of each it is), and
     /// leaves its last member unlinked: the shape every pass of the step solves ([`Link::shared_with_next`]),
     /// set once here rather than before each solve.
-    pub(super) fn link_paths(&mut self) {
+    fn link_paths(&mut self) {
         let Self {
             joints,
-            paths,
-            path_joints,
+            topology,
             links,
             ..
         } = self;
-        for range in paths.iter() {
-            let (Some(members), Some(links)) =
-                (path_joints.get(range.clone()), links.get_mut(range.clone()))
-            else {
+        for range in &topology.paths {
+            let (Some(members), Some(links)) = (
+                topology.path_joints.get(range.clone()),
+                links.get_mut(range.clone()),
+            ) else {
                 continue;
             };
             for (slot, link) in links.iter_mut().enumerate() {
-                link.shared_with_next = members.get(slot + 1).map(|&next| {
-                    let (this, next) = (&joints[members[slot]].pair, &joints[next].pair);
-                    let shared = if this.index_a == next.index_a || this.index_a == next.index_b {
-                        this.index_a
-                    } else {
-                        this.index_b
-                    };
-                    (this.index_b == shared, next.index_b == shared)
-                });
+                link.shared_with_next =
+                    Topology::shared_with_next(members, slot, |i| &joints[i].pair);
             }
         }
+    }
+
+    /// Marks each path closed or not ([`Topology::find_closed`]): a joint's rows are all in the direct solve
+    /// if it is a rope, a rod, a ball joint or a hinge without limit, motor or spring.
+    fn find_closed_paths(&mut self, body_count: usize) {
+        let Self {
+            joints,
+            tethers,
+            topology,
+            ..
+        } = self;
+        topology.find_closed(
+            body_count,
+            joints.len(),
+            |i| &joints[i].pair,
+            tethers.iter().map(|t| &t.pair),
+            |i| joints[i].kind.is_solved_directly_whole(),
+        );
     }
 
     /// The joints a Gauss–Seidel pass visits: all but the ones whose rows a path solves entirely (a hinge on a
@@ -329,15 +233,15 @@ impl JointSolver {
         );
     }
 
-    /// The joint graph and its tethers (see [`crate::tether`]).
+    /// The joint graph and its tethers (see [`crate::path::tether`]).
     pub(super) fn analyse_graph(&mut self, params: &[BodyParams]) {
         self.tethers.clear();
         if !self.settings.tethers {
             return;
         }
         // Every joint on one directly solved path (a rope chain, a bridge): each body's way to a fixed body
-        // runs along that path alone, so the search would make no tether (see `crate::tether`).
-        if self.paths.len() == 1 && self.path_joints.len() == self.joints.len() {
+        // runs along that path alone, so the search would make no tether (see `crate::path::tether`).
+        if self.topology.paths.len() == 1 && self.topology.path_joints.len() == self.joints.len() {
             return;
         }
         self.edges.clear();
@@ -363,26 +267,6 @@ impl JointSolver {
                 .joints
                 .get(t.joint)
                 .map_or(0.0, |j| j.state.tether_impulse);
-        }
-    }
-}
-
-/// Adds (`add`) or takes off one count per joint of `members` from each of its dynamic bodies in `touches`.
-pub(super) fn count_dynamic_bodies(
-    touches: &mut [u32],
-    joints: &[PreparedJoint],
-    members: &[usize],
-    add: bool,
-) {
-    for &index in members {
-        for body in dynamic_bodies(&joints[index].pair).into_iter().flatten() {
-            if let Some(count) = touches.get_mut(body) {
-                *count = if add {
-                    *count + 1
-                } else {
-                    count.wrapping_sub(1)
-                };
-            }
         }
     }
 }

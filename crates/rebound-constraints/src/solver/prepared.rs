@@ -13,7 +13,6 @@ use crate::rope::PreparedRope;
 use crate::spring::PreparedSpring;
 use crate::state::JointState;
 use crate::wheel::PreparedWheel;
-use rebound_math::Mat3;
 
 /// A joint kind prepared for the substeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,6 +34,16 @@ impl Prepared {
             self,
             Self::Rope(_) | Self::Rod(_) | Self::Ball | Self::Hinge(_)
         )
+    }
+
+    /// Whether all of the joint's rows are in the direct solve when it is on a path: a rope's, a rod's, a
+    /// ball joint's, a hinge's without limit, motor or spring.
+    pub(super) fn is_solved_directly_whole(&self) -> bool {
+        match self {
+            Self::Rope(_) | Self::Rod(_) | Self::Ball => true,
+            Self::Hinge(hinge) => hinge.has_no_coordinate_rows(),
+            _ => false,
+        }
     }
 
     /// The distance a joint allows between its anchors (m), for tethers: a rope's or rod's length, 0 for the
@@ -128,14 +137,4 @@ pub(super) fn state_lambda(j: &PreparedJoint) -> [f32; MAX_ROWS] {
         Prepared::Hinge(_) => [l.x, l.y, l.z, w.x, w.y],
         _ => [0.0; MAX_ROWS],
     }
-}
-
-/// The joint's bodies that the solver moves (dynamic: a non-zero inverse mass or inertia); `None` for a
-/// fixed or kinematic side, which couples nothing.
-pub(super) fn dynamic_bodies(pair: &BodyPair) -> [Option<usize>; 2] {
-    let moves = |inv_mass: f32, inv_inertia: &Mat3| inv_mass > 0.0 || *inv_inertia != Mat3::ZERO;
-    [
-        moves(pair.inv_mass_a, &pair.inv_inertia_a).then_some(pair.index_a),
-        moves(pair.inv_mass_b, &pair.inv_inertia_b).then_some(pair.index_b),
-    ]
 }

@@ -51,19 +51,20 @@ impl JointSolver {
     /// `(v·h)²/(2L)` in each substep, far more than the soft correction takes back.
     pub fn project_positions(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
         let stage = Stage::projection(ctx.h);
-        for path in 0..self.paths.len() {
-            let Some(range) = self.paths.get(path).cloned() else {
+        for path in 0..self.topology.paths.len() {
+            let Some(range) = self.topology.paths.get(path).cloned() else {
                 continue;
             };
             let Self {
                 joints,
-                path_joints,
+                topology,
                 links,
                 solution,
                 saved,
                 probe,
                 ..
             } = self;
+            let path_joints = &topology.path_joints;
             resize_links(links, path_joints.len());
             let (Some(members), Some(links)) =
                 (path_joints.get(range.clone()), links.get_mut(range))

@@ -105,9 +105,9 @@ fn steps(rebuild: bool) -> String {
         let mut solver_bodies: Vec<SolverBody> = bodies.iter().map(SolverBody::from_body).collect();
         let params: Vec<BodyParams> = bodies.iter().map(BodyParams::from_body).collect();
         let skipped = solver.prepare(&joints, &states, &pairs, &solver_bodies, &params, &ctx);
-        assert_eq!((skipped, solver.paths.len()), (0, 2));
+        assert_eq!((skipped, solver.topology.paths.len()), (0, 2));
         assert_eq!(
-            solver.closed,
+            solver.topology.closed,
             [false, true],
             "the deck has a limit, the chain is closed"
         );
@@ -218,7 +218,7 @@ fn a_path_is_closed_only_if_nothing_else_acts_on_its_dynamic_bodies() {
         let mut solver = JointSolver::new();
         let skipped = solver.prepare(joints, &states, pairs, &solver_bodies, &params, &ctx);
         assert_eq!(skipped, 0);
-        solver.closed
+        solver.topology.closed
     };
     let (mut bodies, mut joints, mut pairs) = hinge_deck(1.0);
     assert_eq!(closed(&bodies, &joints, &pairs), [true]);
@@ -346,7 +346,7 @@ fn the_last_relax_pass_builds_the_rows_the_projection_reuses() {
     let mut solver_bodies: Vec<SolverBody> = bodies.iter().map(SolverBody::from_body).collect();
     let params: Vec<BodyParams> = bodies.iter().map(BodyParams::from_body).collect();
     let skipped = solver.prepare(&joints, &states, &pairs, &solver_bodies, &params, &ctx);
-    assert_eq!((skipped, solver.paths.len()), (0, 1));
+    assert_eq!((skipped, solver.topology.paths.len()), (0, 1));
     let mut after_relax = Vec::new();
     substeps(
         &mut solver,
