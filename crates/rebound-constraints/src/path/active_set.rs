@@ -2,7 +2,7 @@
 //! (ropes, limits) take part in the system ([`Link::activate`]), and the rounds after a solve that release
 //! rows that would push and add rows left out that would be violated ([`activate_violations`]).
 
-use super::link::Link;
+use super::link::{Link, Mode};
 use super::row::{MAX_ROWS, Real, Row};
 use crate::part::clamp_impulse;
 use rebound_dynamics::SolverBody;
@@ -200,7 +200,7 @@ pub(crate) fn activate_violations<'b>(
             {
                 free += next.effect_on(row, Some((this_b, next_b)), &solution[i + 1]);
             }
-            if !link.positions
+            if link.mode == Mode::Velocity
                 && let Some((a, b)) = load(i)
             {
                 free += row.velocity(a, b);

@@ -32,6 +32,46 @@ impl FactorKey {
     }
 }
 
+/// What a link's system is solved for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Mode {
+    /// A velocity pass (solve, relax): `K·x = Ċ + bias`, and the result changes the bodies' velocities.
+    Velocity,
+    /// A position projection: the rows' biases hold their position errors `C`, `K·x = C`, and the result
+    /// moves the bodies.
+    Position,
+}
+
+/// Which step's inverse masses a link's rows are turned with. A path whose rows were kept from the last step
+/// ([`Link::new_step`]) builds rows with the kept rows' inverse masses until its last relax pass
+/// ([`Link::end_last_step`]), so that every link of the path turns a body by the same inverse inertia.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Masses {
+    /// This step's: the bodies' inverse masses and inertias at its start.
+    ThisStep,
+    /// Those of the rows kept from the last step.
+    LastStep,
+}
+
+/// What a pass at the bodies' current pose may keep of a link's rows ([`PoseKey`]s compare the bits of the
+/// pose).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum RowsAt {
+    /// Nothing: the next pass builds the rows (or carries rows built earlier, [`Link::carry`]).
+    Unknown,
+    /// The rows were built at this pose: a pass there recomputes only their targets ([`Link::reuse`]).
+    Built(PoseKey),
+    /// The rows were carried to the pose `to` ([`Link::carry`]): a pass there recomputes the targets from
+    /// the carried errors ([`Link::recarry`]). `built` is the pose of this step they were built at, if any (a
+    /// pass there keeps them as built).
+    Carried {
+        /// The pose of the build, if it was in this step.
+        built: Option<PoseKey>,
+        /// The pose carried to.
+        to: PoseKey,
+    },
+}
+
 /// The rows whose residuals the block sweep computes four lanes wide ([`Link::residual`]).
 pub(super) const LANES: usize = 4;
 
@@ -53,29 +93,24 @@ pub(crate) struct Link {
     pub active: [bool; MAX_ROWS],
     /// The side of this joint on the body shared with the next link, and the side of the next link on it.
     pub shared_with_next: Option<(bool, bool)>,
-    /// Whether this is a position projection: the rows' biases hold their position errors `C`, the solve is
-    /// `K·x = C` and the result moves the bodies instead of changing their velocities.
-    pub(super) positions: bool,
-    /// Whether the rows were kept from the last step ([`Link::new_step`]): rows built again in this step
-    /// before its last relax pass take the inverse masses of the kept ones, so that every link of the path
-    /// turns by the same inverse inertia of a body.
-    pub from_last_step: bool,
+    /// What the pass solves for: velocities (solve, relax) or positions (the projection).
+    pub(super) mode: Mode,
+    /// Which step's inverse masses rows built now take ([`Masses`]).
+    pub(super) masses: Masses,
     /// What the factorisation (`scalar`, or `factor`, `v`, `w`, `inv_pivot` and the blocks) was made for;
     /// `None` when it is stale.
     pub(super) factored: Option<FactorKey>,
     /// The scalar sweep's entries of a one-row link ([`solve_scalar_path`]).
     pub(super) scalar: ScalarEntries,
-    /// The pose the rows were built at ([`PoseKey`]); `None` when the rows are to be built.
-    pub(super) pose: Option<PoseKey>,
-    /// The pose the rows were last carried to ([`Link::carry`]) and each row's position error there, `C₀ + J·Δ`:
-    /// the next pass at that pose (the solve pass after a relax pass) recomputes only the targets
-    /// ([`Link::recarry`]). `None` when the rows were built since.
-    pub(super) carried_at: Option<PoseKey>,
+    /// The poses the rows were built at and carried to ([`RowsAt`]): what a pass at the bodies' pose may keep.
+    pub(super) rows_at: RowsAt,
+    /// Each row's position error at the pose the rows were last carried to, `C₀ + J·Δ` ([`Link::carry`]);
+    /// meaningful while `rows_at` is [`RowsAt::Carried`].
     pub(super) carried: [f32; MAX_ROWS],
     pub rows: JointRows,
     /// Each row's compliance in a position projection (1/kg, added to its diagonal of `K`): that of the rows
     /// that stiffen a pulled rope or rod against turning ([`Link::stiffen`]), 0 for every other row. Set by
-    /// [`Link::make_positional`] and read only while `positions` holds.
+    /// [`Link::make_positional`] and read only in [`Mode::Position`].
     pub(super) compliance: [Real; MAX_ROWS],
     /// Scratch of the block Thomas sweep (see [`solve_block_path`]): the strictly lower part of the unit
     /// lower triangular `L` of `Sᵢ = L·D·Lᵀ` (with `Sᵢ`'s upper triangle above it, factorised in place by
@@ -130,7 +165,7 @@ impl Link {
             lambda,
             active: [false; MAX_ROWS],
             shared_with_next: None,
-            positions: false,
+            mode: Mode::Velocity,
             compliance: [0.0; MAX_ROWS],
             scalar: ScalarEntries::default(),
             factor: [[0.0; MAX_ROWS]; MAX_ROWS],
@@ -143,11 +178,10 @@ impl Link {
             lanes: [[Vec4::ZERO; 3]; 4],
             impulse: [[Vec4::ZERO; 4]; MAX_ROWS],
             factored: None,
-            pose: None,
-            carried_at: None,
+            rows_at: RowsAt::Unknown,
             carried: [0.0; MAX_ROWS],
             built: None,
-            from_last_step: false,
+            masses: Masses::ThisStep,
         }
     }
 
@@ -173,7 +207,7 @@ impl Link {
     pub(super) fn restart(&mut self) {
         self.lambda = [0.0; MAX_ROWS];
         self.active = [false; MAX_ROWS];
-        self.positions = false;
+        self.mode = Mode::Velocity;
     }
 
     /// Drops what is kept from earlier passes (the pose of the rows, the factorisation): the next pass
@@ -185,8 +219,7 @@ impl Link {
 
     /// Forgets the poses the rows were built and carried at (they are rebuilt or carried at the next pass).
     pub(super) fn forget_poses(&mut self) {
-        self.pose = None;
-        self.carried_at = None;
+        self.rows_at = RowsAt::Unknown;
     }
 
     /// Forgets everything kept ([`Link::forget`]), from the last step too ([`Link::end_last_step`]), and
@@ -202,16 +235,16 @@ impl Link {
     /// are unrelated to the last step's, so neither the build pose nor a carried one is reused as is.
     pub fn new_step(&mut self) {
         self.forget_poses();
-        self.from_last_step = true;
+        self.masses = Masses::LastStep;
     }
 
     /// Ends what [`Link::new_step`] started: rows built from now on take this step's inverse masses, and
     /// kept rows are built again at the next pass (the solver calls it for every link of a path at once:
     /// before the step's last relax pass, and for a path it does not keep).
     pub fn end_last_step(&mut self) {
-        if self.from_last_step {
+        if self.masses == Masses::LastStep {
             self.forget_poses();
-            self.from_last_step = false;
+            self.masses = Masses::ThisStep;
         }
     }
 
@@ -219,7 +252,19 @@ impl Link {
     /// was, or it was forgotten). Compares in place: the key is 56 bytes, checked for every link of every pass.
     #[inline]
     pub fn is_built_at(&self, pose: &PoseKey) -> bool {
-        self.pose.as_ref() == Some(pose)
+        match &self.rows_at {
+            RowsAt::Built(built)
+            | RowsAt::Carried {
+                built: Some(built), ..
+            } => built == pose,
+            _ => false,
+        }
+    }
+
+    /// Whether rows built now take the inverse masses of the rows kept from the last step.
+    #[inline]
+    pub fn keeps_last_step_masses(&self) -> bool {
+        self.masses == Masses::LastStep
     }
 
     /// Applies the impulse `lambda` along the first row to both bodies: the warm start of a one-row joint (a

@@ -3,7 +3,7 @@
 //! turning ([`Link::stiffen`]), and the one-joint Gauss–Seidel projection ([`project_rows`]) that follows
 //! the direct one.
 
-use super::link::Link;
+use super::link::{Link, Mode};
 use super::row::{JointRows, MAX_ROWS, Real, Row, TargetRule};
 use crate::part::RowTarget;
 use rebound_dynamics::SolverBody;
@@ -41,7 +41,7 @@ impl Link {
             }
         }
         self.lambda = [0.0; MAX_ROWS];
-        self.positions = true;
+        self.mode = Mode::Position;
         self.active = active;
         self.compliance = [0.0; MAX_ROWS];
     }
@@ -55,7 +55,10 @@ impl Link {
     /// stiffness), which the plain step leaves out. Returns whether the rows were added (a link of one row
     /// and a positive, finite stiffness only). The rows and factorisation are dropped for the next pass.
     pub fn stiffen(&mut self, stiffness: f32) -> bool {
-        if !self.positions || self.rows.count != 1 || !(stiffness > 0.0 && stiffness.is_finite()) {
+        if self.mode != Mode::Position
+            || self.rows.count != 1
+            || !(stiffness > 0.0 && stiffness.is_finite())
+        {
             return false;
         }
         let row = self.rows.rows[0];

@@ -2,7 +2,7 @@
 //! targets ([`Link::reuse`]); a pass at a new pose may carry a hinge's rows there to first order instead of
 //! building them again ([`Link::carry`], [`Link::recarry`]). Runs at the start of every solve and relax pass.
 
-use super::link::{LANES, Link};
+use super::link::{LANES, Link, RowsAt};
 use super::pose::PoseKey;
 use super::row::JointRows;
 use crate::part::rotation_error;
@@ -72,7 +72,12 @@ impl Link {
             };
             *carried = c + moved;
         }
-        self.carried_at = Some(*now);
+        let built = match self.rows_at {
+            RowsAt::Built(built) => Some(built),
+            RowsAt::Carried { built, .. } => built,
+            RowsAt::Unknown => None,
+        };
+        self.rows_at = RowsAt::Carried { built, to: *now };
         self.restart_carried(stage);
         true
     }
@@ -81,7 +86,7 @@ impl Link {
     /// errors carried there: the targets [`Link::carry`] would compute again, bit for bit, without measuring
     /// the turn and the displacement again. Returns `false`, changing nothing, at any other pose.
     pub fn recarry(&mut self, now: &PoseKey, stage: &Stage) -> bool {
-        if !self.carried_at.as_ref().is_some_and(|at| at == now) {
+        if !matches!(&self.rows_at, RowsAt::Carried { to, .. } if to == now) {
             return false;
         }
         self.restart_carried(stage);
@@ -109,7 +114,7 @@ impl Link {
 
     /// Records that the rows just built (after [`Link::reset`]) are those of the pose `pose`.
     pub fn built_at(&mut self, pose: Option<PoseKey>) {
-        self.pose = pose;
+        self.rows_at = pose.map_or(RowsAt::Unknown, RowsAt::Built);
     }
 
     /// Starts a pass of `stage` at the pose the rows were built at (the caller has checked

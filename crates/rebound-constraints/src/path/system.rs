@@ -8,7 +8,7 @@
 )]
 
 use super::factor::REGULARIZATION;
-use super::link::{LANES, Link};
+use super::link::{LANES, Link, Mode};
 use super::row::{MAX_ROWS, Real, Row, displace_body};
 use crate::part::clamp_impulse;
 use rebound_dynamics::{Softness, SolverBody};
@@ -23,7 +23,7 @@ impl Link {
     pub(super) fn residual(&self, a: &SolverBody, b: &SolverBody) -> [Real; MAX_ROWS] {
         let mut r = [0.0; MAX_ROWS];
         let rows = self.rows.rows();
-        if self.positions {
+        if self.mode == Mode::Position {
             for (i, row) in rows.iter().enumerate() {
                 if self.active[i] {
                     r[i] = self.row_residual(row, a, b);
@@ -69,7 +69,7 @@ impl Link {
 
     /// One row's right-hand side: `Ċ + bias`, or `C` (its bias) in a position projection.
     pub(super) fn row_residual(&self, row: &Row, a: &SolverBody, b: &SolverBody) -> Real {
-        if self.positions {
+        if self.mode == Mode::Position {
             Real::from(row.target.bias)
         } else {
             Real::from(row.velocity(a, b) + row.target.bias)
@@ -203,7 +203,7 @@ impl Link {
                 };
                 if i == j {
                     b[i][i] = k * (1.0 + REGULARIZATION);
-                    if self.positions && live[i] {
+                    if self.mode == Mode::Position && live[i] {
                         b[i][i] += self.compliance[i];
                     }
                 } else {
@@ -267,7 +267,7 @@ impl Link {
     /// Step 4: the soft update of each active row from the solution `x`, clamped; applies the increments.
     pub fn apply_solution(&mut self, x: &[Real; MAX_ROWS], a: &mut SolverBody, b: &mut SolverBody) {
         // A one-row link of a velocity pass (every rope of a chain): the loop below for its one row.
-        if self.rows.count == 1 && !self.positions {
+        if self.rows.count == 1 && self.mode != Mode::Position {
             if self.active[0] {
                 let row = &self.rows.rows[0];
                 let lambda = self.lambda[0];
@@ -279,7 +279,7 @@ impl Link {
         }
         let rows = &self.rows;
         // A one-row link of a projection (a rope chain's, solved by the scalar sweep, which makes no map).
-        if self.positions && rows.count == 1 {
+        if self.mode == Mode::Position && rows.count == 1 {
             if self.active[0] {
                 let row = &rows.rows[0];
                 let p = clamp_impulse(self.lambda[0] - x[0] as f32, row.lower, row.upper);
@@ -290,7 +290,7 @@ impl Link {
         // The rows' increments — in a projection, their position impulses — summed through `M⁻¹·Jᵀ` (made
         // with the blocks this sweep used: the rows in the system now are those they were made for), then
         // each body changed once.
-        let positions = self.positions;
+        let positions = self.mode == Mode::Position;
         let mut change = [Vec4::ZERO; 4];
         for ((((row, &x), lambda), &active), impulse) in rows
             .rows()

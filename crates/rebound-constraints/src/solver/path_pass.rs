@@ -198,7 +198,7 @@ pub(super) fn link_rows(
         }
         // Built again: carried from here, in this step or the next; with the kept rows' inverse masses on a
         // path kept from the last step.
-        let keep_masses = link.from_last_step;
+        let keep_masses = link.keeps_last_step_masses();
         link.lambda = rows_at(j, bodies, stage, link, keep_masses);
         link.built_at(pose);
         link.built = Some(build_site(j, a, b));

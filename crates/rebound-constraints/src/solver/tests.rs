@@ -273,7 +273,7 @@ fn a_path_keeps_its_rows_into_the_next_step_only_unchanged() {
     let kept = |solver: &JointSolver| {
         solver.links[..solver.path_links]
             .iter()
-            .filter(|l| l.from_last_step)
+            .filter(|l| l.keeps_last_step_masses())
             .count()
     };
     // A fresh solver keeps nothing; after a step every link is kept.
