@@ -1,8 +1,12 @@
-//! Events a step produces, drained by the user after it (stage *events*, last in the step). Produced in a
-//! deterministic order: contact events in body-pair order, then broken joints, then sleep changes, each
-//! sorted by handle.
+//! Stage *events*, last in the step: the events a step produces, drained by the user after it. Contact
+//! begin and end come from this step's touching pairs against last step's; broken joints (stage *store*)
+//! and bodies falling asleep (stage *islands and sleep*) are already in the list; the bodies woken since
+//! the last events stage close it. Produced in a deterministic order: contact events in body-pair order,
+//! then broken joints, then sleep changes, each sorted by handle.
 
-use crate::{BodyHandle, JointHandle};
+use crate::handles::{BodyHandle, JointHandle};
+use crate::sorted_walk::walk_to;
+use crate::state::WorldState;
 
 /// Something that happened during the last step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,4 +43,86 @@ pub enum Event {
         /// The body.
         body: BodyHandle,
     },
+}
+
+/// The buffers of the *events* stage, reused from step to step.
+#[derive(Debug, Default)]
+pub(crate) struct EventBuffers {
+    /// Touching body pairs of this step, sorted.
+    touching: Vec<(BodyHandle, BodyHandle)>,
+    /// Touching body pairs of this step with their approach speeds.
+    touching_speeds: Vec<((BodyHandle, BodyHandle), f32)>,
+    /// The contact events of the step.
+    contact_events: Vec<Event>,
+}
+
+/// Stage *events*: contact begin/end from this step's touching pairs against last step's
+/// (`state.touching`, replaced by this step's), then the bodies in `woken`; sorted.
+///
+/// `state.manifolds` are this step's manifolds, `pushed` and `approach_speeds` say for each whether the
+/// solver pushed with it and how fast its bodies approached before the step (m/s); `events` holds what the
+/// step already reported (broken joints, bodies fallen asleep).
+pub(crate) fn emit_events(
+    state: &mut WorldState,
+    pushed: &[bool],
+    approach_speeds: &[f32],
+    buffers: &mut EventBuffers,
+    events: &mut Vec<Event>,
+    woken: &mut Vec<BodyHandle>,
+) {
+    let b = buffers;
+    // Touching pairs with their approach speeds, sorted by pair: O(m log m) for m manifolds.
+    b.touching_speeds.clear();
+    for ((m, &was_pushed), &speed) in state.manifolds.iter().zip(pushed).zip(approach_speeds) {
+        // Touching: overlapping, or pushed this step (a speculative contact that closed its gap, a bounce).
+        if m.is_touching() || was_pushed {
+            let pair = if m.body_a <= m.body_b {
+                (m.body_a, m.body_b)
+            } else {
+                (m.body_b, m.body_a)
+            };
+            b.touching_speeds.push((pair, speed));
+        }
+    }
+    b.touching_speeds.sort_unstable_by_key(|x| x.0);
+    b.touching.clear();
+    let mut contact_events = core::mem::take(&mut b.contact_events);
+    contact_events.clear();
+    let mut last = state.touching.iter().peekable();
+    let mut i = 0;
+    while i < b.touching_speeds.len() {
+        let pair = b.touching_speeds[i].0;
+        let mut approach_speed = 0.0f32;
+        while i < b.touching_speeds.len() && b.touching_speeds[i].0 == pair {
+            approach_speed = approach_speed.max(b.touching_speeds[i].1);
+            i += 1;
+        }
+        b.touching.push(pair);
+        // Both lists are sorted: a forward walk through last step's.
+        if walk_to(&mut last, &pair, |&old| old).is_none() {
+            contact_events.push(Event::ContactBegan {
+                body_a: pair.0,
+                body_b: pair.1,
+                approach_speed,
+            });
+        }
+    }
+    let mut now = b.touching.iter().peekable();
+    for pair in &state.touching {
+        if walk_to(&mut now, pair, |&new| new).is_none() {
+            contact_events.push(Event::ContactEnded {
+                body_a: pair.0,
+                body_b: pair.1,
+            });
+        }
+    }
+    core::mem::swap(&mut state.touching, &mut b.touching);
+    // Contact events first (pair order), then what the step already pushed (broken joints, sleep), then
+    // wakes: `events` holds what the step already pushed; put the contact events in front of it.
+    contact_events.append(events);
+    core::mem::swap(events, &mut contact_events);
+    b.contact_events = contact_events;
+    woken.sort_unstable();
+    woken.dedup();
+    events.extend(woken.drain(..).map(|body| Event::BodyWoke { body }));
 }

@@ -2,14 +2,23 @@
 
 pub mod arena;
 mod body_set;
+mod collide;
 mod error;
 mod events;
 mod handles;
 mod islands;
+mod kinematic;
 mod manifold;
+mod prepare;
 mod report;
+mod scratch;
 mod settings;
+mod solve;
+mod sorted_walk;
+mod state;
 mod step;
+mod store;
+mod union_find;
 mod world;
 
 pub mod testing;

@@ -40,11 +40,10 @@ pub struct ManifoldPoint {
 /// Why keep lever arms at all: a contact constraint's Jacobian is `(n, r × n)`. Re-derived from the current
 /// pose every step, it turns with every small tilt of a loaded box, and in a tall stack of soft contacts that
 /// feedback grows: a column of 20 unit boxes with 30 Hz contacts falls over within 10 s; with kept lever arms
-/// it stands within 2 cm, and the SCENES.md pyramid's out-of-plane drift falls from 0.38 m to 5 mm
-/// (`docs/performance.md`). rapier freezes its contact lever arms between narrow-phase updates for the same
-/// reason. The cost is an error of at most this tolerance in where a contact force acts. The lever arm of a
-/// ball on flat ground never changes (the contact is always straight below the centre), so rolling is
-/// unaffected.
+/// it stands within 2 cm, and the peer scenes' pyramid stays in its plane (`docs/performance.md`). rapier
+/// freezes its contact lever arms between narrow-phase updates for the same reason. The cost is an error of
+/// at most this tolerance in where a contact force acts. The lever arm of a ball on flat ground never changes
+/// (the contact is always straight below the centre), so rolling is unaffected.
 pub const LEVER_ARM_TOLERANCE: f32 = 0.01;
 
 /// The largest fraction of a lever arm's length by which it may move before it is renewed (dimensionless):

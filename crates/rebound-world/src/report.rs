@@ -1,7 +1,11 @@
 //! What a step reports: counts, per-phase timings and anything abnormal (Jolt's `EPhysicsUpdateError`,
-//! Box2D's profile). `World::step` never fails; it says here what it did.
+//! Box2D's profile). `World::step` never fails; it says here what it did. The stages fill in their counts as
+//! they go; the body counts are taken at the end of the step (stage *report*).
 
+use crate::body_set::BodySet;
+use crate::handles::BodyHandle;
 use core::time::Duration;
+use rebound_dynamics::BodyParams;
 
 /// Wall-clock time spent in each phase of the last step. Not deterministic and not part of the state.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -67,4 +71,33 @@ pub struct AdvanceReport {
     pub alpha: f32,
     /// The report of the last step run, if any.
     pub last_step: Option<StepReport>,
+}
+
+impl StepReport {
+    /// The report of a step that did nothing.
+    pub(crate) fn skipped(reason: StepSkipped, bodies: &BodySet) -> Self {
+        Self {
+            skipped: Some(reason),
+            body_count: bodies.len(),
+            ..Self::default()
+        }
+    }
+
+    /// Stage *report*: the body counts at the end of a step, from the world's bodies and the solver arrays
+    /// of the step (solver index → body handle, `None` for the world anchor, and the body's parameters).
+    pub(crate) fn count_bodies(
+        &mut self,
+        bodies: &BodySet,
+        solver_handles: &[Option<BodyHandle>],
+        params: &[BodyParams],
+    ) {
+        self.body_count = bodies.len();
+        self.awake_body_count = solver_handles.iter().filter(|h| h.is_some()).count();
+        self.awake_body_count -= params
+            .iter()
+            .filter(|p| !p.is_dynamic())
+            .count()
+            .min(self.awake_body_count);
+        self.sleeping_body_count = bodies.iter().filter(|(_, b)| b.is_sleeping()).count();
+    }
 }

@@ -2,12 +2,16 @@
 //! pipeline is in `step.rs`.
 
 use crate::arena::Arena;
-use crate::body_set::{BodyEntry, NO_ISLAND};
-use crate::step::Scratch;
-use crate::{
-    AdvanceReport, BodyHandle, BodySet, CollisionBackend, ContactManifold, Event, JointHandle,
-    NoCollision, StepReport, WorldError, WorldSettings,
-};
+use crate::body_set::{BodyEntry, BodySet, NO_ISLAND};
+use crate::error::WorldError;
+use crate::events::Event;
+use crate::handles::{BodyHandle, JointHandle};
+use crate::islands;
+use crate::manifold::{CollisionBackend, ContactManifold, NoCollision};
+use crate::report::AdvanceReport;
+use crate::scratch::Scratch;
+use crate::settings::WorldSettings;
+use crate::state::{JointEntry, WorldState};
 use rebound_constraints::{Joint, JointState, KeptRows};
 use rebound_dynamics::{BodyDesc, BodyType, RigidBody};
 use rebound_math::Pose;
@@ -17,38 +21,6 @@ use std::sync::atomic::{AtomicU32, Ordering};
 
 /// Counter behind the per-world handle generation base.
 static NEXT_WORLD: AtomicU32 = AtomicU32::new(1);
-
-/// A joint and the world's bookkeeping for it.
-#[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub(crate) struct JointEntry {
-    pub(crate) joint: Joint,
-    /// `None`: anchor A is a fixed point of the world (`joint`'s local anchor A is then a world point).
-    pub(crate) body_a: Option<BodyHandle>,
-    pub(crate) body_b: BodyHandle,
-    pub(crate) state: JointState,
-}
-
-/// Everything needed to continue a simulation: what a snapshot holds. Scratch buffers and the collision
-/// backend are not part of it.
-#[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub(crate) struct WorldState {
-    pub(crate) settings: WorldSettings,
-    pub(crate) bodies: BodySet,
-    pub(crate) joints: Arena<JointEntry>,
-    /// Last step's manifolds with their impulses, sorted by order key (warm starting, events, queries).
-    pub(crate) manifolds: Vec<ContactManifold>,
-    /// Body pairs that touched at the end of last step, sorted (contact begin/end events).
-    pub(crate) touching: Vec<(BodyHandle, BodyHandle)>,
-    /// Sleeping islands: id → bodies, in handle order.
-    pub(crate) islands: BTreeMap<u32, Vec<BodyHandle>>,
-    pub(crate) next_island: u32,
-    /// Time [`World::advance`] has not yet stepped (s).
-    pub(crate) accumulator: f32,
-    /// Steps taken.
-    pub(crate) step_count: u64,
-}
 
 /// A saved world state: restore it into the same world (rollback) or a fresh one (load), then step on; the
 /// result is bit-identical to never having stopped. Serialisable with the `serde` feature.
@@ -220,7 +192,7 @@ impl<B: CollisionBackend> World<B> {
         let handle = BodyHandle(index);
         if desc.sleeping && desc.body_type == BodyType::Dynamic {
             // A body created asleep forms an island of its own.
-            let island = self.new_island();
+            let island = islands::new_island(&mut self.state);
             if let Some(entry) = self.state.bodies.entry_mut(handle) {
                 entry.island = island;
                 entry.body.set_sleeping(true);
@@ -544,7 +516,7 @@ impl<B: CollisionBackend> World<B> {
         WorldSnapshot {
             version: SNAPSHOT_VERSION,
             state: self.state.clone(),
-            joint_rows: self.scratch.joint_solver.kept_rows(),
+            joint_rows: self.scratch.solver.joint_solver.kept_rows(),
         }
     }
 
@@ -581,6 +553,7 @@ impl<B: CollisionBackend> World<B> {
         }
         self.state = snapshot.state.clone();
         self.scratch
+            .solver
             .joint_solver
             .restore_kept_rows(&snapshot.joint_rows);
         self.events.clear();
@@ -617,34 +590,9 @@ impl<B: CollisionBackend> World<B> {
 
     // ---- islands ----
 
-    pub(crate) fn new_island(&mut self) -> u32 {
-        let id = self.state.next_island;
-        self.state.next_island = self.state.next_island.wrapping_add(1);
-        id
-    }
-
     /// Wakes the sleeping island of `handle` (if any), emitting `BodyWoke` for each of its bodies.
-    pub(crate) fn wake_island_of(&mut self, handle: BodyHandle) {
-        let island = match self.state.bodies.entry(handle) {
-            Some(entry) if entry.island != NO_ISLAND => entry.island,
-            Some(_) => {
-                if let Some(entry) = self.state.bodies.entry_mut(handle) {
-                    entry.sleep_time = 0.0;
-                    entry.body.set_sleeping(false);
-                }
-                return;
-            }
-            None => return,
-        };
-        let members = self.state.islands.remove(&island).unwrap_or_default();
-        for member in members {
-            if let Some(entry) = self.state.bodies.entry_mut(member) {
-                entry.island = NO_ISLAND;
-                entry.sleep_time = 0.0;
-                entry.body.set_sleeping(false);
-                self.woken.push(member);
-            }
-        }
+    fn wake_island_of(&mut self, handle: BodyHandle) {
+        islands::wake_island_of(&mut self.state, &mut self.woken, handle);
     }
 }
 
@@ -681,14 +629,5 @@ impl Fnv1a {
 
     fn finish(&self) -> u64 {
         self.0
-    }
-}
-
-/// The report of a step that did nothing.
-pub(crate) fn skipped_report(reason: crate::StepSkipped, bodies: &BodySet) -> StepReport {
-    StepReport {
-        skipped: Some(reason),
-        body_count: bodies.len(),
-        ..StepReport::default()
     }
 }

@@ -1,0 +1,204 @@
+//! Stage *prepare*, after *collide* and waking: the dense solver arrays and the constraints on them.
+//!
+//! Solver indices: the awake moving bodies first, in handle order; then each fixed body when a contact or a
+//! joint first needs it; last the world anchor (a fixed body at the origin), if a world joint exists. Then
+//! the contacts between an awake body and anything it can push, and the joints whose bodies are awake (or
+//! fixed), each handed to its solver's preparation.
+
+use crate::body_set::BodySet;
+use crate::handles::{BodyHandle, JointHandle};
+use crate::manifold::ContactManifold;
+use crate::report::StepReport;
+use crate::state::WorldState;
+use rebound_constraints::{Joint, JointBodies, JointSolver, JointState};
+use rebound_dynamics::{
+    BodyParams, BodyType, Contact, ContactPoint, ContactSolver, SolverBody, StepContext,
+};
+
+/// The solver index of a body that has none (a sleeping body, or a fixed one no constraint needs).
+const NO_INDEX: u32 = u32::MAX;
+
+/// The solver of a step: the dense body arrays, the constraints on them and the contact and joint solvers.
+/// Built by *prepare*, solved by the solver passes, read back by *store*, *finalize* and *islands and sleep*;
+/// the buffers are reused from step to step. The joint solver also keeps the rows of its directly solved
+/// joint paths across the step boundary, which snapshots save.
+#[derive(Debug, Default)]
+pub(crate) struct Solver {
+    /// Body slot → solver index, or [`NO_INDEX`].
+    solver_index: Vec<u32>,
+    /// Solver index → body handle (`None` for the world anchor entry).
+    pub(crate) solver_handles: Vec<Option<BodyHandle>>,
+    /// Solver index → the body's solver state (velocities, pose deltas).
+    pub(crate) states: Vec<SolverBody>,
+    /// Solver index → the body's constant parameters for the step (mass, inertia, gravity, damping).
+    pub(crate) params: Vec<BodyParams>,
+    /// Solver contacts and, for each, the manifold it came from.
+    pub(crate) contacts: Vec<Contact>,
+    pub(crate) contact_sources: Vec<usize>,
+    /// Joints handed to the solver, their states and bodies, and the handles they came from.
+    pub(crate) joints: Vec<Joint>,
+    pub(crate) joint_states: Vec<JointState>,
+    pub(crate) joint_bodies: Vec<JointBodies>,
+    pub(crate) joint_handles: Vec<JointHandle>,
+    /// Indices (into `joints`) of the joints that broke this step (written by *store*).
+    pub(crate) broken: Vec<usize>,
+    pub(crate) contact_solver: ContactSolver,
+    pub(crate) joint_solver: JointSolver,
+}
+
+/// Stage *prepare*, part 1: the dense solver arrays. Awake moving bodies in handle order get indices
+/// first; fixed bodies are added when a contact or joint needs them; the world anchor (a fixed body at the
+/// origin) last, if a world joint exists.
+pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
+    s.solver_index.clear();
+    s.solver_index.resize(bodies.slot_count(), NO_INDEX);
+    s.solver_handles.clear();
+    s.states.clear();
+    s.params.clear();
+    for (index, entry) in bodies.arena.iter() {
+        let body = &entry.body;
+        if body.is_sleeping() || body.body_type() == BodyType::Fixed {
+            continue;
+        }
+        s.solver_index[index.index as usize] = s.states.len() as u32;
+        s.solver_handles.push(Some(BodyHandle(index)));
+        s.states.push(SolverBody::from_body(body));
+        s.params.push(BodyParams::from_body(body));
+    }
+}
+
+/// The solver index of `handle`, adding a fixed body on first use. `None` for sleeping bodies (whose
+/// constraints wait) and stale handles.
+fn solver_index_of(s: &mut Solver, bodies: &BodySet, handle: BodyHandle) -> Option<usize> {
+    let slot = BodySet::slot(handle);
+    let existing = *s.solver_index.get(slot)?;
+    if existing != NO_INDEX {
+        return Some(existing as usize);
+    }
+    let body = bodies.get(handle)?;
+    if body.body_type() != BodyType::Fixed {
+        return None;
+    }
+    let index = s.states.len();
+    s.solver_index[slot] = index as u32;
+    s.solver_handles.push(Some(handle));
+    s.states.push(SolverBody::STATIC);
+    s.params.push(BodyParams::from_body(body));
+    Some(index)
+}
+
+/// Stage *prepare*, part 2: a solver contact for each manifold between an awake body and anything it can
+/// push (anchors relative to the centres of mass: the lever arms the *collide* stage chose), with its bodies'
+/// solver indices; then the contact solver's preparation.
+pub(crate) fn build_contacts(
+    bodies: &BodySet,
+    manifolds: &[ContactManifold],
+    s: &mut Solver,
+    ctx: &StepContext,
+    report: &mut StepReport,
+) {
+    s.contacts.clear();
+    s.contact_sources.clear();
+    for (source, manifold) in manifolds.iter().enumerate() {
+        let ia = solver_index_of(s, bodies, manifold.body_a);
+        let ib = solver_index_of(s, bodies, manifold.body_b);
+        let (Some(ia), Some(ib)) = (ia, ib) else {
+            continue;
+        };
+        if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
+            continue;
+        }
+        // Written in place in the list, point by point (not built aside and moved in).
+        s.contacts.push(Contact::new(
+            ia,
+            ib,
+            manifold.normal,
+            manifold.friction,
+            manifold.restitution,
+        ));
+        let Some(contact) = s.contacts.last_mut() else {
+            continue;
+        };
+        contact.rolling_friction = manifold.rolling_friction;
+        for point in manifold.points() {
+            // The collide stage chose every point's lever arms.
+            let Some([anchor_a, anchor_b]) = point.solver_lever_arms else {
+                continue;
+            };
+            contact.push_point(ContactPoint {
+                anchor_a,
+                anchor_b,
+                separation: point.separation,
+                normal_impulse: point.normal_impulse,
+                tangent_impulse: point.tangent_impulse,
+                feature_id: point.feature_id,
+            });
+        }
+        report.contact_point_count += contact.point_count;
+        s.contact_sources.push(source);
+    }
+    report.contact_count = s.contacts.len();
+    report.rejected_contact_count +=
+        s.contact_solver
+            .prepare(&s.contacts, &s.states, &s.params, ctx);
+}
+
+/// Stage *prepare*, part 3: joints whose bodies are awake (or fixed), then the joint solver's preparation.
+pub(crate) fn build_joints(
+    state: &WorldState,
+    s: &mut Solver,
+    ctx: &StepContext,
+    report: &mut StepReport,
+) {
+    s.joints.clear();
+    s.joint_states.clear();
+    s.joint_bodies.clear();
+    s.joint_handles.clear();
+    let mut world_anchor: Option<usize> = None;
+    for (index, entry) in state.joints.iter() {
+        if entry.state.broken {
+            continue;
+        }
+        let Some(b) = solver_index_of(s, &state.bodies, entry.body_b) else {
+            continue;
+        };
+        let a = match entry.body_a {
+            Some(handle) => match solver_index_of(s, &state.bodies, handle) {
+                Some(a) => a,
+                None => continue,
+            },
+            None => *world_anchor.get_or_insert_with(|| {
+                let index = s.states.len();
+                s.solver_handles.push(None);
+                s.states.push(SolverBody::STATIC);
+                s.params.push(BodyParams::WORLD);
+                index
+            }),
+        };
+        if !s.params[a].is_dynamic() && !s.params[b].is_dynamic() {
+            continue;
+        }
+        s.joints.push(entry.joint);
+        s.joint_states.push(entry.state);
+        s.joint_bodies.push(JointBodies { a, b });
+        s.joint_handles.push(JointHandle(index));
+    }
+    report.joint_count = s.joints.len();
+    if s.joint_solver.settings() != &state.settings.joints {
+        // `WorldSettings` are validated whenever they are set, so this cannot fail.
+        let applied = s.joint_solver.set_settings(state.settings.joints);
+        debug_assert!(applied.is_ok(), "world settings are validated on entry");
+    }
+    let skipped = s.joint_solver.prepare(
+        &s.joints,
+        &s.joint_states,
+        &s.joint_bodies,
+        &s.states,
+        &s.params,
+        ctx,
+    );
+    debug_assert_eq!(
+        skipped, 0,
+        "the world hands the joint solver only valid joints"
+    );
+}

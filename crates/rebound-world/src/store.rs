@@ -1,0 +1,65 @@
+//! Stage *store*, after the solver passes: the solver's results back into the world. Each manifold keeps its
+//! points' impulses for the next step's warm start and whether it pushed (for the touching test of the
+//! events); each joint keeps its state; joints past their break limits are reported broken. Then (stage
+//! *finalize*) the poses and velocities of the solved bodies.
+
+use crate::body_set::BodySet;
+use crate::collide::Collision;
+use crate::events::Event;
+use crate::prepare::Solver;
+use crate::report::StepReport;
+use crate::state::WorldState;
+
+/// Stage *store impulses*: manifolds keep theirs for the next step; joint states likewise; joints that
+/// exceeded their break limits are marked broken and reported.
+pub(crate) fn store_impulses(
+    state: &mut WorldState,
+    c: &mut Collision,
+    s: &mut Solver,
+    events: &mut Vec<Event>,
+    report: &mut StepReport,
+) {
+    // Straight into the manifolds (the solver's contacts are not read again): impulses for the next
+    // step's warm start, and whether each manifold pushed (for the touching test of the events).
+    c.pushed.clear();
+    c.pushed.resize(c.manifolds.len(), false);
+    let (manifolds, pushed, sources) = (&mut c.manifolds, &mut c.pushed, &s.contact_sources);
+    s.contact_solver
+        .for_each_point_result(|contact, k, normal, tangent, max| {
+            let Some(&source) = sources.get(contact) else {
+                return;
+            };
+            if let Some(point) = manifolds[source].points.get_mut(k) {
+                point.normal_impulse = normal;
+                point.tangent_impulse = tangent;
+            }
+            pushed[source] |= max > 0.0;
+        });
+    s.broken.clear();
+    s.joint_solver
+        .store_impulses(&mut s.joint_states, &mut s.broken);
+    for (handle, joint_state) in s.joint_handles.iter().zip(&s.joint_states) {
+        if let Some(entry) = state.joints.get_mut(handle.0) {
+            entry.state = *joint_state;
+        }
+    }
+    report.broken_joint_count = s.broken.len();
+    for &i in &s.broken {
+        if let Some(handle) = s.joint_handles.get(i) {
+            events.push(Event::JointBroken { joint: *handle });
+        }
+    }
+    core::mem::swap(&mut state.manifolds, &mut c.manifolds);
+}
+
+/// Stage *finalize*: poses and velocities back into the bodies.
+pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver) {
+    for ((handle, state), params) in s.solver_handles.iter().zip(&s.states).zip(&s.params) {
+        let Some(handle) = handle else { continue };
+        if let Some(entry) = bodies.entry_mut(*handle) {
+            // A refused (non-finite) result leaves the body where it was; the finite-state tests guard
+            // that this never happens.
+            let _accepted = params.write_back(state, &mut entry.body);
+        }
+    }
+}
