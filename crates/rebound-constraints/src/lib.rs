@@ -45,5 +45,6 @@ pub use settings::JointSettings;
 pub use soft_spring::{JointSpring, SoftSpring};
 pub use solver::{JointSolver, KeptRows};
 pub use spring::{Spring, SpringModel};
+pub use stage::Substep;
 pub use state::JointState;
 pub use wheel::WheelJoint;

@@ -1,6 +1,7 @@
 //! The pass type: what one solve pass of the joint solver needs besides the bodies — bias or relax, the
-//! substep length and the joint softness. Every stage of the step that solves rows (solve, relax, the
-//! position projection) hands one to the joints and to the path solver.
+//! substep length and the joint softness ([`Stage`]) — and which substep of the step a pass runs in
+//! ([`Substep`], given by the step). Every stage of the step that solves rows (solve, relax, the position
+//! projection) hands a [`Stage`] to the joints and to the path solver.
 
 use rebound_dynamics::{Bias, Softness};
 
@@ -32,5 +33,34 @@ impl Stage {
                 impulse_scale: 0.0,
             },
         }
+    }
+}
+
+/// Which substep of the step a solve or relax pass runs in, as the step counts them: substep `index` of
+/// `count` (0-based). The last substep's relax pass builds every path's rows at the step's final pose and
+/// is the one that relaxes closed paths (see [`crate::JointSolver::solve_substep`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Substep {
+    index: u32,
+    count: u32,
+}
+
+impl Substep {
+    /// Substep `index` (0-based) of a step of `count` substeps.
+    #[must_use]
+    pub const fn new(index: u32, count: u32) -> Self {
+        Self { index, count }
+    }
+
+    /// The substep's index in the step (0-based).
+    #[must_use]
+    pub const fn index(self) -> u32 {
+        self.index
+    }
+
+    /// Whether this is the step's last substep (also for an index past the count).
+    #[must_use]
+    pub const fn is_last(self) -> bool {
+        self.index.saturating_add(1) >= self.count
     }
 }

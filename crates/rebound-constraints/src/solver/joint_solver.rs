@@ -82,8 +82,8 @@ pub struct JointSolver {
     /// How far (rad) the bodies of a hinge on a path may turn before a velocity pass builds its rows again
     /// instead of carrying them ([`Link::carry`]); 0 builds them at every new pose.
     pub(super) carry_angle: f32,
-    /// Relax passes since [`JointSolver::prepare`]: the last one of a step (the `substep_count`-th) builds
-    /// every path's rows at the final pose, where the position projection starts.
+    /// Relax passes since [`JointSolver::prepare`], for [`JointSolver::solve`], which does not name its
+    /// substep.
     pub(super) relax_passes: u32,
 }
 

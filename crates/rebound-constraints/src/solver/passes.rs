@@ -8,7 +8,7 @@ use crate::ball;
 use crate::fixed::PreparedFixed;
 use crate::path::PoseKey;
 use crate::prismatic::PreparedPrismatic;
-use crate::stage::Stage;
+use crate::stage::{Stage, Substep};
 use crate::state::JointState;
 use crate::wheel::PreparedWheel;
 use rebound_dynamics::{Bias, SolverBody, StepContext};
@@ -76,11 +76,25 @@ impl JointSolver {
         }
     }
 
+    /// [`JointSolver::solve_substep`] for a loop that does not name its substeps: the `k`-th relax pass since
+    /// [`JointSolver::prepare`] counts as substep `k − 1` of `ctx.substep_count`, and a solve pass as the
+    /// substep of the relax pass that follows it. A loop of `ctx.substep_count` substeps of one solve and one
+    /// relax pass each, as the crate README shows, gives the same passes as naming them.
+    pub fn solve(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
+        let substep = Substep::new(self.relax_passes, ctx.substep_count);
+        if bias == Bias::Off {
+            self.relax_passes = self.relax_passes.saturating_add(1);
+        }
+        self.solve_substep(solver_bodies, ctx, bias, substep);
+    }
+
     /// Stages *solve* (`Bias::On`: [`crate::JointSettings::solve_iterations`] Gauss–Seidel passes with soft position
     /// correction) and *relax* (`Bias::Off`: [`crate::JointSettings::relax_iterations`] passes on velocities only;
     /// soft springs are left alone, see [`crate::spring`]). Each pass visits the joints in the order given to
     /// [`JointSolver::prepare`] (all but those a direct path solves entirely), then the paths, then the
     /// tethers.
+    ///
+    /// `substep` is the substep of the step the pass runs in, as the step counts them.
     ///
     /// A *closed* path (every row of its joints in the direct solve, no other joint or tether on its bodies)
     /// is relaxed in the last substep only. The relax pass of an inner substep leaves the velocities at the
@@ -93,7 +107,13 @@ impl JointSolver {
     /// and stretch no worse (`docs/physics.md`, "Relaxing a closed path"). A path with other rows on its
     /// bodies is relaxed every substep: a hinge limit solved by Gauss–Seidel before the path's exact solve
     /// was pushed past by up to 1.5° without the path's relax (`tests/hinge.rs`).
-    pub fn solve(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
+    pub fn solve_substep(
+        &mut self,
+        solver_bodies: &mut [SolverBody],
+        ctx: &StepContext,
+        bias: Bias,
+        substep: Substep,
+    ) {
         let stage = Stage {
             bias,
             h: ctx.h,
@@ -108,17 +128,13 @@ impl JointSolver {
         // the position projection ([`JointSolver::project_positions`]) starts at that pose and then reuses
         // the rows and, for paths whose rows all stay in the system (hinges, ball joints, taut ropes), their
         // factorisation — one factorisation of every such path a step fewer than building them there.
+        let last_relax = bias == Bias::Off && substep.is_last();
         let mut carry_angle = self.carry_angle;
-        let mut last_relax = false;
-        if bias == Bias::Off {
-            self.relax_passes += 1;
-            if self.relax_passes >= ctx.substep_count {
-                last_relax = true;
-                carry_angle = 0.0;
-                // Every link is built again at the final pose, and with this step's inverse inertias.
-                for link in &mut self.links {
-                    link.end_last_step();
-                }
+        if last_relax {
+            carry_angle = 0.0;
+            // Every link is built again at the final pose, and with this step's inverse inertias.
+            for link in &mut self.links {
+                link.end_last_step();
             }
         }
         for _ in 0..iterations {
