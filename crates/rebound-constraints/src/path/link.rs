@@ -59,14 +59,17 @@ pub(crate) enum Masses {
 pub(crate) enum RowsAt {
     /// Nothing: the next pass builds the rows (or carries rows built earlier, [`Link::carry`]).
     Unknown,
-    /// The rows were built at this pose: a pass there recomputes only their targets ([`Link::reuse`]).
-    Built(PoseKey),
-    /// The rows were carried to the pose `to` ([`Link::carry`]): a pass there recomputes the targets from
-    /// the carried errors ([`Link::recarry`]). `built` is the pose of this step they were built at, if any (a
-    /// pass there keeps them as built).
+    /// The rows were built at the pose `at`: a pass there recomputes only their targets ([`Link::reuse`]).
+    /// If they were carried since to the pose `carried_to` ([`Link::carry`]), a pass there recomputes the
+    /// targets from the carried errors ([`Link::recarry`]).
+    Built {
+        /// The pose of the build.
+        at: PoseKey,
+        /// The pose the rows were last carried to, if any.
+        carried_to: Option<PoseKey>,
+    },
+    /// Rows built at no pose of this step (kept from the last one) were carried to the pose `to`.
     Carried {
-        /// The pose of the build, if it was in this step.
-        built: Option<PoseKey>,
         /// The pose carried to.
         to: PoseKey,
     },
@@ -252,13 +255,7 @@ impl Link {
     /// was, or it was forgotten). Compares in place: the key is 56 bytes, checked for every link of every pass.
     #[inline]
     pub fn is_built_at(&self, pose: &PoseKey) -> bool {
-        match &self.rows_at {
-            RowsAt::Built(built)
-            | RowsAt::Carried {
-                built: Some(built), ..
-            } => built == pose,
-            _ => false,
-        }
+        matches!(&self.rows_at, RowsAt::Built { at, .. } if at == pose)
     }
 
     /// Whether rows built now take the inverse masses of the rows kept from the last step.

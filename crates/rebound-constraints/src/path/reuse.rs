@@ -72,12 +72,13 @@ impl Link {
             };
             *carried = c + moved;
         }
-        let built = match self.rows_at {
-            RowsAt::Built(built) => Some(built),
-            RowsAt::Carried { built, .. } => built,
-            RowsAt::Unknown => None,
+        self.rows_at = match self.rows_at {
+            RowsAt::Built { at, .. } => RowsAt::Built {
+                at,
+                carried_to: Some(*now),
+            },
+            RowsAt::Carried { .. } | RowsAt::Unknown => RowsAt::Carried { to: *now },
         };
-        self.rows_at = RowsAt::Carried { built, to: *now };
         self.restart_carried(stage);
         true
     }
@@ -86,7 +87,15 @@ impl Link {
     /// errors carried there: the targets [`Link::carry`] would compute again, bit for bit, without measuring
     /// the turn and the displacement again. Returns `false`, changing nothing, at any other pose.
     pub fn recarry(&mut self, now: &PoseKey, stage: &Stage) -> bool {
-        if !matches!(&self.rows_at, RowsAt::Carried { to, .. } if to == now) {
+        let carried_to = match &self.rows_at {
+            RowsAt::Built {
+                carried_to: Some(to),
+                ..
+            }
+            | RowsAt::Carried { to } => Some(to),
+            _ => None,
+        };
+        if carried_to != Some(now) {
             return false;
         }
         self.restart_carried(stage);
@@ -114,7 +123,10 @@ impl Link {
 
     /// Records that the rows just built (after [`Link::reset`]) are those of the pose `pose`.
     pub fn built_at(&mut self, pose: Option<PoseKey>) {
-        self.rows_at = pose.map_or(RowsAt::Unknown, RowsAt::Built);
+        self.rows_at = pose.map_or(RowsAt::Unknown, |at| RowsAt::Built {
+            at,
+            carried_to: None,
+        });
     }
 
     /// Starts a pass of `stage` at the pose the rows were built at (the caller has checked
