@@ -2,7 +2,7 @@
 //! the scratch buffers every stage reuses) and the rows it keeps into the next step ([`KeptRows`]). The
 //! stages themselves are in the sibling modules: `prepare`, `passes`, `path_pass` and `project`.
 
-use super::prepared::PreparedJoint;
+use super::dispatch::PreparedJoint;
 use crate::error::ConstraintError;
 use crate::path::tether::{Edge, JointGraph, Tether};
 use crate::path::topology::Topology;

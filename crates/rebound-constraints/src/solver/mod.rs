@@ -24,11 +24,11 @@
 //! Buffers are reused from step to step: once the `Vec` of prepared joints has grown to the scene's joint
 //! count, a step allocates nothing.
 
+mod dispatch;
 mod joint_solver;
 mod passes;
 mod path_pass;
 mod prepare;
-mod prepared;
 mod project;
 #[cfg(test)]
 mod tests;

@@ -2,15 +2,11 @@
 //! (bias off) — and the stages after the substeps that are not the projection: *restitution* and *store
 //! impulses*. Each dispatches over the joint kinds; the paths are solved by `path_pass`.
 
+use super::dispatch::{reaction_impulses, state_lambda};
 use super::joint_solver::JointSolver;
-use super::prepared::{Prepared, reaction_impulses, state_lambda};
-use crate::ball;
-use crate::fixed::PreparedFixed;
 use crate::path::PoseKey;
-use crate::prismatic::PreparedPrismatic;
 use crate::stage::{Stage, Substep};
 use crate::state::JointState;
-use crate::wheel::PreparedWheel;
 use rebound_dynamics::{Bias, SolverBody, StepContext};
 
 impl JointSolver {
@@ -18,17 +14,7 @@ impl JointSolver {
     /// each [`crate::SpringModel::Force`] spring, `Δv = f·h·n/m` on both bodies (course items 1–2).
     pub fn apply_forces(&self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
         for j in &self.joints {
-            let Prepared::Spring(spring) = &j.kind else {
-                continue;
-            };
-            if spring.is_soft() {
-                continue;
-            }
-            let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
-                continue;
-            };
-            spring.apply_forces(&j.pair, &mut a, &mut b, ctx.h);
-            j.pair.store(solver_bodies, a, b);
+            j.kind.apply_forces(&j.pair, solver_bodies, ctx.h);
         }
     }
 
@@ -45,27 +31,18 @@ impl JointSolver {
             // A rope or rod on a path whose link has its row built at this pose (the pose of the last relax
             // pass: every substep but the first) applies the impulse along that row: the Jacobian and the
             // turned vectors the warm start would compute again, so the same bits without the distance.
-            let built = match j.kind {
-                Prepared::Rope(_) | Prepared::Rod(_) => j
-                    .link
+            let built = if j.kind.warm_starts_along_its_row() {
+                j.link
                     .and_then(|k| self.links.get(k))
-                    .filter(|link| link.is_built_at(&PoseKey::of(a, b))),
-                _ => None,
+                    .filter(|link| link.is_built_at(&PoseKey::of(a, b)))
+            } else {
+                None
             };
             if let Some(link) = built {
                 link.warm_start_row(a, b, state_lambda(j)[0]);
                 continue;
             }
-            match &j.kind {
-                Prepared::Spring(p) => p.warm_start(pair, state, a, b),
-                Prepared::Rope(p) => p.warm_start(pair, state, a, b),
-                Prepared::Rod(p) => p.warm_start(pair, state, a, b),
-                Prepared::Ball => ball::warm_start(pair, state, a, b),
-                Prepared::Hinge(p) => p.warm_start(pair, state, a, b),
-                Prepared::Fixed(_) => PreparedFixed::warm_start(pair, state, a, b),
-                Prepared::Prismatic(_) => PreparedPrismatic::warm_start(pair, state, a, b),
-                Prepared::Wheel(_) => PreparedWheel::warm_start(pair, state, a, b),
-            }
+            j.kind.warm_start(pair, state, a, b);
         }
         for t in &self.tethers {
             let Some((mut a, mut b)) = t.pair.load(solver_bodies) else {
@@ -145,27 +122,15 @@ impl JointSolver {
                     continue;
                 };
                 // Springs act in the bias pass only: skip them in the relax pass without touching the bodies.
-                if bias == Bias::Off && matches!(j.kind, Prepared::Spring(_)) {
+                if !j.kind.acts_in(bias) {
                     continue;
                 }
                 // The bodies in place (a pass changes velocities only).
                 let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
                     continue;
                 };
-                let (pair, state) = (&j.pair, &mut j.state);
-                match &mut j.kind {
-                    Prepared::Spring(p) => p.solve(pair, state, a, b, &stage),
-                    Prepared::Rope(p) => p.solve(pair, state, a, b, &stage),
-                    Prepared::Rod(p) => p.solve(pair, state, a, b, &stage),
-                    Prepared::Ball => ball::solve(pair, state, a, b, &stage),
-                    Prepared::Hinge(p) if j.path.is_some() => {
-                        p.solve_coordinate(pair, state, a, b, &stage);
-                    }
-                    Prepared::Hinge(p) => p.solve(pair, state, a, b, &stage),
-                    Prepared::Fixed(p) => p.solve(pair, state, a, b, &stage),
-                    Prepared::Prismatic(p) => p.solve(pair, state, a, b, &stage),
-                    Prepared::Wheel(p) => p.solve(pair, state, a, b, &stage),
-                }
+                let on_path = j.path.is_some();
+                j.kind.solve(&j.pair, &mut j.state, (a, b), &stage, on_path);
             }
             for path in 0..self.topology.paths.len() {
                 // A closed path is relaxed in the step's last substep only: see the method docs.
@@ -189,14 +154,8 @@ impl JointSolver {
     /// the step while its anchors separated faster than `ctx.restitution_threshold` gets `Ċ = −e·Ċ⁻`.
     pub fn apply_restitution(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
         for j in &mut self.joints {
-            let Prepared::Rope(rope) = &j.kind else {
-                continue;
-            };
-            let Some((mut a, mut b)) = j.pair.load(solver_bodies) else {
-                continue;
-            };
-            rope.apply_restitution(&j.pair, &mut j.state, &mut a, &mut b, ctx);
-            j.pair.store(solver_bodies, a, b);
+            j.kind
+                .apply_restitution(&j.pair, &mut j.state, solver_bodies, ctx);
         }
     }
 

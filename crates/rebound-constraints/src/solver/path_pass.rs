@@ -2,17 +2,14 @@
 //! member's rows at the current pose — kept, carried or built by its joint — handed to the path solver
 //! ([`crate::path`]), its active-set rounds, and the impulses written back to the joints.
 
+use super::dispatch::{PreparedJoint, state_lambda};
 use super::joint_solver::JointSolver;
-use super::prepared::{Prepared, PreparedJoint, state_lambda};
-use crate::ball;
-use crate::hinge::PreparedHinge;
 use crate::path::{
     BuiltAt, InvMass, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations, resize_links,
     solve_path,
 };
 use crate::stage::Stage;
 use rebound_dynamics::SolverBody;
-use rebound_math::Vec3;
 
 /// How many times a direct path solve may drop rows that would push, add rows it would violate, and solve
 /// again.
@@ -70,21 +67,7 @@ impl JointSolver {
                 continue;
             };
             link.apply_solution(x, a, b);
-            let (lambda, s) = (link.lambda, &mut j.state);
-            match &mut j.kind {
-                Prepared::Rope(p) => {
-                    s.upper_impulse = lambda[0];
-                    p.note_impulse(lambda[0]);
-                }
-                Prepared::Rod(_) => s.axial_impulse = lambda[0],
-                Prepared::Ball => s.linear_impulse = Vec3::new(lambda[0], lambda[1], lambda[2]),
-                Prepared::Hinge(_) => {
-                    s.linear_impulse = Vec3::new(lambda[0], lambda[1], lambda[2]);
-                    s.angular_impulse.x = lambda[3];
-                    s.angular_impulse.y = lambda[4];
-                }
-                _ => {}
-            }
+            j.kind.store_direct_impulses(&mut j.state, link.lambda);
         }
     }
 
@@ -157,12 +140,8 @@ pub(super) fn rows_at(
     let Some((a, b)) = bodies else {
         return [0.0; MAX_ROWS];
     };
-    match &mut j.kind {
-        Prepared::Rope(p) => p.direct_row(&j.pair, a, b, stage, rows),
-        Prepared::Rod(p) => p.direct_row(&j.pair, a, b, stage, rows),
-        Prepared::Ball => ball::direct_rows(&j.pair, a, b, stage, rows),
-        Prepared::Hinge(_) => PreparedHinge::direct_rows(&j.pair, a, b, stage, rows),
-        _ => return [0.0; MAX_ROWS],
+    if !j.kind.direct_rows(&j.pair, (a, b), stage, rows) {
+        return [0.0; MAX_ROWS];
     }
     state_lambda(j)
 }
@@ -189,7 +168,7 @@ pub(super) fn link_rows(
         link.lambda = state_lambda(j);
         return;
     }
-    if let (Prepared::Hinge(_), Some((a, b)), Some(now)) = (&j.kind, bodies, &pose) {
+    if let (true, Some((a, b)), Some(now)) = (j.kind.carries_rows(), bodies, &pose) {
         if carry_angle > 0.0
             && (link.recarry(now, stage) || carry(j, link, (a, b), now, stage, carry_angle))
         {

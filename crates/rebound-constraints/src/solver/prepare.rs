@@ -2,10 +2,9 @@
 //! directly and the links kept from the last step, the joints Gauss–Seidel visits, the tethers and which
 //! paths are closed.
 
+use super::dispatch::{Prepared, PreparedJoint};
 use super::joint_solver::JointSolver;
-use super::prepared::{Keep, Prepared, PreparedJoint, keep_only};
-use crate::fixed::FixedJoint;
-use crate::joint::{Joint, JointBodies, JointKind};
+use crate::joint::{Joint, JointBodies};
 use crate::pair::BodyPair;
 use crate::part::rotation_error;
 use crate::path::resize_links;
@@ -63,32 +62,7 @@ impl JointSolver {
             } else {
                 JointState::default()
             };
-            let kind = match joint.kind() {
-                JointKind::Spring(s) => {
-                    keep_only(&mut state, Keep::Axial);
-                    let prepared = s.prepare(&pair, sa, sb, ctx);
-                    if !prepared.is_soft() {
-                        state.axial_impulse = 0.0;
-                    }
-                    Prepared::Spring(prepared)
-                }
-                JointKind::Rope(r) => {
-                    keep_only(&mut state, Keep::Upper);
-                    Prepared::Rope(r.prepare(&pair, sa, sb))
-                }
-                JointKind::Rod(r) => {
-                    keep_only(&mut state, Keep::Axial);
-                    Prepared::Rod(r.prepare(&pair, sa, sb))
-                }
-                JointKind::Ball(_) => {
-                    keep_only(&mut state, Keep::Linear);
-                    Prepared::Ball
-                }
-                JointKind::Hinge(h) => Prepared::Hinge(h.prepare(&pair, ctx, &mut state)),
-                JointKind::Fixed(_) => Prepared::Fixed(FixedJoint::prepare(&pair, &mut state)),
-                JointKind::Prismatic(p) => Prepared::Prismatic(p.prepare(&pair, ctx, &mut state)),
-                JointKind::Wheel(w) => Prepared::Wheel(w.prepare(ctx, &mut state)),
-            };
+            let kind = Prepared::prepare(joint.kind(), &pair, (sa, sb), ctx, &mut state);
             self.joints.push(PreparedJoint {
                 source,
                 pair,
@@ -224,11 +198,7 @@ impl JointSolver {
             self.joints
                 .iter()
                 .enumerate()
-                .filter(|(_, j)| match &j.kind {
-                    // A hinge on a path is visited for its limit, motor and spring rows, if it has any.
-                    Prepared::Hinge(hinge) => j.path.is_none() || !hinge.has_no_coordinate_rows(),
-                    _ => j.path.is_none(),
-                })
+                .filter(|(_, j)| j.kind.is_iterated(j.path.is_some()))
                 .map(|(index, _)| index),
         );
     }

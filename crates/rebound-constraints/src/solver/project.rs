@@ -2,12 +2,10 @@
 //! path's bodies so that its joints hold exactly, the stiffened and shortened steps tried when a full one
 //! does not help, and the Gauss–Seidel sweeps after them.
 
+use super::dispatch::PreparedJoint;
 use super::joint_solver::JointSolver;
 use super::path_pass::{direct_rows, link_rows, solve_links};
-use super::prepared::{Prepared, PreparedJoint};
-use crate::ball;
-use crate::hinge::PreparedHinge;
-use crate::path::{Link, MAX_ROWS, Real, equality_violation, link_at, project_rows, resize_links};
+use crate::path::{Link, MAX_ROWS, Real, link_at, project_rows, resize_links};
 use crate::stage::Stage;
 use rebound_dynamics::{SolverBody, StepContext};
 
@@ -82,7 +80,7 @@ impl JointSolver {
             // Only a path with ropes or rods can be stiffened: the others keep any full step that helps.
             let gain = if members
                 .iter()
-                .any(|&index| matches!(joints[index].kind, Prepared::Rope(_) | Prepared::Rod(_)))
+                .any(|&index| joints[index].kind.link_length().is_some())
             {
                 PROJECTION_NEWTON_GAIN
             } else {
@@ -190,16 +188,10 @@ pub(super) fn violation(
     stage: &Stage,
     scratch: &mut Link,
 ) -> f32 {
-    if let Some((a, b)) = j.pair.bodies(solver_bodies) {
-        match j.kind {
-            Prepared::Ball => {
-                return equality_violation(&ball::direct_errors(&j.pair, a, b), stage);
-            }
-            Prepared::Hinge(_) => {
-                return equality_violation(&PreparedHinge::direct_errors(&j.pair, a, b), stage);
-            }
-            _ => {}
-        }
+    if let Some(bodies) = j.pair.bodies(solver_bodies)
+        && let Some(worst) = j.kind.equality_violation(&j.pair, bodies, stage)
+    {
+        return worst;
     }
     let _ = direct_rows(j, solver_bodies, stage, scratch);
     scratch.rows.violation()
@@ -290,10 +282,8 @@ pub(super) fn stiffen(
 ) -> bool {
     let mut any = false;
     for ((link, x), &index) in links.iter_mut().zip(solution).zip(members) {
-        let length = match &joints[index].kind {
-            Prepared::Rope(p) => p.max_length(),
-            Prepared::Rod(p) => p.length(),
-            _ => continue,
+        let Some(length) = joints[index].kind.link_length() else {
+            continue;
         };
         if !link.active[0] {
             continue;
