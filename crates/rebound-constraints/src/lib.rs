@@ -46,5 +46,5 @@ pub use soft_spring::{JointSpring, SoftSpring};
 pub use solver::{JointSolver, KeptRows};
 pub use spring::{Spring, SpringModel};
 pub use stage::Substep;
-pub use state::JointState;
+pub use state::{JointState, JointStates};
 pub use wheel::WheelJoint;

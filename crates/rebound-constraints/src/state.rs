@@ -45,3 +45,17 @@ pub struct JointState {
     /// this is reset to `false`. Default: false.
     pub broken: bool,
 }
+
+/// Where [`crate::JointSolver::store_impulses_to`] writes the joints' states back: joint `i` of the step (in
+/// the order [`crate::JointSolver::prepare_from`] read them) to `state_mut(i)`. A slice is one; a world
+/// writes straight into its stored joints.
+pub trait JointStates {
+    /// The state of joint `i` of the step, if it has one.
+    fn state_mut(&mut self, i: usize) -> Option<&mut JointState>;
+}
+
+impl JointStates for [JointState] {
+    fn state_mut(&mut self, i: usize) -> Option<&mut JointState> {
+        self.get_mut(i)
+    }
+}

@@ -302,6 +302,8 @@ pub(super) struct PreparedJoint {
     pub(super) path: Option<usize>,
     /// The joint's link in the solver's `links` (its index in `path_joints`) when it is on a path.
     pub(super) link: Option<usize>,
+    /// The tether (an index into the solver's `tethers`) whose impulse the joint keeps for the next step.
+    pub(super) tether: Option<usize>,
 }
 
 /// The one impulse field a distance-type or ball joint uses.

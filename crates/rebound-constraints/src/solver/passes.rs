@@ -6,7 +6,7 @@ use super::dispatch::{reaction_impulses, state_lambda};
 use super::joint_solver::JointSolver;
 use crate::path::PoseKey;
 use crate::stage::{Stage, Substep};
-use crate::state::JointState;
+use crate::state::{JointState, JointStates};
 use rebound_dynamics::{Bias, SolverBody, StepContext};
 
 impl JointSolver {
@@ -164,31 +164,33 @@ impl JointSolver {
     /// whose reaction exceeds its break force or torque is marked broken and its index pushed into `broken`
     /// (which is not cleared first).
     pub fn store_impulses(&self, states: &mut [JointState], broken: &mut Vec<usize>) {
+        self.store_impulses_to(states, broken);
+    }
+
+    /// [`JointSolver::store_impulses`] into the states where they are kept ([`JointStates`]): joint `i` of
+    /// [`JointSolver::prepare_from`] is written to `states.state_mut(i)`, once.
+    pub fn store_impulses_to<S: JointStates + ?Sized>(
+        &self,
+        states: &mut S,
+        broken: &mut Vec<usize>,
+    ) {
         let inv_h = if self.h > 0.0 { 1.0 / self.h } else { 0.0 };
         for j in &self.joints {
-            let Some(out) = states.get_mut(j.source) else {
+            let Some(out) = states.state_mut(j.source) else {
                 continue;
             };
             let (linear, angular) = reaction_impulses(&j.kind, &j.state);
+            let tether = j.tether.and_then(|k| self.tethers.get(k));
             *out = JointState {
                 reaction_force: linear * inv_h,
                 reaction_torque: angular * inv_h,
-                tether_impulse: 0.0,
+                tether_impulse: tether.map_or(0.0, |t| t.impulse),
                 broken: false,
                 ..j.state
             };
             if out.reaction_force > j.break_force || out.reaction_torque > j.break_torque {
                 out.broken = true;
                 broken.push(j.source);
-            }
-        }
-        for t in &self.tethers {
-            if let Some(out) = self
-                .joints
-                .get(t.joint)
-                .and_then(|j| states.get_mut(j.source))
-            {
-                out.tether_impulse = t.impulse;
             }
         }
     }

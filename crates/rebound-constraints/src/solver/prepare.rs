@@ -30,14 +30,29 @@ impl JointSolver {
         params: &[BodyParams],
         ctx: &StepContext,
     ) -> usize {
+        let joint = |i: usize| Some((joints.get(i)?, states.get(i)?, *bodies.get(i)?));
+        self.prepare_from(joints.len(), joint, solver_bodies, params, ctx)
+    }
+
+    /// [`JointSolver::prepare`] of `count` joints read where they are kept: `joint(i)` gives joint `i`, its
+    /// state and its bodies (`None`: skipped), so that a world copies each joint's state once into the
+    /// solver (and once back, [`JointSolver::store_impulses_to`]).
+    pub fn prepare_from<'j>(
+        &mut self,
+        count: usize,
+        joint: impl Fn(usize) -> Option<(&'j Joint, &'j JointState, JointBodies)>,
+        solver_bodies: &[SolverBody],
+        params: &[BodyParams],
+        ctx: &StepContext,
+    ) -> usize {
         self.joints.clear();
         self.relax_passes = 0;
         self.joint_softness = self.settings.joint_softness(ctx);
         self.h = ctx.h;
         let body_count = solver_bodies.len().min(params.len());
         let mut skipped = 0;
-        for (source, joint) in joints.iter().enumerate() {
-            let (Some(state), Some(jb)) = (states.get(source), bodies.get(source)) else {
+        for source in 0..count {
+            let Some((joint, state, jb)) = joint(source) else {
                 skipped += 1;
                 continue;
             };
@@ -72,6 +87,7 @@ impl JointSolver {
                 kind,
                 path: None,
                 link: None,
+                tether: None,
             });
         }
         // The paths first: the graph search leaves out the tethers they make redundant.
@@ -232,11 +248,13 @@ impl JointSolver {
             })
         };
         self.tethers.extend(self.graph.tethers(body));
-        for t in &mut self.tethers {
-            t.impulse = self
-                .joints
-                .get(t.joint)
-                .map_or(0.0, |j| j.state.tether_impulse);
+        for (k, t) in self.tethers.iter_mut().enumerate() {
+            if let Some(j) = self.joints.get_mut(t.joint) {
+                t.impulse = j.state.tether_impulse;
+                j.tether = Some(k);
+            } else {
+                t.impulse = 0.0;
+            }
         }
     }
 }
