@@ -54,17 +54,22 @@ pub(crate) fn solve(
     part.solve(pair, a, b, target, &mut state.linear_impulse);
 }
 
-/// The position errors `C` of [`direct_rows`]' rows (the components of `d`) and their target rules, in row
-/// order, computed as it computes them but without building the rows: what the position projection measures a
-/// path's worst error from after every step it tries.
+/// The point rows' world axes and position errors `C`, the components of the anchors' separation `d` (m):
+/// the one statement of the rows [`direct_rows`] builds and [`direct_errors`] measures. Each row's target is
+/// the component of `block_target(d, …)` along its axis, as the Gauss–Seidel block builds it
+/// ([`TargetRule::Block`]).
+fn point_rows(d: Vec3) -> [(Vec3, f32); 3] {
+    [(Vec3::X, d.x), (Vec3::Y, d.y), (Vec3::Z, d.z)]
+}
+
+/// The position errors `C` of [`direct_rows`]' rows and their target rules, in row order, without building
+/// the rows: what the position projection measures a path's worst error from after every step it tries.
 pub(crate) fn direct_errors(
     pair: &BodyPair,
     a: &SolverBody,
     b: &SolverBody,
 ) -> [(f32, TargetRule); 3] {
-    let d = pair.anchors(a, b).d;
-    let rule = TargetRule::Block;
-    [(d.x, rule), (d.y, rule), (d.z, rule)]
+    point_rows(pair.anchors(a, b).d).map(|(_, c)| (c, TargetRule::Block))
 }
 
 /// The three point rows (world axes) for the direct solve of a chain ([`crate::path`]) at the current pose:
@@ -77,9 +82,7 @@ pub(crate) fn direct_rows(
     out: &mut JointRows,
 ) {
     let anchors = pair.anchors(a, b);
-    let d = anchors.d;
-    for (axis, c) in [(Vec3::X, d.x), (Vec3::Y, d.y), (Vec3::Z, d.z)] {
-        // The component of `block_target(d, …)` along `axis`, as the Gauss–Seidel block builds it.
+    for (axis, c) in point_rows(anchors.d) {
         let rule = TargetRule::Block;
         let target = rule.target(c, stage);
         out.push(Row::linear(axis, anchors.r_a, anchors.r_b, target), c, rule);

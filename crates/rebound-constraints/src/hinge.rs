@@ -230,8 +230,7 @@ impl PreparedHinge {
         ball::direct_rows(pair, a, b, stage, out);
         let (axis, perpendiculars) = alignment_axes(pair, a, b);
         for perpendicular in perpendiculars {
-            // C = a·p: spring in the bias pass, `Ċ = 0` in the relax pass.
-            let (error, rule) = (axis.dot(perpendicular), TargetRule::Equality);
+            let (error, rule) = alignment_error(axis, perpendicular);
             let target = rule.target(error, stage);
             out.push(Row::angular(perpendicular.cross(axis), target), error, rule);
         }
@@ -247,8 +246,7 @@ impl PreparedHinge {
     ) -> [(f32, TargetRule); 5] {
         let [x, y, z] = ball::direct_errors(pair, a, b);
         let (axis, [p, q]) = alignment_axes(pair, a, b);
-        let rule = TargetRule::Equality;
-        [x, y, z, (axis.dot(p), rule), (axis.dot(q), rule)]
+        [x, y, z, alignment_error(axis, p), alignment_error(axis, q)]
     }
 
     /// The limit, motor and spring rows alone (when the rest is solved directly).
@@ -304,6 +302,15 @@ impl PreparedHinge {
 /// current pose: what the alignment rows are built from ([`PreparedHinge::direct_rows`]) and their errors
 /// measured from ([`PreparedHinge::direct_errors`]), with the same operations.
 #[inline]
+/// The position error of the alignment row of `perpendicular` (one of B's axes across the hinge) with A's
+/// hinge `axis`, `C = a·p` (rad, to first order), and its target rule: an equality row, soft in the bias
+/// pass and `Ċ = 0` in the relax pass. The one statement of the row [`PreparedHinge::direct_rows`] builds and
+/// [`PreparedHinge::direct_errors`] measures.
+fn alignment_error(axis: Vec3, perpendicular: Vec3) -> (f32, TargetRule) {
+    (axis.dot(perpendicular), TargetRule::Equality)
+}
+
+/// A's hinge axis and B's two axes across it at the bodies' pose (world).
 fn alignment_axes(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> (Vec3, [Vec3; 2]) {
     let (fa, fb) = pair.frames(a, b);
     (fa * Vec3::X, [fb * Vec3::Y, fb * Vec3::Z])
