@@ -202,8 +202,7 @@ impl PreparedHinge {
         // once: what `AnglePart`, `AlignPart` and `PointPart` would apply one after another.
         // The alignment torque `b₁ × a·λ₁ + b₂ × a·λ₂` is `(λ₁·b₁ + λ₂·b₂) × a`: one turn of B's
         // perpendiculars, combined at the step's start, and one cross. In 16-byte vectors (`Vec3A`, `Mat3A`):
-        // the products and crosses take one SIMD instruction each where `Vec3` takes three. (The bridge's
-        // warm start: 393 → 225 instructions.)
+        // each product and cross is one SIMD operation.
         let axis = a.delta_rotation * self.axis_a;
         let align = state.angular_impulse;
         let [b1, b2] = self.perpendiculars_b;

@@ -168,8 +168,8 @@ pub(super) fn crosses_zero(row: &Row, lambda: f32, x: Real) -> bool {
 /// pull its bodies apart past its length, or a taut rope that was closing before the solve and would no
 /// longer be. Returns the first link that had a row activated (`None`: none), so that the system is solved
 /// again with them — from the link before it on ([`Resume`]). Without this step a rope left out at the start
-/// of a pass is pulled past its length by the solve of its neighbours (a chain whipping round stretched links
-/// by 30 % within a substep).
+/// of a pass is pulled past its length by the solve of its neighbours (a chain whipping round would stretch
+/// its links by a large fraction within a substep).
 pub(crate) fn activate_violations<'b>(
     links: &mut [Link],
     solution: &[[Real; MAX_ROWS]],

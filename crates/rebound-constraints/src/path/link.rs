@@ -85,10 +85,8 @@ pub(super) const LANES: usize = 4;
 /// keys of the kept rows and factorisation, the scalar sweep's entries, then the rows ([`JointRows`], also
 /// ordered so) — and the 5 × 5 blocks of the block sweep last. A link is about 2 kB; a 500-rope chain's links
 /// are a megabyte, far more than the first-level cache, and each pass sweeps them several times (rows and
-/// activation, forward and back substitution, the active-set check, the update). With the blocks' `[0][0]`
-/// entries serving the scalar sweep and the compiler's field order, a one-row link's reads were spread over
-/// the whole record; packed, they sit in its first lines (first-level misses of the SCENES.md chain −11 %,
-/// `docs/performance.md`, tenth session).
+/// activation, forward and back substitution, the active-set check, the update): packed so, a one-row link's
+/// reads sit in the record's first cache lines.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[repr(C)]
 pub(crate) struct Link {

@@ -80,8 +80,8 @@
 //! swing slowly then factorises once per step instead of at every pose (five times: the first solve pass
 //! and each relax pass). Exact errors with the kept rows would not do: see `Link::carry`. The projection
 //! always builds its rows at the pose (its Newton steps need the pose's Jacobians). Ball joints are not
-//! carried: at the whip of the SCENES.md `chain_spherical` (balls turning with their links) carrying at
-//! 0.01 rad let the worst link stretch 4.8 % against 0.045 %.
+//! carried: in a whipping spherical chain the balls turn with their links, and carried rows let the links
+//! stretch far more than rows built at the pose.
 //!
 //! The rows outlive the step, too. The last relax pass of a step builds every hinge's rows at the step's
 //! final pose for the projection; the next step's passes carry those rows (and their factorisation) from
@@ -90,8 +90,8 @@
 //! A path keeps its rows only whole (same joints, same bodies, same inverse masses) and every link of it
 //! keeps the inverse inertias its rows were turned with until the last relax pass builds them all again:
 //! `K` must use one inverse inertia per body — a link built with the new step's next to links kept with
-//! the last step's made the SCENES.md bridge's singular `K` inconsistent, and the regularisation blew it up
-//! within 18 steps. The kept rows are state: a snapshot holds them ([`crate::KeptRows`]).
+//! the last step's makes a bridge's singular `K` inconsistent, and the regularisation turns that into
+//! impulses that blow the bridge up. The kept rows are state: a snapshot holds them ([`crate::KeptRows`]).
 
 mod active_set;
 mod factor;

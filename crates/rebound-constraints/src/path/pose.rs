@@ -12,8 +12,8 @@ use rebound_math::{Quat, Vec3};
 #[derive(Debug, Clone, Copy, Eq)]
 pub(crate) struct PoseKey([u32; 14]);
 
-/// Word by word, inline: the derived comparison of the 56 bytes called the C library's `memcmp`
-/// (a path compares a key per link and pass — 10 % of the SCENES.md chain's wall time went to the calls).
+/// Word by word, inline: the derived comparison of the 56 bytes calls the C library's `memcmp`, and a path
+/// compares a key per link and pass.
 impl PartialEq for PoseKey {
     #[inline]
     fn eq(&self, other: &Self) -> bool {
@@ -51,10 +51,9 @@ impl PoseKey {
 
 /// How far (rad) either body of a hinge on a path may turn within a step before a velocity pass builds the
 /// hinge's rows again instead of carrying them ([`Link::carry`]). The Jacobians of a hinge's rows depend on
-/// the bodies' rotations alone, and a row turned by `θ` acts up to `θ` off its direction. Measured on the
-/// SCENES.md bridge, with the projection switched off to see the velocity passes alone: worst joint gap
-/// 5.02 mm when every pass builds its rows, 5.02 mm at 0.001 rad, 4.98 mm at 0.01, 18 cm at 0.05 and
-/// 92 cm at 0.2 (with the projection: 0.07 mm built, 0.11 mm carried at 0.01).
+/// the bodies' rotations alone, and a row turned by `θ` acts up to `θ` off its direction. At 0.01 rad a
+/// bridge's joint gaps are those of building the rows at every pass; a few times more lets them grow
+/// (`docs/physics.md`).
 pub(crate) const CARRY_ANGLE: f32 = 0.01;
 
 /// Where a link's rows were built, in world terms, and for which joint: what carries them to a later pose of

@@ -24,8 +24,7 @@ impl Link {
     /// Carried to first order, the errors stay in the range of the rows' `J`: a bridge hung between two
     /// anchors has redundant rows (a singular `K`, kept solvable by [`REGULARIZATION`]), and errors measured
     /// exactly at the new pose but solved with the old rows have a component `K` cannot reach, which the
-    /// regularisation turns into impulses a million times too large (the SCENES.md bridge blew up within
-    /// 40 steps).
+    /// regularisation turns into impulses a million times too large.
     pub fn carry(
         &mut self,
         frames: (Quat, Quat),

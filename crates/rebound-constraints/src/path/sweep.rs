@@ -230,7 +230,7 @@ pub(super) fn solve_block_path<'b>(
 ///
 /// The products are written as sums of scaled rows (`rhs −= yₖ·(row k of W)`, `x −= xₖ·(column k of V)`,
 /// with `V` stored transposed), not as dot products: the rows are contiguous, so the compiler pairs them
-/// into two-lane f64 instructions (the SCENES.md bridge −0.8 % instructions, `docs/performance.md`).
+/// into two-lane f64 operations.
 ///
 /// `B`, `C`, `L`, `D⁻¹`, `W` and `V` depend on the rows and on which of them are in the system, not on the
 /// velocities: while the links up to the next one still have the rows and the active sets they were
@@ -310,8 +310,8 @@ pub(super) fn block_sweep<'b, const N: usize>(
         // S = B − Wᵢ₋₁ᵀ·D⁻¹ᵢ₋₁·Wᵢ₋₁ (upper triangle);  S = L·D·Lᵀ;  W = L⁻¹·C,  Vᵀ = (D⁻¹·W)ᵀ  (kept when
         // `reuse`)
         if !reuse {
-            // `S` (upper triangle) straight into the factor storage, an entry at a time (a copy of the
-            // 200-byte `B` first was a call to `memcpy`), then factorised there.
+            // `S` (upper triangle) straight into the factor storage, an entry at a time (copying the
+            // 200-byte `B` first would call `memcpy`), then factorised there.
             let s = &mut link.factor;
             for row in 0..N {
                 for col in row..N {

@@ -169,7 +169,7 @@ impl Link {
         // Each row's Jacobian `[J_a,linear, J_a,angular, J_b,linear, J_b,angular]` and `M⁻¹·Jᵀ` in the same
         // order, as 4-lane vectors (w = 0), zero for a row not in the system: an entry is then four lane
         // products summed once. Every entry is written once, here and below, rather than the arrays and
-        // blocks cleared first: each clear of these few hundred bytes was a call to the C library's `memset`.
+        // blocks cleared first: clearing these few hundred bytes would call the C library's `memset`.
         let lanes = |v: Vec3| v.extend(0.0);
         let jacobian: [[Vec4; 4]; MAX_ROWS] = core::array::from_fn(|k| match rows.get(k) {
             Some(row) if k < N && live[k] => {

@@ -1,24 +1,25 @@
-//! The joint solver: the stages the world calls, dispatched on the joint kind with a `match` (no trait
-//! objects in the hot loop; Box2D's `switch` in `joint.c`).
+//! The joint solver: the stages the world calls. Each stage is in the file named after it and calls one
+//! method of the prepared joint kind per joint, whose `match` over the kinds is in `dispatch.rs` (no trait
+//! objects in the hot loop; Box2D's `switch` in `joint.c`). The paths of joints solved directly are handed
+//! to the path solver ([`crate::path`]) as bodies and rows.
 //!
 //! ```text
-//! prepare                         once per step: anchors, frames, masses, softness, warm-start impulses
+//! prepare                        prepare.rs     once per step: anchors, frames, masses, softness, warm-start
+//!                                               impulses; the paths, their kept links, the tethers
 //! for each substep:
-//!     integrate velocities        (rebound-dynamics)
-//!     apply_forces                SpringModel::Force: the explicit Hooke force as a velocity change
-//!     warm_start                  the impulses of the last substep, again
-//!     solve(Bias::On)             solve_iterations Gauss–Seidel passes, soft position correction
-//!     integrate positions         (rebound-dynamics)
-//!     solve(Bias::Off)            relax_iterations passes, no position correction (removes the bias velocity)
-//!                                 (joint paths — chains, bridges — are solved as one system in each pass:
-//!                                 crate::path; a pass at the pose of the one before it — a solve pass
-//!                                 after a relax pass, the projection — keeps that pass's rows and, if the
-//!                                 same rows are in the system, its factorisation; a hinge whose bodies
-//!                                 turned less than 0.01 rad since its rows were built this step keeps
-//!                                 them and its factorisation, with its errors carried to the pose)
-//! project_positions               once: the positions of each joint path, so that its joints end the step closed
-//! apply_restitution               once: ropes that snapped taut
-//! store_impulses                  impulses back into the JointStates; break check
+//!     integrate velocities                      (rebound-dynamics)
+//!     apply_forces               passes.rs      SpringModel::Force: the explicit Hooke force as a velocity change
+//!     warm_start                 passes.rs      the impulses of the last substep, again
+//!     solve_substep(Bias::On)    passes.rs      solve_iterations Gauss–Seidel passes with soft position
+//!                                               correction, then each path (path_pass.rs), then the tethers
+//!     integrate positions                       (rebound-dynamics)
+//!     solve_substep(Bias::Off)   passes.rs      relax_iterations passes without position correction; the last
+//!                                               substep's also relaxes closed paths and builds every path's rows
+//!                                               at the final pose
+//! project_positions              project.rs     once: the positions of each path, so that its joints end the
+//!                                               step closed
+//! apply_restitution              passes.rs      once: ropes that snapped taut
+//! store_impulses                 passes.rs      impulses back into the JointStates; break check
 //! ```
 //!
 //! Buffers are reused from step to step: once the `Vec` of prepared joints has grown to the scene's joint

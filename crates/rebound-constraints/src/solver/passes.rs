@@ -79,11 +79,10 @@ impl JointSolver {
     /// exactly: for rigid rows its result does not depend on the velocity along the rows at all (a
     /// projection: `P·(P·v + g·h) = P·(v + g·h)`), and the soft step keeps `1 − mass_scale` of it (about a
     /// tenth at the default joint softness). The last relax pass stays: it takes the bias velocity out of
-    /// the step's final velocities, and builds the rows the position projection starts from. On the SCENES.md
-    /// bridge and chain this is a third of the direct solves (instructions −9 % and −12 %) with joint gaps
-    /// and stretch no worse (`docs/physics.md`, "Relaxing a closed path"). A path with other rows on its
-    /// bodies is relaxed every substep: a hinge limit solved by Gauss–Seidel before the path's exact solve
-    /// was pushed past by up to 1.5° without the path's relax (`tests/hinge.rs`).
+    /// the step's final velocities, and builds the rows the position projection starts from. A chain or a
+    /// bridge so skips a third of its direct solves (`docs/physics.md`, "Relaxing a closed path"). A path
+    /// with other rows on its bodies is relaxed every substep: without the path's relax, the path's exact
+    /// solve pushes a hinge limit solved by Gauss–Seidel before it past the limit (`tests/hinge.rs`).
     pub fn solve_substep(
         &mut self,
         solver_bodies: &mut [SolverBody],

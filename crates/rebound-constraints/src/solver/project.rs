@@ -26,17 +26,16 @@ pub(super) const PROJECTION_SWEEP_CHECK: usize = 4;
 /// How much stiffer than their geometric stiffness `|p|/L` the projection makes pulled ropes and rods against
 /// turning when a plain Newton step is rejected ([`Link::stiffen`]). The exact Newton step weighs the
 /// Hessian of each link's length by the multiplier of the step it takes, which is larger than the plain step's
-/// `p` it is estimated from (about 3× at the SCENES.md chain's whip), and a stiffer metric errs on the safe
-/// side: in the limit the links only change length, which for a chain hanging from an anchor is exact. Worst
-/// link of that chain over 38 starts with one ball 10 µm off: ×1 0.04–0.56 %, ×3 0.04–0.13 %, ×10 and ×30
-/// 0.040–0.041 %.
+/// `p` it is estimated from (several times larger at a whipping chain's tip), and a stiffer metric errs on
+/// the safe side: in the limit the links only change length, which for a chain hanging from an anchor is
+/// exact.
 pub(super) const PROJECTION_STIFFENING: f32 = 10.0;
 
 /// The fraction of the worst error a full Newton step of the projection must get a path with ropes or rods
 /// down to for it to be kept as it is. Near the solution Newton's error shrinks quadratically; a step that
 /// does not even quarter it is one whose linearisation is poor (links turning within the step), and the
-/// stiffened step ([`PROJECTION_STIFFENING`]) is tried instead. With "kept if no worse", steps that gained a
-/// few per cent used up the iterations at the SCENES.md chain's whip (0.19 → 0.19 → 0.18 cm).
+/// stiffened step ([`PROJECTION_STIFFENING`]) is tried instead: steps kept for gaining a few per cent would
+/// use up the iterations.
 pub(super) const PROJECTION_NEWTON_GAIN: f32 = 0.25;
 
 impl JointSolver {
@@ -106,8 +105,7 @@ impl JointSolver {
                 // A Newton step can overshoot where the linearisation is poor: a light body between two
                 // nearly aligned, pulled links is moved far sideways (by about `p·θ/m` for a position
                 // impulse `p` through links turned by `θ`), which lengthens both links by the square of
-                // that (at the SCENES.md chain's whip a step meant to close 0.36 cm moved bodies 10 cm and
-                // left 7.4 cm). If the full step does not get the worst error down to `gain` of it, the
+                // that, far more than the step was meant to close. If the full step does not get the worst error down to `gain` of it, the
                 // path's ropes and rods are stiffened against turning (`stiffen`) and the step solved again,
                 // kept if it makes things no worse; if that fails too, or nothing can be stiffened, half of
                 // the last step is tried, then a quarter. If even that fails, the next iteration would start
