@@ -70,9 +70,8 @@ pub(crate) fn emit_events(
     events: &mut Vec<Event>,
     woken: &mut Vec<BodyHandle>,
 ) {
-    let b = buffers;
     // Touching pairs with their approach speeds, sorted by pair: O(m log m) for m manifolds.
-    b.touching_speeds.clear();
+    buffers.touching_speeds.clear();
     for ((m, &was_pushed), &speed) in state.manifolds.iter().zip(pushed).zip(approach_speeds) {
         // Touching: overlapping, or pushed this step (a speculative contact that closed its gap, a bounce).
         if m.is_touching() || was_pushed {
@@ -81,23 +80,23 @@ pub(crate) fn emit_events(
             } else {
                 (m.body_b, m.body_a)
             };
-            b.touching_speeds.push((pair, speed));
+            buffers.touching_speeds.push((pair, speed));
         }
     }
-    b.touching_speeds.sort_unstable_by_key(|x| x.0);
-    b.touching.clear();
-    let mut contact_events = core::mem::take(&mut b.contact_events);
+    buffers.touching_speeds.sort_unstable_by_key(|x| x.0);
+    buffers.touching.clear();
+    let mut contact_events = core::mem::take(&mut buffers.contact_events);
     contact_events.clear();
     let mut last = state.touching.iter().peekable();
     let mut i = 0;
-    while i < b.touching_speeds.len() {
-        let pair = b.touching_speeds[i].0;
+    while i < buffers.touching_speeds.len() {
+        let pair = buffers.touching_speeds[i].0;
         let mut approach_speed = 0.0f32;
-        while i < b.touching_speeds.len() && b.touching_speeds[i].0 == pair {
-            approach_speed = approach_speed.max(b.touching_speeds[i].1);
+        while i < buffers.touching_speeds.len() && buffers.touching_speeds[i].0 == pair {
+            approach_speed = approach_speed.max(buffers.touching_speeds[i].1);
             i += 1;
         }
-        b.touching.push(pair);
+        buffers.touching.push(pair);
         // Both lists are sorted: a forward walk through last step's.
         if walk_to(&mut last, &pair, |&old| old).is_none() {
             contact_events.push(Event::ContactBegan {
@@ -107,7 +106,7 @@ pub(crate) fn emit_events(
             });
         }
     }
-    let mut now = b.touching.iter().peekable();
+    let mut now = buffers.touching.iter().peekable();
     for pair in &state.touching {
         if walk_to(&mut now, pair, |&new| new).is_none() {
             contact_events.push(Event::ContactEnded {
@@ -116,12 +115,12 @@ pub(crate) fn emit_events(
             });
         }
     }
-    core::mem::swap(&mut state.touching, &mut b.touching);
+    core::mem::swap(&mut state.touching, &mut buffers.touching);
     // Contact events first (pair order), then what the step already pushed (broken joints, sleep), then
     // wakes: `events` holds what the step already pushed; put the contact events in front of it.
     contact_events.append(events);
     core::mem::swap(events, &mut contact_events);
-    b.contact_events = contact_events;
+    buffers.contact_events = contact_events;
     woken.sort_unstable();
     woken.dedup();
     events.extend(woken.drain(..).map(|body| Event::BodyWoke { body }));

@@ -1,5 +1,5 @@
-//! `World`: owns bodies, joints and last step's contacts, and steps them. The API lives here; the step
-//! pipeline is in `step.rs`.
+//! `World`: owns the state (`state.rs`), the collision backend and the step's buffers, and steps them. The
+//! API lives here; the step is in `step.rs`, one file per stage.
 
 use crate::arena::Arena;
 use crate::body_set::{BodyEntry, BodySet, NO_ISLAND};
