@@ -3,7 +3,7 @@
 
 use crate::pair::BodyPair;
 use crate::part::{PointPart, block_target};
-use crate::path::{JointRows, Row, TargetRule};
+use crate::path::{JointRows, MAX_ROWS, Row, TargetRule};
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::SolverBody;
@@ -52,6 +52,19 @@ pub(crate) fn solve(
     let part = PointPart::new(pair, anchors.r_a, anchors.r_b);
     let target = block_target(anchors.d, stage.bias, stage.joint_softness);
     part.solve(pair, a, b, target, &mut state.linear_impulse);
+}
+
+/// The accumulated impulses of [`direct_rows`]' rows, in row order (the point block's, along x, y, z).
+#[inline]
+pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
+    let l = state.linear_impulse;
+    [l.x, l.y, l.z, 0.0, 0.0]
+}
+
+/// Writes the impulses a direct solve gave [`direct_rows`]' rows back into `state`.
+#[inline]
+pub(crate) fn store_direct_impulses(state: &mut JointState, lambda: [f32; MAX_ROWS]) {
+    state.linear_impulse = Vec3::new(lambda[0], lambda[1], lambda[2]);
 }
 
 /// The point rows' world axes and position errors `C`, the components of the anchors' separation `d` (m):

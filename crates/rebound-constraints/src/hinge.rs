@@ -10,7 +10,7 @@ use crate::limits::Limits;
 use crate::motor::Motor;
 use crate::pair::BodyPair;
 use crate::part::{AlignPart, AnglePart};
-use crate::path::{JointRows, Row, TargetRule};
+use crate::path::{JointRows, MAX_ROWS, Row, TargetRule};
 use crate::soft_spring::JointSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
@@ -233,6 +233,22 @@ impl PreparedHinge {
             let target = rule.target(error, stage);
             out.push(Row::angular(perpendicular.cross(axis), target), error, rule);
         }
+    }
+
+    /// The accumulated impulses of [`PreparedHinge::direct_rows`]' rows, in row order: the point block's,
+    /// then the two alignment rows'.
+    #[inline]
+    pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
+        let (l, w) = (state.linear_impulse, state.angular_impulse);
+        [l.x, l.y, l.z, w.x, w.y]
+    }
+
+    /// Writes the impulses a direct solve gave [`PreparedHinge::direct_rows`]' rows back into `state`.
+    #[inline]
+    pub(crate) fn store_direct_impulses(state: &mut JointState, lambda: [f32; MAX_ROWS]) {
+        ball::store_direct_impulses(state, lambda);
+        state.angular_impulse.x = lambda[3];
+        state.angular_impulse.y = lambda[4];
     }
 
     /// The position errors `C` of [`PreparedHinge::direct_rows`]' rows and their target rules, in row order,

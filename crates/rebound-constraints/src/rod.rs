@@ -4,7 +4,7 @@
 use crate::error::ConstraintError;
 use crate::pair::BodyPair;
 use crate::part::{AxisPart, RowTarget};
-use crate::path::{JointRows, TargetRule};
+use crate::path::{JointRows, MAX_ROWS, TargetRule};
 use crate::spring::initial_axis;
 use crate::stage::Stage;
 use crate::state::JointState;
@@ -88,6 +88,18 @@ impl PreparedRod {
             b,
             state.axial_impulse,
         );
+    }
+
+    /// The accumulated impulse of the rod's direct row ([`PreparedRod::direct_row`]), as its row order.
+    #[inline]
+    pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
+        [state.axial_impulse, 0.0, 0.0, 0.0, 0.0]
+    }
+
+    /// Writes the impulse a direct solve gave the rod's row back into `state`.
+    #[inline]
+    pub(crate) fn store_direct_impulses(state: &mut JointState, lambda: [f32; MAX_ROWS]) {
+        state.axial_impulse = lambda[0];
     }
 
     /// The rod's row for the direct solve of a chain ([`crate::path`]) at the current pose, pushed into

@@ -6,7 +6,7 @@ use crate::error::ConstraintError;
 use crate::error::check_in_range;
 use crate::pair::BodyPair;
 use crate::part::{AxisPart, RowTarget};
-use crate::path::{JointRows, TargetRule};
+use crate::path::{JointRows, MAX_ROWS, TargetRule};
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
@@ -189,6 +189,24 @@ impl PreparedRope {
         // RowTarget::upper_limit(C, bias, joint softness, inv_h)
         let target = rule.target(c, stage);
         out.push_distance(pair, &dist, target, (f32::NEG_INFINITY, 0.0), (c, rule));
+    }
+
+    /// The accumulated impulse of the rope's direct row ([`PreparedRope::direct_row`]), as its row order.
+    #[inline]
+    pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
+        [state.upper_impulse, 0.0, 0.0, 0.0, 0.0]
+    }
+
+    /// Writes the impulse a direct solve gave the rope's row back into `state`, and notes it for the
+    /// restitution.
+    #[inline]
+    pub(crate) fn store_direct_impulses(
+        &mut self,
+        state: &mut JointState,
+        lambda: [f32; MAX_ROWS],
+    ) {
+        state.upper_impulse = lambda[0];
+        self.note_impulse(lambda[0]);
     }
 
     /// Records that the rope pulled (for restitution), after a direct solve.

@@ -21,7 +21,6 @@ use crate::stage::Stage;
 use crate::state::JointState;
 use crate::wheel::PreparedWheel;
 use rebound_dynamics::{Bias, SolverBody, StepContext};
-use rebound_math::Vec3;
 
 /// A joint kind prepared for the substeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -195,17 +194,10 @@ impl Prepared {
         lambda: [f32; MAX_ROWS],
     ) {
         match self {
-            Self::Rope(p) => {
-                state.upper_impulse = lambda[0];
-                p.note_impulse(lambda[0]);
-            }
-            Self::Rod(_) => state.axial_impulse = lambda[0],
-            Self::Ball => state.linear_impulse = Vec3::new(lambda[0], lambda[1], lambda[2]),
-            Self::Hinge(_) => {
-                state.linear_impulse = Vec3::new(lambda[0], lambda[1], lambda[2]);
-                state.angular_impulse.x = lambda[3];
-                state.angular_impulse.y = lambda[4];
-            }
+            Self::Rope(p) => p.store_direct_impulses(state, lambda),
+            Self::Rod(_) => PreparedRod::store_direct_impulses(state, lambda),
+            Self::Ball => ball::store_direct_impulses(state, lambda),
+            Self::Hinge(_) => PreparedHinge::store_direct_impulses(state, lambda),
             _ => {}
         }
     }
@@ -359,14 +351,14 @@ pub(super) fn reaction_impulses(kind: &Prepared, s: &JointState) -> (f32, f32) {
 }
 
 /// The accumulated impulses of joint `j`'s direct rows, in row order (0 for a joint without direct rows).
+#[inline]
 pub(super) fn state_lambda(j: &PreparedJoint) -> [f32; MAX_ROWS] {
     let s = &j.state;
-    let (l, w) = (s.linear_impulse, s.angular_impulse);
     match &j.kind {
-        Prepared::Rope(_) => [s.upper_impulse, 0.0, 0.0, 0.0, 0.0],
-        Prepared::Rod(_) => [s.axial_impulse, 0.0, 0.0, 0.0, 0.0],
-        Prepared::Ball => [l.x, l.y, l.z, 0.0, 0.0],
-        Prepared::Hinge(_) => [l.x, l.y, l.z, w.x, w.y],
+        Prepared::Rope(_) => PreparedRope::direct_impulses(s),
+        Prepared::Rod(_) => PreparedRod::direct_impulses(s),
+        Prepared::Ball => ball::direct_impulses(s),
+        Prepared::Hinge(_) => PreparedHinge::direct_impulses(s),
         _ => [0.0; MAX_ROWS],
     }
 }
