@@ -227,7 +227,7 @@ impl PreparedHinge {
         out: &mut JointRows,
     ) {
         ball::direct_rows(pair, a, b, stage, out);
-        let (axis, perpendiculars) = alignment_axes(pair, a, b);
+        let (axis, perpendiculars) = alignment_axes(pair.frames(a, b));
         for perpendicular in perpendiculars {
             let (error, rule) = alignment_error(axis, perpendicular);
             let target = rule.target(error, stage);
@@ -260,7 +260,7 @@ impl PreparedHinge {
         b: &SolverBody,
     ) -> [(f32, TargetRule); 5] {
         let [x, y, z] = ball::direct_errors(pair, a, b);
-        let (axis, [p, q]) = alignment_axes(pair, a, b);
+        let (axis, [p, q]) = alignment_axes(pair.frames(a, b));
         [x, y, z, alignment_error(axis, p), alignment_error(axis, q)]
     }
 
@@ -299,13 +299,13 @@ impl PreparedHinge {
         stage: &Stage,
     ) {
         let (fa, fb) = pair.frames(a, b);
-        let axis = fa * Vec3::X;
+        let (axis, perpendiculars) = alignment_axes((fa, fb));
         if !self.rows.is_idle(stage.bias) {
             let part = AnglePart::new(pair, axis);
             self.rows
                 .solve(&part, pair, twist_angle(fa, fb), state, a, b, stage);
         }
-        let align = AlignPart::new(pair, axis, [fb * Vec3::Y, fb * Vec3::Z]);
+        let align = AlignPart::new(pair, axis, perpendiculars);
         let mut lambda = state.angular_impulse.truncate();
         align.solve(a, b, stage.bias, stage.joint_softness, &mut lambda);
         state.angular_impulse = lambda.extend(0.0);
@@ -325,9 +325,9 @@ fn alignment_error(axis: Vec3, perpendicular: Vec3) -> (f32, TargetRule) {
     (axis.dot(perpendicular), TargetRule::Equality)
 }
 
-/// A's hinge axis and B's two axes across it at the bodies' pose (world).
-fn alignment_axes(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> (Vec3, [Vec3; 2]) {
-    let (fa, fb) = pair.frames(a, b);
+/// A's hinge axis and B's two axes across it, from the joint frames `fa`, `fb` (world): what the alignment
+/// rows of the Gauss–Seidel solve ([`AlignPart`]) and of the direct solve are built from.
+fn alignment_axes((fa, fb): (Quat, Quat)) -> (Vec3, [Vec3; 2]) {
     (fa * Vec3::X, [fb * Vec3::Y, fb * Vec3::Z])
 }
 
