@@ -3,7 +3,7 @@
 
 use crate::pair::BodyPair;
 use crate::part::{PointPart, block_target};
-use crate::path::{JointRows, MAX_ROWS, Row, TargetRule};
+use crate::path::{JointRows, MAX_ROWS, TargetRule};
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::SolverBody;
@@ -67,14 +67,6 @@ pub(crate) fn store_direct_impulses(state: &mut JointState, lambda: [f32; MAX_RO
     state.linear_impulse = Vec3::new(lambda[0], lambda[1], lambda[2]);
 }
 
-/// The point rows' world axes and position errors `C`, the components of the anchors' separation `d` (m):
-/// the one statement of the rows [`direct_rows`] builds and [`direct_errors`] measures. Each row's target is
-/// the component of `block_target(d, …)` along its axis, as the Gauss–Seidel block builds it
-/// ([`TargetRule::Block`]).
-fn point_rows(d: Vec3) -> [(Vec3, f32); 3] {
-    [(Vec3::X, d.x), (Vec3::Y, d.y), (Vec3::Z, d.z)]
-}
-
 /// The position errors `C` of [`direct_rows`]' rows and their target rules, in row order, without building
 /// the rows: what the position projection measures a path's worst error from after every step it tries.
 pub(crate) fn direct_errors(
@@ -82,11 +74,11 @@ pub(crate) fn direct_errors(
     a: &SolverBody,
     b: &SolverBody,
 ) -> [(f32, TargetRule); 3] {
-    point_rows(pair.anchors(a, b).d).map(|(_, c)| (c, TargetRule::Block))
+    PointPart::errors(pair.anchors(a, b).d)
 }
 
 /// The three point rows (world axes) for the direct solve of a chain ([`crate::path`]) at the current pose:
-/// as [`solve`] builds its block.
+/// [`PointPart::push_rows`] at the anchors [`solve`] builds its block at.
 pub(crate) fn direct_rows(
     pair: &BodyPair,
     a: &SolverBody,
@@ -95,9 +87,5 @@ pub(crate) fn direct_rows(
     out: &mut JointRows,
 ) {
     let anchors = pair.anchors(a, b);
-    for (axis, c) in point_rows(anchors.d) {
-        let rule = TargetRule::Block;
-        let target = rule.target(c, stage);
-        out.push(Row::linear(axis, anchors.r_a, anchors.r_b, target), c, rule);
-    }
+    PointPart::push_rows(anchors.r_a, anchors.r_b, anchors.d, stage, out);
 }

@@ -6,7 +6,6 @@
 use super::factor::Block;
 use super::pose::{BuiltAt, PoseKey};
 use super::row::{InvMass, JointRows, MAX_ROWS, Real};
-use rebound_dynamics::SolverBody;
 use rebound_math::{Mat3, Vec4};
 
 /// What a link's stored factorisation was made for: the block width of the sweep (1 for the scalar sweep),
@@ -260,15 +259,6 @@ impl Link {
     #[inline]
     pub fn keeps_last_step_masses(&self) -> bool {
         self.masses == Masses::LastStep
-    }
-
-    /// Applies the impulse `lambda` along the first row to both bodies: the warm start of a one-row joint (a
-    /// rope, a rod) whose row was built at the bodies' current pose, which is what the joint's own warm start
-    /// applies — `∓axis·(m⁻¹·λ)` and `±I⁻¹·(r × axis)·λ` of the same values — bit for bit.
-    pub fn warm_start_row(&self, a: &mut SolverBody, b: &mut SolverBody, lambda: f32) {
-        if self.rows.count == 1 {
-            self.rows.apply(0, a, b, lambda);
-        }
     }
 }
 

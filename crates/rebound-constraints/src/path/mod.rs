@@ -67,9 +67,7 @@
 //! joining or leaving the system refactorises from the link before it on — and sweeps only the right-hand
 //! side. Everything kept is what the same operations on the same values would give again, so a pass gives
 //! the bits it gave when it rebuilt everything. Within a pass, an active-set round that changes the system
-//! from some link on sweeps forward again only from the link before it (`Resume`), and a rope's or rod's warm
-//! start at the pose its link's row was built at applies the impulse along that row
-//! (`Link::warm_start_row`).
+//! from some link on sweeps forward again only from the link before it (`Resume`).
 //!
 //! # Rows carried through the step
 //!

@@ -91,13 +91,6 @@ impl Prepared {
         pair.store(solver_bodies, a, b);
     }
 
-    /// Whether the joint's warm start is the impulse along its one direct row (a rope, a rod): on a path
-    /// whose link has that row built at the bodies' pose, the link applies it ([`crate::path`]).
-    #[inline]
-    pub(super) fn warm_starts_along_its_row(&self) -> bool {
-        matches!(self, Self::Rope(_) | Self::Rod(_))
-    }
-
     /// Stage *warm start*: the impulses of the last substep in `state`, again, along the current directions.
     #[inline]
     pub(super) fn warm_start(

@@ -2,9 +2,8 @@
 //! (bias off) — and the stages after the substeps that are not the projection: *restitution* and *store
 //! impulses*. Each dispatches over the joint kinds; the paths are solved by `path_pass`.
 
-use super::dispatch::{reaction_impulses, state_lambda};
+use super::dispatch::reaction_impulses;
 use super::joint_solver::JointSolver;
-use crate::path::PoseKey;
 use crate::stage::{Stage, Substep};
 use crate::state::{JointState, JointStates};
 use rebound_dynamics::{Bias, SolverBody, StepContext};
@@ -28,20 +27,6 @@ impl JointSolver {
                 continue;
             };
             let (pair, state) = (&j.pair, &j.state);
-            // A rope or rod on a path whose link has its row built at this pose (the pose of the last relax
-            // pass: every substep but the first) applies the impulse along that row: the Jacobian and the
-            // turned vectors the warm start would compute again, so the same bits without the distance.
-            let built = if j.kind.warm_starts_along_its_row() {
-                j.link
-                    .and_then(|k| self.links.get(k))
-                    .filter(|link| link.is_built_at(&PoseKey::of(a, b)))
-            } else {
-                None
-            };
-            if let Some(link) = built {
-                link.warm_start_row(a, b, state_lambda(j)[0]);
-                continue;
-            }
             j.kind.warm_start(pair, state, a, b);
         }
         for t in &self.tethers {
