@@ -117,12 +117,13 @@ impl PreparedRod {
         let (c, rule) = (dist.length - self.length, TargetRule::Equality);
         // RowTarget::equality(C, bias, joint softness)
         let target = rule.target(c, stage);
-        out.push_distance(
+        AxisPart::push_row(
             pair,
             &dist,
             target,
             (f32::NEG_INFINITY, f32::INFINITY),
             (c, rule),
+            out,
         );
     }
 

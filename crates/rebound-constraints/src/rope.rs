@@ -188,7 +188,14 @@ impl PreparedRope {
         let (c, rule) = (dist.length - self.rope.max_length, TargetRule::UpperLimit);
         // RowTarget::upper_limit(C, bias, joint softness, inv_h)
         let target = rule.target(c, stage);
-        out.push_distance(pair, &dist, target, (f32::NEG_INFINITY, 0.0), (c, rule));
+        AxisPart::push_row(
+            pair,
+            &dist,
+            target,
+            (f32::NEG_INFINITY, 0.0),
+            (c, rule),
+            out,
+        );
     }
 
     /// The accumulated impulse of the rope's direct row ([`PreparedRope::direct_row`]), as its row order.

@@ -3,7 +3,6 @@
 //! its target follows from ([`TargetRule`]). Joints write their rows here in *prepare*-time geometry at every
 //! pass that builds them (solve, relax, projection); the rest of the path solver reads them.
 
-use crate::pair::{BodyPair, Distance};
 use crate::part::{RowTarget, block_target};
 use crate::stage::Stage;
 use rebound_dynamics::SolverBody;
@@ -258,31 +257,9 @@ impl JointRows {
         self.push_turned(row, c, rule, turned);
     }
 
-    /// Pushes the row along `dist`'s axis between the joint's anchors (a rope's, a rod's), with the impulse
-    /// bounds `[lower, upper]`: [`Row::linear`], or for a joint between both centres of mass
-    /// ([`BodyPair::is_between_centres`]) [`Row::between_centres`], which has nothing to turn.
-    #[inline(always)]
-    pub fn push_distance(
-        &mut self,
-        pair: &BodyPair,
-        dist: &Distance,
-        target: RowTarget,
-        (lower, upper): (f32, f32),
-        (c, rule): (f32, TargetRule),
-    ) {
-        if pair.is_between_centres() {
-            let row = Row::between_centres(dist.axis, target).clamped(lower, upper);
-            self.push_turned(row, c, rule, [Vec3::ZERO; 2]);
-        } else {
-            let row = Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
-                .clamped(lower, upper);
-            self.push(row, c, rule);
-        }
-    }
-
     /// [`JointRows::push`] with the row's turned angular parts `[I_a⁻¹·J_a,angular, I_b⁻¹·J_b,angular]`.
     #[inline]
-    pub(super) fn push_turned(
+    pub(crate) fn push_turned(
         &mut self,
         row: Row,
         c: f32,
