@@ -1,10 +1,11 @@
 //! The ball (spherical) joint: two anchor points held together, rotation free. Stages: *prepare*, *warm
 //! start*, *solve* and *relax*.
 
-use crate::direct::{JointRows, Row, TargetRule};
+use crate::pair::BodyPair;
 use crate::part::{PointPart, block_target};
-use crate::solver::Stage;
-use crate::{BodyPair, JointState};
+use crate::path::{JointRows, MAX_ROWS, TargetRule};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 
@@ -53,21 +54,31 @@ pub(crate) fn solve(
     part.solve(pair, a, b, target, &mut state.linear_impulse);
 }
 
-/// The position errors `C` of [`direct_rows`]' rows (the components of `d`) and their target rules, in row
-/// order, computed as it computes them but without building the rows: what the position projection measures a
-/// path's worst error from after every step it tries.
+/// The accumulated impulses of [`direct_rows`]' rows, in row order (the point block's, along x, y, z).
+#[inline]
+pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
+    let l = state.linear_impulse;
+    [l.x, l.y, l.z, 0.0, 0.0]
+}
+
+/// Writes the impulses a direct solve gave [`direct_rows`]' rows back into `state`.
+#[inline]
+pub(crate) fn store_direct_impulses(state: &mut JointState, lambda: [f32; MAX_ROWS]) {
+    state.linear_impulse = Vec3::new(lambda[0], lambda[1], lambda[2]);
+}
+
+/// The position errors `C` of [`direct_rows`]' rows and their target rules, in row order, without building
+/// the rows: what the position projection measures a path's worst error from after every step it tries.
 pub(crate) fn direct_errors(
     pair: &BodyPair,
     a: &SolverBody,
     b: &SolverBody,
 ) -> [(f32, TargetRule); 3] {
-    let d = pair.anchors(a, b).d;
-    let rule = TargetRule::Block;
-    [(d.x, rule), (d.y, rule), (d.z, rule)]
+    PointPart::errors(pair.anchors(a, b).d)
 }
 
-/// The three point rows (world axes) for the direct solve of a chain ([`crate::direct`]) at the current pose:
-/// as [`solve`] builds its block.
+/// The three point rows (world axes) for the direct solve of a chain ([`crate::path`]) at the current pose:
+/// [`PointPart::push_rows`] at the anchors [`solve`] builds its block at.
 pub(crate) fn direct_rows(
     pair: &BodyPair,
     a: &SolverBody,
@@ -76,11 +87,5 @@ pub(crate) fn direct_rows(
     out: &mut JointRows,
 ) {
     let anchors = pair.anchors(a, b);
-    let d = anchors.d;
-    for (axis, c) in [(Vec3::X, d.x), (Vec3::Y, d.y), (Vec3::Z, d.z)] {
-        // The component of `block_target(d, …)` along `axis`, as the Gauss–Seidel block builds it.
-        let rule = TargetRule::Block;
-        let target = rule.target(c, stage);
-        out.push(Row::linear(axis, anchors.r_a, anchors.r_b, target), c, rule);
-    }
+    PointPart::push_rows(anchors.r_a, anchors.r_b, anchors.d, stage, out);
 }

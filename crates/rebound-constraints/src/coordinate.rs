@@ -11,10 +11,11 @@
 
 use crate::limits::Limits;
 use crate::motor::Motor;
+use crate::pair::BodyPair;
 use crate::part::{Row, RowTarget};
 use crate::soft_spring::JointSpring;
-use crate::solver::Stage;
-use crate::{BodyPair, JointState};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::{Bias, Softness, SolverBody};
 
 /// The optional rows of a joint coordinate.

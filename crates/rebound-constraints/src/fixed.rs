@@ -1,9 +1,11 @@
 //! The fixed (weld) joint: the anchors held together and the joint frames kept in the same orientation, so the
 //! two bodies move as one. Stages: *prepare*, *warm start*, *solve* and *relax*.
 
+use crate::ball;
+use crate::pair::BodyPair;
 use crate::part::{RotationPart, block_target, rotation_error};
-use crate::solver::Stage;
-use crate::{BodyPair, JointState, ball};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::SolverBody;
 
 /// A fixed joint. It has no parameters of its own.

@@ -2,18 +2,21 @@
 //! kept parallel, leaving one rotation free — with optional angle limits, a motor and a spring on the angle.
 //! Stages: *prepare*, *warm start*, *solve* and *relax*.
 
+use crate::ball;
 use crate::coordinate::CoordinateRows;
-use crate::direct::{JointRows, Row, TargetRule};
+use crate::error::ConstraintError;
 use crate::error::check_in_range;
 use crate::limits::Limits;
 use crate::motor::Motor;
-use crate::part::{AlignPart, AnglePart};
+use crate::pair::BodyPair;
+use crate::part::{AlignPart, AnglePart, PointPart};
+use crate::path::{JointRows, MAX_ROWS, TargetRule};
 use crate::soft_spring::JointSpring;
-use crate::solver::Stage;
-use crate::{BodyPair, ConstraintError, JointState, ball};
+use crate::stage::Stage;
+use crate::state::JointState;
 use core::f32::consts::{PI, TAU};
 use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
-use rebound_math::glam::{Mat3A, Vec3A};
+use rebound_math::glam::Vec3A;
 use rebound_math::{Quat, Vec3};
 
 /// A hinge joint. Free by default: no limits, no motor, no spring.
@@ -194,28 +197,23 @@ impl PreparedHinge {
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) {
-        // The impulses of the angle rows (about the axis), the alignment rows (about `b₁ × a`, `b₂ × a`) and
-        // the point rows (`P` at the anchors) summed into one torque per body, turned by its inverse inertia
-        // once: what `AnglePart`, `AlignPart` and `PointPart` would apply one after another.
-        // The alignment torque `b₁ × a·λ₁ + b₂ × a·λ₂` is `(λ₁·b₁ + λ₂·b₂) × a`: one turn of B's
-        // perpendiculars, combined at the step's start, and one cross. In 16-byte vectors (`Vec3A`, `Mat3A`):
-        // the products and crosses take one SIMD instruction each where `Vec3` takes three. (The bridge's
-        // warm start: 393 → 225 instructions.)
+        // Each part's angular impulse `Jᵀλ` — the angle rows' about the axis, the alignment rows' — summed
+        // into one twist, which the point part applies with its impulse `P` at the anchors: each body's
+        // torques turned by its inverse inertia once. B's perpendiculars are weighted by their impulses
+        // before they are turned to the current pose (one rotation instead of two).
         let axis = a.delta_rotation * self.axis_a;
         let align = state.angular_impulse;
         let [b1, b2] = self.perpendiculars_b;
         let perpendicular = b.delta_rotation * (b1 * align.x + b2 * align.y);
-        let twist = axis * CoordinateRows::accumulated(state) + perpendicular.cross(axis);
+        let twist = AnglePart::twist(axis, CoordinateRows::accumulated(state))
+            + AlignPart::twist(axis, perpendicular);
         let r_a = a.delta_rotation * Vec3A::from(pair.anchor_a);
         let r_b = b.delta_rotation * Vec3A::from(pair.anchor_b);
         let p = Vec3A::from(state.linear_impulse);
-        a.linear_velocity -= Vec3::from(p * pair.inv_mass_a);
-        a.angular_velocity -= Vec3::from(Mat3A::from(pair.inv_inertia_a) * (twist + r_a.cross(p)));
-        b.linear_velocity += Vec3::from(p * pair.inv_mass_b);
-        b.angular_velocity += Vec3::from(Mat3A::from(pair.inv_inertia_b) * (twist + r_b.cross(p)));
+        PointPart::apply_with_twist(pair, (r_a, r_b), p, twist, a, b);
     }
 
-    /// The point rows and the two alignment rows for the direct solve of a chain ([`crate::direct`]) at the
+    /// The point rows and the two alignment rows for the direct solve of a chain ([`crate::path`]) at the
     /// current pose; the limit, motor and spring rows stay with [`PreparedHinge::solve_coordinate`].
     pub(crate) fn direct_rows(
         pair: &BodyPair,
@@ -225,13 +223,24 @@ impl PreparedHinge {
         out: &mut JointRows,
     ) {
         ball::direct_rows(pair, a, b, stage, out);
-        let (axis, perpendiculars) = alignment_axes(pair, a, b);
-        for perpendicular in perpendiculars {
-            // C = a·p: spring in the bias pass, `Ċ = 0` in the relax pass.
-            let (error, rule) = (axis.dot(perpendicular), TargetRule::Equality);
-            let target = rule.target(error, stage);
-            out.push(Row::angular(perpendicular.cross(axis), target), error, rule);
-        }
+        let (axis, perpendiculars) = alignment_axes(pair.frames(a, b));
+        AlignPart::push_rows(axis, perpendiculars, stage, out);
+    }
+
+    /// The accumulated impulses of [`PreparedHinge::direct_rows`]' rows, in row order: the point block's,
+    /// then the two alignment rows'.
+    #[inline]
+    pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
+        let (l, w) = (state.linear_impulse, state.angular_impulse);
+        [l.x, l.y, l.z, w.x, w.y]
+    }
+
+    /// Writes the impulses a direct solve gave [`PreparedHinge::direct_rows`]' rows back into `state`.
+    #[inline]
+    pub(crate) fn store_direct_impulses(state: &mut JointState, lambda: [f32; MAX_ROWS]) {
+        ball::store_direct_impulses(state, lambda);
+        state.angular_impulse.x = lambda[3];
+        state.angular_impulse.y = lambda[4];
     }
 
     /// The position errors `C` of [`PreparedHinge::direct_rows`]' rows and their target rules, in row order,
@@ -243,12 +252,11 @@ impl PreparedHinge {
         b: &SolverBody,
     ) -> [(f32, TargetRule); 5] {
         let [x, y, z] = ball::direct_errors(pair, a, b);
-        let (axis, [p, q]) = alignment_axes(pair, a, b);
-        let rule = TargetRule::Equality;
-        [x, y, z, (axis.dot(p), rule), (axis.dot(q), rule)]
+        let (axis, perpendiculars) = alignment_axes(pair.frames(a, b));
+        let [p, q] = AlignPart::errors(axis, perpendiculars);
+        [x, y, z, p, q]
     }
 
-    /// The limit, motor and spring rows alone (when the rest is solved directly).
     /// Whether the hinge has no limit, motor or spring: all its rows are then the point and alignment rows
     /// of [`PreparedHinge::direct_rows`].
     pub(crate) fn has_no_coordinate_rows(&self) -> bool {
@@ -256,6 +264,7 @@ impl PreparedHinge {
         self.rows.is_idle(Bias::On)
     }
 
+    /// The limit, motor and spring rows alone (when the point and alignment rows are solved directly).
     pub(crate) fn solve_coordinate(
         &self,
         pair: &BodyPair,
@@ -283,13 +292,13 @@ impl PreparedHinge {
         stage: &Stage,
     ) {
         let (fa, fb) = pair.frames(a, b);
-        let axis = fa * Vec3::X;
+        let (axis, perpendiculars) = alignment_axes((fa, fb));
         if !self.rows.is_idle(stage.bias) {
             let part = AnglePart::new(pair, axis);
             self.rows
                 .solve(&part, pair, twist_angle(fa, fb), state, a, b, stage);
         }
-        let align = AlignPart::new(pair, axis, [fb * Vec3::Y, fb * Vec3::Z]);
+        let align = AlignPart::new(pair, axis, perpendiculars);
         let mut lambda = state.angular_impulse.truncate();
         align.solve(a, b, stage.bias, stage.joint_softness, &mut lambda);
         state.angular_impulse = lambda.extend(0.0);
@@ -297,12 +306,11 @@ impl PreparedHinge {
     }
 }
 
-/// The hinge axis of A's joint frame and the two axes of B's joint frame it is kept perpendicular to, at the
-/// current pose: what the alignment rows are built from ([`PreparedHinge::direct_rows`]) and their errors
-/// measured from ([`PreparedHinge::direct_errors`]), with the same operations.
+/// A's hinge axis and B's two axes across it, from the joint frames `fa`, `fb` (world), at the current pose:
+/// what [`AlignPart`] is built from for the Gauss–Seidel solve ([`PreparedHinge::solve`]) and for the
+/// direct rows and their errors ([`PreparedHinge::direct_rows`], [`PreparedHinge::direct_errors`]).
 #[inline]
-fn alignment_axes(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> (Vec3, [Vec3; 2]) {
-    let (fa, fb) = pair.frames(a, b);
+fn alignment_axes((fa, fb): (Quat, Quat)) -> (Vec3, [Vec3; 2]) {
     (fa * Vec3::X, [fb * Vec3::Y, fb * Vec3::Z])
 }
 

@@ -1,13 +1,22 @@
 //! A joint's validated, body-independent description ([`Joint`]: kind, local anchors and frames, break
-//! limits), its persistent solver state ([`JointState`]) and the pair of solver indices it connects
+//! limits), its persistent solver state ([`crate::JointState`]) and the pair of solver indices it connects
 //! ([`JointBodies`]). Not part of a step stage: descriptions are checked where they enter, the step trusts them.
 
+use crate::ball::BallJoint;
+use crate::error::ConstraintError;
 use crate::error::check_positive_or_infinite as check_break;
+use crate::fixed::FixedJoint;
+use crate::hinge::HingeJoint;
+use crate::limits::Limits;
+use crate::motor::Motor;
+use crate::prismatic::PrismaticJoint;
+use crate::rod::Rod;
+use crate::rope::Rope;
 use crate::soft_spring::JointSpring;
-use crate::{
-    BallJoint, ConstraintError, FixedJoint, HingeJoint, Limits, Motor, PrismaticJoint, Rod, Rope,
-    SoftSpring, Spring, SpringModel, WheelJoint,
-};
+use crate::soft_spring::SoftSpring;
+use crate::spring::Spring;
+use crate::spring::SpringModel;
+use crate::wheel::WheelJoint;
 use rebound_math::validity::{check_direction, check_finite_vec3, check_rotation};
 use rebound_math::{Mat3, Pose, Quat, Vec3};
 
@@ -86,7 +95,7 @@ kind_from!(Spring => Spring, Rope => Rope, Rod => Rod, BallJoint => Ball, HingeJ
 ///   axis; fixed and prismatic joints keep the two frames aligned. Default: identity (X = the body's x axis).
 ///   Distance joints (spring, rope, rod) and the ball joint ignore them.
 /// * **Break limits** (N and N·m; +∞ = unbreakable, the default): a joint whose reaction force or torque at the
-///   end of a step exceeds them is disabled ([`JointState::broken`]) and reported by
+///   end of a step exceeds them is disabled ([`crate::JointState::broken`]) and reported by
 ///   [`crate::JointSolver::store_impulses`].
 ///
 /// A **world anchor** (drag and drop, a pendulum pivot, a camera boom) is a joint whose body A is a fixed body
@@ -122,12 +131,12 @@ pub struct Joint {
     local_basis_b: Quat,
     #[cfg_attr(
         feature = "serde",
-        serde(with = "unbounded", default = "unbounded::infinity")
+        serde(with = "crate::bounds::unbounded", default = "crate::bounds::unbounded::infinity")
     )]
     break_force: f32,
     #[cfg_attr(
         feature = "serde",
-        serde(with = "unbounded", default = "unbounded::infinity")
+        serde(with = "crate::bounds::unbounded", default = "crate::bounds::unbounded::infinity")
     )]
     break_torque: f32,
 }
@@ -528,49 +537,6 @@ pub fn basis_from_axes(x_axis: Vec3, y_axis: Vec3) -> Result<Quat, ConstraintErr
     Ok(Quat::from_mat3(&Mat3::from_cols(x, y, z)).normalize())
 }
 
-/// The persistent solver state of one joint: the impulses accumulated over the last substep of the last step
-/// (for warm starting the next step), the reaction it carried, and whether it has broken. The world keeps one
-/// per joint; [`crate::JointSolver::prepare`] reads it and [`crate::JointSolver::store_impulses`] writes it.
-///
-/// Impulses are per substep (N·s for linear rows, N·m·s for angular ones); divide by the substep length `h`
-/// for a force. Which fields a kind uses:
-///
-/// | field | spring | rope | rod | ball | hinge | fixed | prismatic | wheel |
-/// |---|---|---|---|---|---|---|---|---|
-/// | `linear_impulse` | | | | point | point | point | across (x, y) | across (x, y) |
-/// | `angular_impulse` | | | | | axis (x, y) | rotation | rotation | axle (x, y) |
-/// | `axial_impulse` | spring | | rod | | spring | | spring | suspension |
-/// | `lower_impulse` (≥ 0) | | | | | limit | | limit | limit |
-/// | `upper_impulse` (≤ 0) | | rope | | | limit | | limit | limit |
-/// | `motor_impulse` | | | | | motor | | motor | drive |
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct JointState {
-    /// Impulse of the point block or the two rows across an axis (N·s). Default: 0.
-    pub linear_impulse: Vec3,
-    /// Impulse of the rotation lock or the two axis-alignment rows (N·m·s). Default: 0.
-    pub angular_impulse: Vec3,
-    /// Impulse of the spring or rod row (N·s or N·m·s; for [`SpringModel::Force`] the force·h of the last
-    /// substep, recorded, not warm-started). Default: 0.
-    pub axial_impulse: f32,
-    /// Impulse of the lower limit (≥ 0). Default: 0.
-    pub lower_impulse: f32,
-    /// Impulse of the upper limit or the rope (≤ 0). Default: 0.
-    pub upper_impulse: f32,
-    /// Impulse of the motor. Default: 0.
-    pub motor_impulse: f32,
-    /// Impulse of the long-range tether of the body this joint leads to, if it has one (N·s, ≤ 0; see
-    /// [`crate::JointSettings::tethers`]). Default: 0.
-    pub tether_impulse: f32,
-    /// Magnitude of the constraint force the joint carried in the last substep of the last step (N).
-    pub reaction_force: f32,
-    /// Magnitude of the constraint torque it carried (N·m).
-    pub reaction_torque: f32,
-    /// Whether the joint has broken (exceeded its break force or torque). A broken joint is skipped until
-    /// this is reset to `false`. Default: false.
-    pub broken: bool,
-}
-
 /// The two bodies of a joint as indices into the solver arrays (`SolverBody`, `BodyParams`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -632,37 +598,5 @@ mod tests {
         );
         assert!((pose_a.rotation * j.local_basis_a()).abs_diff_eq(basis, 1e-5));
         assert!((pose_b.rotation * j.local_basis_b()).abs_diff_eq(basis, 1e-5));
-    }
-}
-
-/// Serialises a limit that may be +∞ (unbreakable, an upper impulse bound) as `null`, which JSON can carry
-/// (it has no infinity), and reads `null` back as +∞.
-#[cfg(feature = "serde")]
-pub(crate) mod unbounded {
-    use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
-    /// The value of a limit that is not given: +∞.
-    pub(crate) fn infinity() -> f32 {
-        f32::INFINITY
-    }
-
-    pub(crate) fn serialize<S: Serializer>(value: &f32, serializer: S) -> Result<S::Ok, S::Error> {
-        let finite = value.is_finite().then_some(*value);
-        finite.serialize(serializer)
-    }
-
-    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f32, D::Error> {
-        Ok(Option::<f32>::deserialize(deserializer)?.unwrap_or(f32::INFINITY))
-    }
-}
-
-/// [`unbounded`] for a lower impulse bound: −∞ as `null`, and back.
-#[cfg(feature = "serde")]
-pub(crate) mod unbounded_below {
-    pub(crate) use super::unbounded::serialize;
-    use serde::{Deserialize, Deserializer};
-
-    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(deserializer: D) -> Result<f32, D::Error> {
-        Ok(Option::<f32>::deserialize(deserializer)?.unwrap_or(f32::NEG_INFINITY))
     }
 }

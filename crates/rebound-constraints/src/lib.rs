@@ -3,8 +3,9 @@
 pub mod part;
 
 mod ball;
+#[cfg(feature = "serde")]
+mod bounds;
 mod coordinate;
-pub mod direct;
 mod error;
 mod fixed;
 mod hinge;
@@ -12,6 +13,7 @@ mod joint;
 mod limits;
 mod motor;
 mod pair;
+pub mod path;
 mod prismatic;
 mod rod;
 mod rope;
@@ -19,7 +21,8 @@ mod settings;
 mod soft_spring;
 mod solver;
 pub mod spring;
-pub mod tether;
+mod stage;
+mod state;
 mod wheel;
 
 /// The dynamics layer this crate builds on.
@@ -31,7 +34,7 @@ pub use ball::BallJoint;
 pub use error::ConstraintError;
 pub use fixed::FixedJoint;
 pub use hinge::{HingeJoint, twist_angle};
-pub use joint::{Joint, JointBodies, JointKind, JointState, basis_from_axes, basis_from_axis};
+pub use joint::{Joint, JointBodies, JointKind, basis_from_axes, basis_from_axis};
 pub use limits::Limits;
 pub use motor::Motor;
 pub use pair::{Anchors, BodyPair, Distance, MIN_AXIS_LENGTH};
@@ -42,4 +45,6 @@ pub use settings::JointSettings;
 pub use soft_spring::{JointSpring, SoftSpring};
 pub use solver::{JointSolver, KeptRows};
 pub use spring::{Spring, SpringModel};
+pub use stage::Substep;
+pub use state::{JointState, JointStates};
 pub use wheel::WheelJoint;

@@ -1,7 +1,7 @@
 //! Lower and upper limits on a joint coordinate (a hinge angle, a slide distance, a suspension travel),
 //! enforced as one-sided speculative rows (see [`crate::part`]).
 
-use crate::ConstraintError;
+use crate::error::ConstraintError;
 use crate::error::check_ordered;
 use rebound_math::validity::check_finite;
 

@@ -2,7 +2,7 @@
 //! torque (Box2D's joint motors). Solved as a rigid row with the accumulated impulse clamped to
 //! `±max_force·h` per substep, in both the bias and the relax pass.
 
-use crate::ConstraintError;
+use crate::error::ConstraintError;
 use crate::error::check_non_negative_or_infinite as check_max_force;
 use rebound_math::validity::check_finite;
 

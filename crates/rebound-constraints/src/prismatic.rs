@@ -5,10 +5,11 @@
 use crate::coordinate::CoordinateRows;
 use crate::limits::Limits;
 use crate::motor::Motor;
+use crate::pair::BodyPair;
 use crate::part::{AxisPart, RotationPart, Row, RowTarget, block_target, rotation_error};
 use crate::soft_spring::JointSpring;
-use crate::solver::Stage;
-use crate::{BodyPair, JointState};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::{Softness, SolverBody, StepContext};
 use rebound_math::{Quat, Vec3};
 

@@ -1,11 +1,13 @@
 //! The rod: a fixed distance between two anchors (a massless rigid rod with ball ends; Box2D's rigid distance
 //! joint). Stages: *prepare*, *warm start*, *solve* and *relax*.
 
-use crate::direct::{JointRows, TargetRule};
+use crate::error::ConstraintError;
+use crate::pair::BodyPair;
 use crate::part::{AxisPart, RowTarget};
-use crate::solver::Stage;
+use crate::path::{JointRows, MAX_ROWS, TargetRule};
 use crate::spring::initial_axis;
-use crate::{BodyPair, ConstraintError, JointState};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 use rebound_math::validity::check_positive;
@@ -88,7 +90,19 @@ impl PreparedRod {
         );
     }
 
-    /// The rod's row for the direct solve of a chain ([`crate::direct`]) at the current pose, pushed into
+    /// The accumulated impulse of the rod's direct row ([`PreparedRod::direct_row`]), as its row order.
+    #[inline]
+    pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
+        [state.axial_impulse, 0.0, 0.0, 0.0, 0.0]
+    }
+
+    /// Writes the impulse a direct solve gave the rod's row back into `state`.
+    #[inline]
+    pub(crate) fn store_direct_impulses(state: &mut JointState, lambda: [f32; MAX_ROWS]) {
+        state.axial_impulse = lambda[0];
+    }
+
+    /// The rod's row for the direct solve of a chain ([`crate::path`]) at the current pose, pushed into
     /// `out` with its position error `C = |d| − length` for the passes that reuse it.
     pub(crate) fn direct_row(
         &mut self,
@@ -103,12 +117,13 @@ impl PreparedRod {
         let (c, rule) = (dist.length - self.length, TargetRule::Equality);
         // RowTarget::equality(C, bias, joint softness)
         let target = rule.target(c, stage);
-        out.push_distance(
+        AxisPart::push_row(
             pair,
             &dist,
             target,
             (f32::NEG_INFINITY, f32::INFINITY),
             (c, rule),
+            out,
         );
     }
 

@@ -2,11 +2,13 @@
 //! nothing; once the anchors would move farther apart than its length an impulse acts on both bodies, like a
 //! collision — a hard constraint. Stages: *prepare*, *warm start*, *solve* and *relax*, *restitution*.
 
-use crate::direct::{JointRows, TargetRule};
+use crate::error::ConstraintError;
 use crate::error::check_in_range;
+use crate::pair::BodyPair;
 use crate::part::{AxisPart, RowTarget};
-use crate::solver::Stage;
-use crate::{BodyPair, ConstraintError, JointState};
+use crate::path::{JointRows, MAX_ROWS, TargetRule};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
 use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
@@ -170,7 +172,7 @@ impl PreparedRope {
         self.taut |= state.upper_impulse < 0.0;
     }
 
-    /// The rope's row for the direct solve of a chain ([`crate::direct`]) at the current pose, pushed into
+    /// The rope's row for the direct solve of a chain ([`crate::path`]) at the current pose, pushed into
     /// `out`: as [`PreparedRope::solve`] builds it, bounded to `λ ≤ 0`, with its position error
     /// `C = |d| − max_length` for the passes that reuse it.
     pub(crate) fn direct_row(
@@ -186,7 +188,32 @@ impl PreparedRope {
         let (c, rule) = (dist.length - self.rope.max_length, TargetRule::UpperLimit);
         // RowTarget::upper_limit(C, bias, joint softness, inv_h)
         let target = rule.target(c, stage);
-        out.push_distance(pair, &dist, target, (f32::NEG_INFINITY, 0.0), (c, rule));
+        AxisPart::push_row(
+            pair,
+            &dist,
+            target,
+            (f32::NEG_INFINITY, 0.0),
+            (c, rule),
+            out,
+        );
+    }
+
+    /// The accumulated impulse of the rope's direct row ([`PreparedRope::direct_row`]), as its row order.
+    #[inline]
+    pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
+        [state.upper_impulse, 0.0, 0.0, 0.0, 0.0]
+    }
+
+    /// Writes the impulse a direct solve gave the rope's row back into `state`, and notes it for the
+    /// restitution.
+    #[inline]
+    pub(crate) fn store_direct_impulses(
+        &mut self,
+        state: &mut JointState,
+        lambda: [f32; MAX_ROWS],
+    ) {
+        state.upper_impulse = lambda[0];
+        self.note_impulse(lambda[0]);
     }
 
     /// Records that the rope pulled (for restitution), after a direct solve.

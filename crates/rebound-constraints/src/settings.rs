@@ -2,7 +2,7 @@
 //! position correction of hard joint parts, the iteration counts and the long-range tethers. Read at *prepare*
 //! (softness, tethers) and in *solve* / *relax* (iterations).
 
-use crate::ConstraintError;
+use crate::error::ConstraintError;
 use rebound_dynamics::{Softness, StepContext};
 use rebound_math::validity::{check_non_negative, check_positive};
 
@@ -17,7 +17,7 @@ use rebound_math::validity::{check_non_negative, check_positive};
 ///
 /// A soft correction holds a load `F` with an error `F/(m_eff·ω²)`, so a long chain carrying a heavy end mass
 /// would stretch by its weight over the stiffness of a single link; the long-range tethers (on by default,
-/// [`crate::tether`]) carry such loads straight to the fixed anchor instead.
+/// [`crate::path::tether`]) carry such loads straight to the fixed anchor instead.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 // Missing fields take their defaults, so a scene file names only what differs.
@@ -36,11 +36,11 @@ pub struct JointSettings {
     /// Gauss–Seidel passes over all joints per relax call. Default: 1.
     pub relax_iterations: u32,
     /// Whether bodies hanging from fixed bodies through chains of ropes, rods, ball, hinge or fixed joints get
-    /// long-range tethers ([`crate::tether`]; not those whose whole chain is one path solved directly, see
+    /// long-range tethers ([`crate::path::tether`]; not those whose whole chain is one path solved directly, see
     /// `direct_chains`). Default: true.
     pub tethers: bool,
     /// Whether paths of rope, rod, ball and hinge joints (chains, ropes of links, bridges) are solved as one
-    /// system each pass instead of joint by joint ([`crate::direct`] explains why: stretch that does not
+    /// system each pass instead of joint by joint ([`crate::path`] explains why: stretch that does not
     /// grow with the load). Default: true.
     #[cfg_attr(feature = "serde", serde(default = "default_true"))]
     pub direct_chains: bool,

@@ -6,7 +6,7 @@
 //! Constraints", GDC 2011): stable for any stiffness and step. The two parameterisations are related through
 //! the row's effective mass `m_eff`: `k = m_eff·ω²`, `c = 2·m_eff·ζ·ω`, `ω = 2π·f`.
 
-use crate::ConstraintError;
+use crate::error::ConstraintError;
 use rebound_dynamics::Softness;
 use rebound_math::validity::{check_finite, check_non_negative};
 

@@ -46,11 +46,13 @@
 //! that grows with h·ω. Optional force caps clamp the accumulated impulse to `[min_force·h, max_force·h]`, which
 //! makes a bungee (`max_force = 0`: pulls, never pushes).
 
+use crate::error::ConstraintError;
 use crate::error::{check_not_nan, check_ordered};
+use crate::pair::BodyPair;
 use crate::part::{AxisPart, RowTarget};
 use crate::soft_spring::SoftSpring;
-use crate::solver::Stage;
-use crate::{BodyPair, ConstraintError, JointState};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
 use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;

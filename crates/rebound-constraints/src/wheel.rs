@@ -3,13 +3,15 @@
 //! joint in 3D). Stages: *prepare*, *warm start*, *solve* and *relax*.
 
 use crate::coordinate::CoordinateRows;
+use crate::error::ConstraintError;
 use crate::limits::Limits;
 use crate::motor::Motor;
+use crate::pair::BodyPair;
 use crate::part::{AlignPart, AnglePart, Row, RowTarget};
 use crate::prismatic::SlideGeometry;
 use crate::soft_spring::{JointSpring, SoftSpring};
-use crate::solver::Stage;
-use crate::{BodyPair, ConstraintError, JointState};
+use crate::stage::Stage;
+use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
 use rebound_math::Vec3;
 

@@ -10,7 +10,7 @@ use crate::handles::{BodyHandle, JointHandle};
 use crate::manifold::ContactManifold;
 use crate::report::StepReport;
 use crate::state::WorldState;
-use rebound_constraints::{Joint, JointBodies, JointSolver, JointState};
+use rebound_constraints::{JointBodies, JointSolver};
 use rebound_dynamics::{
     BodyParams, BodyType, Contact, ContactPoint, ContactSolver, SolverBody, StepContext,
 };
@@ -35,12 +35,11 @@ pub(crate) struct Solver {
     /// Solver contacts and, for each, the manifold it came from.
     pub(crate) contacts: Vec<Contact>,
     pub(crate) contact_sources: Vec<usize>,
-    /// Joints handed to the solver, their states and bodies, and the handles they came from.
-    pub(crate) joints: Vec<Joint>,
-    pub(crate) joint_states: Vec<JointState>,
+    /// Joints handed to the solver: their bodies and the handles they came from (the joint solver reads
+    /// each joint and its state where the world keeps them, and writes the state back there).
     pub(crate) joint_bodies: Vec<JointBodies>,
     pub(crate) joint_handles: Vec<JointHandle>,
-    /// Indices (into `joints`) of the joints that broke this step (written by *store*).
+    /// Indices (into `joint_handles`) of the joints that broke this step (written by *store*).
     pub(crate) broken: Vec<usize>,
     pub(crate) contact_solver: ContactSolver,
     pub(crate) joint_solver: JointSolver,
@@ -150,8 +149,6 @@ pub(crate) fn build_joints(
     ctx: &StepContext,
     report: &mut StepReport,
 ) {
-    s.joints.clear();
-    s.joint_states.clear();
     s.joint_bodies.clear();
     s.joint_handles.clear();
     let mut world_anchor: Option<usize> = None;
@@ -178,25 +175,23 @@ pub(crate) fn build_joints(
         if !s.params[a].is_dynamic() && !s.params[b].is_dynamic() {
             continue;
         }
-        s.joints.push(entry.joint);
-        s.joint_states.push(entry.state);
         s.joint_bodies.push(JointBodies { a, b });
         s.joint_handles.push(JointHandle(index));
     }
-    report.joint_count = s.joints.len();
+    report.joint_count = s.joint_handles.len();
     if s.joint_solver.settings() != &state.settings.joints {
         // `WorldSettings` are validated whenever they are set, so this cannot fail.
         let applied = s.joint_solver.set_settings(state.settings.joints);
         debug_assert!(applied.is_ok(), "world settings are validated on entry");
     }
-    let skipped = s.joint_solver.prepare(
-        &s.joints,
-        &s.joint_states,
-        &s.joint_bodies,
-        &s.states,
-        &s.params,
-        ctx,
-    );
+    let (handles, pairs) = (&s.joint_handles, &s.joint_bodies);
+    let joint = |i: usize| {
+        let entry = state.joints.get(handles.get(i)?.0)?;
+        Some((&entry.joint, &entry.state, *pairs.get(i)?))
+    };
+    let skipped = s
+        .joint_solver
+        .prepare_from(handles.len(), joint, &s.states, &s.params, ctx);
     debug_assert_eq!(
         skipped, 0,
         "the world hands the joint solver only valid joints"

@@ -4,21 +4,25 @@
 //! (chains, bridges) are projected, and ropes that went taut jerk back.
 
 use crate::prepare::Solver;
+use rebound_constraints::Substep;
 use rebound_dynamics::StepContext;
 use rebound_dynamics::contact::Bias;
 use rebound_dynamics::integrate::{integrate_positions, integrate_velocities};
 
 /// Stage *substeps*.
 pub(crate) fn solve_substeps(s: &mut Solver, ctx: &StepContext) {
-    for _ in 0..ctx.substep_count {
+    for index in 0..ctx.substep_count {
+        let substep = Substep::new(index, ctx.substep_count);
         integrate_velocities(&mut s.states, &s.params, ctx);
         s.joint_solver.apply_forces(&mut s.states, ctx);
         s.joint_solver.warm_start(&mut s.states);
         s.contact_solver.warm_start(&mut s.states);
-        s.joint_solver.solve(&mut s.states, ctx, Bias::On);
+        s.joint_solver
+            .solve_substep(&mut s.states, ctx, Bias::On, substep);
         s.contact_solver.solve(&mut s.states, ctx, Bias::On);
         integrate_positions(&mut s.states, &s.params, ctx);
-        s.joint_solver.solve(&mut s.states, ctx, Bias::Off);
+        s.joint_solver
+            .solve_substep(&mut s.states, ctx, Bias::Off, substep);
         s.contact_solver.solve(&mut s.states, ctx, Bias::Off);
     }
 }

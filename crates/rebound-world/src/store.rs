@@ -3,12 +3,29 @@
 //! events); each joint keeps its state; joints past their break limits are reported broken. Then (stage
 //! *finalize*) the poses and velocities of the solved bodies.
 
+use crate::arena::Arena;
 use crate::body_set::BodySet;
 use crate::collide::Collision;
 use crate::events::Event;
+use crate::handles::JointHandle;
 use crate::prepare::Solver;
 use crate::report::StepReport;
-use crate::state::WorldState;
+use crate::state::{JointEntry, WorldState};
+use rebound_constraints::{JointState, JointStates};
+
+/// The world's joints as the joint solver writes their states back: joint `i` of the step is the one of
+/// handle `handles[i]`.
+struct StoredJoints<'a> {
+    joints: &'a mut Arena<JointEntry>,
+    handles: &'a [JointHandle],
+}
+
+impl JointStates for StoredJoints<'_> {
+    fn state_mut(&mut self, i: usize) -> Option<&mut JointState> {
+        let handle = self.handles.get(i)?;
+        self.joints.get_mut(handle.0).map(|entry| &mut entry.state)
+    }
+}
 
 /// Stage *store impulses*: manifolds keep theirs for the next step; joint states likewise; joints that
 /// exceeded their break limits are marked broken and reported.
@@ -36,13 +53,11 @@ pub(crate) fn store_impulses(
             pushed[source] |= max > 0.0;
         });
     s.broken.clear();
-    s.joint_solver
-        .store_impulses(&mut s.joint_states, &mut s.broken);
-    for (handle, joint_state) in s.joint_handles.iter().zip(&s.joint_states) {
-        if let Some(entry) = state.joints.get_mut(handle.0) {
-            entry.state = *joint_state;
-        }
-    }
+    let mut stored = StoredJoints {
+        joints: &mut state.joints,
+        handles: &s.joint_handles,
+    };
+    s.joint_solver.store_impulses_to(&mut stored, &mut s.broken);
     report.broken_joint_count = s.broken.len();
     for &i in &s.broken {
         if let Some(handle) = s.joint_handles.get(i) {

@@ -31,7 +31,7 @@ pub struct WorldSnapshot {
     version: u32,
     state: WorldState,
     /// The joint solver's rows kept for the next step (directly solved hinge paths carry their rows across
-    /// the step boundary: see `rebound_constraints::direct`).
+    /// the step boundary: see `rebound_constraints::path`).
     joint_rows: KeptRows,
 }
 

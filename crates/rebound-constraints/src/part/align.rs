@@ -8,11 +8,18 @@
 //! Ċᵢ = uᵢ·(ω_b − ω_a),   uᵢ = bᵢ × a       since d(a·bᵢ)/dt = (ω_a × a)·bᵢ + a·(ω_b × bᵢ)
 //! K = [ uᵢ·(I_a⁻¹ + I_b⁻¹)·uⱼ ]            (2×2, 1/(kg·m²))
 //! impulse λ (N·m·s): ω_a −= I_a⁻¹·(u₁λ₁ + u₂λ₂),  ω_b += I_b⁻¹·(u₁λ₁ + u₂λ₂)
+//! angular impulse Jᵀλ = u₁λ₁ + u₂λ₂ = (λ₁b₁ + λ₂b₂) × a
 //! ```
+//!
+//! The Gauss–Seidel solve uses the block; the direct solve of a path ([`crate::path`]) uses the same `uᵢ` and
+//! errors as two rows ([`AlignPart::push_rows`]).
 
 use super::{inverse2_or_zero, solve_block2};
-use crate::BodyPair;
+use crate::pair::BodyPair;
+use crate::path::{JointRows, Row, TargetRule};
+use crate::stage::Stage;
 use rebound_dynamics::{Bias, Softness, SolverBody};
+use rebound_math::glam::Vec3A;
 use rebound_math::{Mat2, Vec2, Vec3};
 
 /// An axis-alignment block, built each iteration (see the module docs).
@@ -31,10 +38,7 @@ impl AlignPart {
     #[inline]
     #[must_use]
     pub fn new(pair: &BodyPair, axis_a: Vec3, perpendicular_b: [Vec3; 2]) -> Self {
-        let u = [
-            perpendicular_b[0].cross(axis_a),
-            perpendicular_b[1].cross(axis_a),
-        ];
+        let u = directions(axis_a, perpendicular_b);
         let w_a = [pair.inv_inertia_a * u[0], pair.inv_inertia_a * u[1]];
         let w_b = [pair.inv_inertia_b * u[0], pair.inv_inertia_b * u[1]];
         let k01 = u[0].dot(w_a[1] + w_b[1]);
@@ -47,8 +51,8 @@ impl AlignPart {
             w_a,
             w_b,
             error: Vec2::new(
-                axis_a.dot(perpendicular_b[0]),
-                axis_a.dot(perpendicular_b[1]),
+                error(axis_a, perpendicular_b[0]),
+                error(axis_a, perpendicular_b[1]),
             ),
             effective_mass: inverse2_or_zero(&k),
         }
@@ -93,10 +97,7 @@ impl AlignPart {
         if impulse == Vec2::ZERO {
             return;
         }
-        let u = [
-            perpendicular_b[0].cross(axis_a),
-            perpendicular_b[1].cross(axis_a),
-        ];
+        let u = directions(axis_a, perpendicular_b);
         let w_a = [pair.inv_inertia_a * u[0], pair.inv_inertia_a * u[1]];
         let w_b = [pair.inv_inertia_b * u[0], pair.inv_inertia_b * u[1]];
         a.angular_velocity -= w_a[0] * impulse.x + w_a[1] * impulse.y;
@@ -127,4 +128,54 @@ impl AlignPart {
         self.apply(a, b, applied);
         applied
     }
+
+    /// The angular impulse `Jᵀλ = (λ₁b₁ + λ₂b₂) × a` (N·m·s, world) of the impulses `λ` given as
+    /// `weighted_perpendicular = λ₁b₁ + λ₂b₂`, for A's `axis`: `+` on B, `−` on A. What
+    /// [`AlignPart::apply`] turns by each inverse inertia, for a warm start that sums a joint's parts first
+    /// ([`crate::part::PointPart::apply_with_twist`]).
+    #[inline]
+    #[must_use]
+    pub fn twist(axis: Vec3A, weighted_perpendicular: Vec3A) -> Vec3A {
+        weighted_perpendicular.cross(axis)
+    }
+
+    /// The block's two rows for the direct solve of a path, pushed into `out`: `Ċᵢ = uᵢ·(ω_b − ω_a)` with
+    /// [`AlignPart::new`]'s `uᵢ`, each an equality row on its error `a·bᵢ` ([`AlignPart::errors`]).
+    #[inline]
+    pub(crate) fn push_rows(
+        axis_a: Vec3,
+        perpendicular_b: [Vec3; 2],
+        stage: &Stage,
+        out: &mut JointRows,
+    ) {
+        let u = directions(axis_a, perpendicular_b);
+        for (u, perpendicular) in u.into_iter().zip(perpendicular_b) {
+            let c = error(axis_a, perpendicular);
+            let rule = TargetRule::Equality;
+            let target = rule.target(c, stage);
+            out.push(Row::angular(u, target), c, rule);
+        }
+    }
+
+    /// The position errors `C = a·bᵢ` (rad, to first order) of [`AlignPart::push_rows`]' rows and their
+    /// target rules (equality: soft in the bias pass, `Ċ = 0` in the relax pass), without building the rows.
+    #[inline]
+    pub(crate) fn errors(axis_a: Vec3, perpendicular_b: [Vec3; 2]) -> [(f32, TargetRule); 2] {
+        perpendicular_b.map(|p| (error(axis_a, p), TargetRule::Equality))
+    }
+}
+
+/// The Jacobian's directions `uᵢ = bᵢ × a` (world): the one statement of the block's `J`.
+#[inline]
+fn directions(axis_a: Vec3, perpendicular_b: [Vec3; 2]) -> [Vec3; 2] {
+    [
+        perpendicular_b[0].cross(axis_a),
+        perpendicular_b[1].cross(axis_a),
+    ]
+}
+
+/// The alignment error `C = a·b` of one perpendicular `b` of B with A's axis `a` (rad, to first order).
+#[inline]
+fn error(axis_a: Vec3, perpendicular: Vec3) -> f32 {
+    axis_a.dot(perpendicular)
 }

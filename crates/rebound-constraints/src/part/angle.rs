@@ -9,9 +9,10 @@
 //! ```
 
 use super::{RowTarget, inverse_or_zero, solve_row};
-use crate::BodyPair;
+use crate::pair::BodyPair;
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
+use rebound_math::glam::Vec3A;
 
 /// An angular row about a unit axis, built each iteration (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,5 +85,14 @@ impl AnglePart {
         );
         self.apply(a, b, applied);
         applied
+    }
+
+    /// The angular impulse `Jᵀλ = a·λ` (N·m·s, world) of the impulse `impulse` about the unit `axis`: `+` on
+    /// B, `−` on A. What [`AnglePart::apply`] turns by each inverse inertia, for a warm start that sums a
+    /// joint's parts first ([`crate::part::PointPart::apply_with_twist`]).
+    #[inline]
+    #[must_use]
+    pub fn twist(axis: Vec3A, impulse: f32) -> Vec3A {
+        axis * impulse
     }
 }

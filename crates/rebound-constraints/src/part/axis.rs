@@ -12,9 +12,13 @@
 //! `r_a`, `r_b` are the lever arms from each centre of mass; a prismatic joint passes `r_a + d` for body A so
 //! that both bodies are pushed at the same point (the exact Jacobian of `C = n_a·d` with `n_a` turning with A,
 //! and no spurious torque: angular momentum is conserved).
+//!
+//! The Gauss–Seidel solve uses the part; the direct solve of a path ([`crate::path`]) uses the same `J` as
+//! one row ([`AxisPart::push_row`], a rope's and a rod's).
 
 use super::{RowTarget, inverse_or_zero, solve_row};
-use crate::BodyPair;
+use crate::pair::{BodyPair, Distance};
+use crate::path::{JointRows, Row, TargetRule};
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 
@@ -109,5 +113,29 @@ impl AxisPart {
         );
         self.apply(pair, a, b, applied);
         applied
+    }
+
+    /// Pushes the row along `dist`'s axis between the joint's anchors into `out` (a rope's, a rod's), with
+    /// the impulse bounds `[lower, upper]` and position error `c` under `rule`: [`Row::linear`], the `J` of
+    /// [`AxisPart::new`] at `dist`'s axis and lever arms, or for a joint between both centres of mass
+    /// ([`BodyPair::is_between_centres`]) [`Row::between_centres`], which has nothing to turn. Inlined into
+    /// the path pass, which builds a rope's row at every new pose.
+    #[inline(always)]
+    pub(crate) fn push_row(
+        pair: &BodyPair,
+        dist: &Distance,
+        target: RowTarget,
+        (lower, upper): (f32, f32),
+        (c, rule): (f32, TargetRule),
+        out: &mut JointRows,
+    ) {
+        if pair.is_between_centres() {
+            let row = Row::between_centres(dist.axis, target).clamped(lower, upper);
+            out.push_turned(row, c, rule, [Vec3::ZERO; 2]);
+        } else {
+            let row = Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
+                .clamped(lower, upper);
+            out.push(row, c, rule);
+        }
     }
 }

@@ -49,7 +49,7 @@ pub use axis::AxisPart;
 pub use point::PointPart;
 pub use rotation::{RotationPart, rotation_error};
 
-use crate::BodyPair;
+use crate::pair::BodyPair;
 use rebound_dynamics::{Bias, Softness, SolverBody};
 use rebound_math::{Mat2, Mat3, Vec2, Vec3};
 
@@ -225,9 +225,9 @@ pub fn solve_row(
 }
 
 /// `x` clamped to `[lower, upper]`: `max(x, lower)`, then `min(·, upper)`, with a NaN `x` giving `lower` as
-/// [`f32::max`] does — written as comparisons so that each bound is one `maxss`/`minss` instruction
-/// (`f32::max` also handles a NaN bound, which no row has, at five more instructions a bound; the clamp runs
-/// for every row of every pass). A reversed range gives `upper`.
+/// [`f32::max`] does — written as comparisons so that each bound compiles to a plain min or max
+/// (`f32::max` also handles a NaN bound, which no row has, and the clamp runs for every row of every pass).
+/// A reversed range gives `upper`.
 #[inline]
 #[must_use]
 pub(crate) fn clamp_impulse(x: f32, lower: f32, upper: f32) -> f32 {

@@ -8,11 +8,21 @@
 //! K = (1/m_a + 1/m_b)·1 − [r_a]×·I_a⁻¹·[r_a]× − [r_b]×·I_b⁻¹·[r_b]×       (symmetric, 1/kg)
 //! impulse P (N·s): v_a −= P/m_a, ω_a −= I_a⁻¹·(r_a × P), v_b += P/m_b, ω_b += I_b⁻¹·(r_b × P)
 //! ```
+//!
+//! The Gauss–Seidel solve uses the block; the direct solve of a path ([`crate::path`]) uses the same `J` as
+//! three rows along the world axes ([`PointPart::push_rows`]), each row's error the component of `d` and its
+//! target the component of [`block_target`]'s.
 
 use super::{inverse3_or_zero, solve_block3};
-use crate::BodyPair;
+use crate::pair::BodyPair;
+use crate::path::{JointRows, Row, TargetRule};
+use crate::stage::Stage;
 use rebound_dynamics::{Softness, SolverBody};
+use rebound_math::glam::{Mat3A, Vec3A};
 use rebound_math::{Mat3, Vec3, skew};
+
+#[cfg(doc)]
+use super::block_target;
 
 /// A point-to-point block, built each iteration (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -86,4 +96,49 @@ impl PointPart {
         self.apply(pair, a, b, applied);
         applied
     }
+
+    /// [`PointPart::apply_at`] for the impulse `p` (N·s, world) with lever arms `r_a`, `r_b` (m), together
+    /// with the angular impulse `twist` (N·m·s, world) of the joint's other parts, `+` on B and `−` on A:
+    /// each body's torques summed and turned by its inverse inertia once (`Jᵀ·λ` of all the parts, then
+    /// `M⁻¹`), in 16-byte vectors. A warm start applies a joint's accumulated impulses this way.
+    #[inline]
+    pub fn apply_with_twist(
+        pair: &BodyPair,
+        (r_a, r_b): (Vec3A, Vec3A),
+        p: Vec3A,
+        twist: Vec3A,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
+        a.linear_velocity -= Vec3::from(p * pair.inv_mass_a);
+        a.angular_velocity -= Vec3::from(Mat3A::from(pair.inv_inertia_a) * (twist + r_a.cross(p)));
+        b.linear_velocity += Vec3::from(p * pair.inv_mass_b);
+        b.angular_velocity += Vec3::from(Mat3A::from(pair.inv_inertia_b) * (twist + r_b.cross(p)));
+    }
+
+    /// The block's rows for the direct solve of a path, pushed into `out` at lever arms `r_a`, `r_b` (m) and
+    /// separation `d` (m): `Ċ` along each world axis, as [`PointPart::new`]'s `J`, with the errors and rules
+    /// of [`PointPart::errors`].
+    #[inline]
+    pub(crate) fn push_rows(r_a: Vec3, r_b: Vec3, d: Vec3, stage: &Stage, out: &mut JointRows) {
+        for (axis, c) in axes_and_errors(d) {
+            let rule = TargetRule::Block;
+            let target = rule.target(c, stage);
+            out.push(Row::linear(axis, r_a, r_b, target), c, rule);
+        }
+    }
+
+    /// The position errors `C` of [`PointPart::push_rows`]' rows (the components of the separation `d`, m)
+    /// and their target rules, in row order, without building the rows.
+    #[inline]
+    pub(crate) fn errors(d: Vec3) -> [(f32, TargetRule); 3] {
+        axes_and_errors(d).map(|(_, c)| (c, TargetRule::Block))
+    }
+}
+
+/// The point rows' world axes and position errors `C`, the components of `d`: the one statement of the rows
+/// [`PointPart::push_rows`] builds and [`PointPart::errors`] measures.
+#[inline]
+fn axes_and_errors(d: Vec3) -> [(Vec3, f32); 3] {
+    [(Vec3::X, d.x), (Vec3::Y, d.y), (Vec3::Z, d.z)]
 }

@@ -12,7 +12,7 @@
 //! ```
 
 use super::{inverse3_or_zero, solve_block3};
-use crate::BodyPair;
+use crate::pair::BodyPair;
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::{Mat3, Quat, Vec3};
 

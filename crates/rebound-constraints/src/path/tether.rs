@@ -21,7 +21,7 @@
 //! [`crate::JointState::tether_impulse`] of the joint through which the body was reached, for warm starting.
 //!
 //! **Paths solved directly.** A body whose every joint back to the root belongs to one path solved directly
-//! ([`crate::direct`]) — a rope chain hanging from a fixed body, a deck hung between two anchors — gets no
+//! ([`crate::path`]) — a rope chain hanging from a fixed body, a deck hung between two anchors — gets no
 //! tether. The tether exists to carry the load below a link in one row instead of one link per Gauss–Seidel
 //! iteration; the direct solve already gives each of the path's rows the effective mass of the whole chain
 //! behind it, and the tether's bound is implied by the path's rows (it is the sum of their lengths), so it
@@ -35,9 +35,9 @@
 //! at least two joints long, a tether. A body reached through two paths keeps the first (fewest joints; ties
 //! by joint order), so the result is deterministic.
 
-use crate::BodyPair;
+use crate::pair::BodyPair;
 use crate::part::{AxisPart, RowTarget};
-use crate::solver::Stage;
+use crate::stage::Stage;
 use rebound_dynamics::SolverBody;
 use rebound_math::{Mat3, Vec3};
 
@@ -61,7 +61,7 @@ pub(crate) struct Edge {
     /// The distance the joint allows between its anchors (m): a rope's or rod's length, 0 for a point
     /// joint; `None` for joints that do not bound the distance (springs, prismatic, wheel).
     pub length: Option<f32>,
-    /// The path solved directly ([`crate::direct`]) the joint belongs to, if any.
+    /// The path solved directly ([`crate::path`]) the joint belongs to, if any.
     pub path: Option<usize>,
 }
 

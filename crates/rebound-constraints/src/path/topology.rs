@@ -1,0 +1,212 @@
+//! Stage *prepare*, path discovery: which joints form the paths the direct solve takes, in path order
+//! ([`Topology::find_paths`]), how consecutive members share a body ([`Topology::shared_with_next`]), and
+//! which paths are *closed* — solved entirely by the direct solve, with nothing else acting on their dynamic
+//! bodies ([`Topology::find_closed`]). It sees joints only as body pairs and two flags given by the solver:
+//! whether a joint's rows can join a path, and whether all of them do.
+
+use crate::pair::BodyPair;
+use core::ops::Range;
+use rebound_math::Mat3;
+
+/// The paths of one step and the scratch of their search, reused from step to step.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Topology {
+    /// Paths of joints solved directly, as ranges into `path_joints` (joint indices in path order).
+    pub paths: Vec<Range<usize>>,
+    pub path_joints: Vec<usize>,
+    /// Per path, whether it is closed ([`Topology::find_closed`]).
+    pub closed: Vec<bool>,
+    /// Scratch of the path search: per body, its number of path-capable joints and the first two of them;
+    /// per joint, whether a path has taken it.
+    degree: Vec<u32>,
+    incident: Vec<[usize; 2]>,
+    visited: Vec<bool>,
+    /// Scratch of [`Topology::find_closed`]: per body, the joints and tethers acting on it.
+    touches: Vec<u32>,
+}
+
+impl Topology {
+    /// Forgets the paths (direct chains switched off).
+    pub fn clear(&mut self) {
+        self.paths.clear();
+        self.path_joints.clear();
+    }
+
+    /// The paths solved directly among `count` joints, joint `i` between the bodies of `pair(i)` and able to
+    /// join a path if `capable(i)`: maximal sequences of capable joints through dynamic bodies that belong to
+    /// exactly two such joints. A path ends at a fixed body, a free end or a branching body; joints on a
+    /// closed loop stay with Gauss–Seidel.
+    pub fn find_paths<'p>(
+        &mut self,
+        body_count: usize,
+        count: usize,
+        pair: impl Fn(usize) -> &'p BodyPair,
+        capable: impl Fn(usize) -> bool,
+    ) {
+        self.clear();
+        self.degree.clear();
+        self.degree.resize(body_count, 0);
+        self.incident.clear();
+        self.incident.resize(body_count, [usize::MAX; 2]);
+        for index in 0..count {
+            if !capable(index) {
+                continue;
+            }
+            for body in dynamic_bodies(pair(index)).into_iter().flatten() {
+                let (Some(degree), Some(incident)) =
+                    (self.degree.get_mut(body), self.incident.get_mut(body))
+                else {
+                    continue;
+                };
+                if let Some(slot) = incident.get_mut(*degree as usize) {
+                    *slot = index;
+                }
+                *degree += 1;
+            }
+        }
+        let inner = |degree: &[u32], body: Option<usize>| {
+            body.is_some_and(|b| degree.get(b).copied() == Some(2))
+        };
+        self.visited.clear();
+        self.visited.resize(count, false);
+        for start in 0..count {
+            if self.visited[start] || !capable(start) {
+                continue;
+            }
+            let [body_a, body_b] = dynamic_bodies(pair(start));
+            // Walk away from an end of the path; a joint with inner bodies on both sides is not an end.
+            let mut toward = if !inner(&self.degree, body_a) {
+                body_b
+            } else if !inner(&self.degree, body_b) {
+                body_a
+            } else {
+                continue;
+            };
+            let first = self.path_joints.len();
+            let mut current = start;
+            loop {
+                self.visited[current] = true;
+                self.path_joints.push(current);
+                let Some(body) = toward.filter(|&b| inner(&self.degree, Some(b))) else {
+                    break;
+                };
+                let [j0, j1] = self.incident[body];
+                let next = if j0 == current { j1 } else { j0 };
+                if next >= count {
+                    break;
+                }
+                let next_pair = *pair(next);
+                let other = if next_pair.index_a == body {
+                    next_pair.index_b
+                } else {
+                    next_pair.index_a
+                };
+                // Two joints between the same two bodies share both: not a path link.
+                let here = pair(current);
+                if self.visited[next] || other == here.index_a || other == here.index_b {
+                    break;
+                }
+                toward = dynamic_bodies(&next_pair)
+                    .into_iter()
+                    .flatten()
+                    .find(|&b| b == other);
+                current = next;
+            }
+            self.paths.push(first..self.path_joints.len());
+        }
+    }
+
+    /// For member `slot` of the path `members` (joint `i` between the bodies of `pair(i)`): the side of it on
+    /// the body it shares with the next member and the side of the next member on it (`true` = body B);
+    /// `None` for the last member.
+    pub fn shared_with_next<'p>(
+        members: &[usize],
+        slot: usize,
+        pair: impl Fn(usize) -> &'p BodyPair,
+    ) -> Option<(bool, bool)> {
+        members.get(slot + 1).map(|&next| {
+            let (this, next) = (pair(members[slot]), pair(next));
+            let shared = if this.index_a == next.index_a || this.index_a == next.index_b {
+                this.index_a
+            } else {
+                this.index_b
+            };
+            (this.index_b == shared, next.index_b == shared)
+        })
+    }
+
+    /// Marks each path closed or not: a path is closed when every member's rows are all in the direct solve
+    /// (`whole(i)` of its joints) and each of its dynamic bodies is acted on by the path's joints alone — of
+    /// all the joints `pair(0..count)` and the tethers' pairs `others`, no other acts on it. Fixed and
+    /// kinematic bodies (zero inverse mass and inertia) take no impulse and may be shared.
+    pub fn find_closed<'p>(
+        &mut self,
+        body_count: usize,
+        count: usize,
+        pair: impl Fn(usize) -> &'p BodyPair,
+        others: impl Iterator<Item = &'p BodyPair>,
+        whole: impl Fn(usize) -> bool,
+    ) {
+        let Self {
+            paths,
+            path_joints,
+            closed,
+            touches,
+            ..
+        } = self;
+        touches.clear();
+        touches.resize(body_count, 0);
+        for p in (0..count).map(&pair).chain(others) {
+            for body in dynamic_bodies(p).into_iter().flatten() {
+                if let Some(count) = touches.get_mut(body) {
+                    *count += 1;
+                }
+            }
+        }
+        closed.clear();
+        closed.extend(paths.iter().map(|range| {
+            let members = path_joints.get(range.clone()).unwrap_or_default();
+            let all_rows = members.iter().all(|&index| whole(index));
+            // Each dynamic body of the path: as many joints and tethers act on it as path joints do.
+            count_dynamic_bodies(touches, &pair, members, false);
+            let alone = members.iter().all(|&index| {
+                dynamic_bodies(pair(index))
+                    .into_iter()
+                    .flatten()
+                    .all(|body| touches.get(body) == Some(&0))
+            });
+            count_dynamic_bodies(touches, &pair, members, true);
+            all_rows && alone
+        }));
+    }
+}
+
+/// The joint's bodies that the solver moves (dynamic: a non-zero inverse mass or inertia); `None` for a
+/// fixed or kinematic side, which couples nothing.
+pub(crate) fn dynamic_bodies(pair: &BodyPair) -> [Option<usize>; 2] {
+    let moves = |inv_mass: f32, inv_inertia: &Mat3| inv_mass > 0.0 || *inv_inertia != Mat3::ZERO;
+    [
+        moves(pair.inv_mass_a, &pair.inv_inertia_a).then_some(pair.index_a),
+        moves(pair.inv_mass_b, &pair.inv_inertia_b).then_some(pair.index_b),
+    ]
+}
+
+/// Adds (`add`) or takes off one count per joint of `members` from each of its dynamic bodies in `touches`.
+fn count_dynamic_bodies<'p>(
+    touches: &mut [u32],
+    pair: impl Fn(usize) -> &'p BodyPair,
+    members: &[usize],
+    add: bool,
+) {
+    for &index in members {
+        for body in dynamic_bodies(pair(index)).into_iter().flatten() {
+            if let Some(count) = touches.get_mut(body) {
+                *count = if add {
+                    *count + 1
+                } else {
+                    count.wrapping_sub(1)
+                };
+            }
+        }
+    }
+}

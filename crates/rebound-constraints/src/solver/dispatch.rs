@@ -1,0 +1,357 @@
+//! The one dispatch over the joint kinds, a `match` per stage (Box2D's `joint.c`): a joint prepared for
+//! the substeps ([`PreparedJoint`]: its bodies, impulses and kind-specific prepared data, [`Prepared`]),
+//! and for each stage what each kind does — *prepare*, *apply forces*, *warm start*, *solve* and *relax*,
+//! the rows it gives a directly solved path and the impulses they carry, *project positions*,
+//! *restitution* and the reaction reported at *store impulses*. The stages themselves (`prepare`,
+//! `passes`, `path_pass`, `project`) name no joint kind.
+
+use crate::ball;
+use crate::coordinate::CoordinateRows;
+use crate::fixed::{FixedJoint, PreparedFixed};
+use crate::hinge::PreparedHinge;
+use crate::joint::JointKind;
+use crate::pair::BodyPair;
+use crate::path::MAX_ROWS;
+use crate::path::{JointRows, equality_violation};
+use crate::prismatic::PreparedPrismatic;
+use crate::rod::PreparedRod;
+use crate::rope::PreparedRope;
+use crate::spring::PreparedSpring;
+use crate::stage::Stage;
+use crate::state::JointState;
+use crate::wheel::PreparedWheel;
+use rebound_dynamics::{Bias, SolverBody, StepContext};
+
+/// A joint kind prepared for the substeps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Prepared {
+    Spring(PreparedSpring),
+    Rope(PreparedRope),
+    Rod(PreparedRod),
+    Ball,
+    Hinge(PreparedHinge),
+    Fixed(PreparedFixed),
+    Prismatic(PreparedPrismatic),
+    Wheel(PreparedWheel),
+}
+
+impl Prepared {
+    /// Stage *prepare* of `kind` between the bodies `sa`, `sb` of `pair`: the kind's prepared data, with the
+    /// impulses in `state` it does not use zeroed (so a joint whose kind changed is not warm-started with
+    /// another kind's impulses).
+    pub(super) fn prepare(
+        kind: &JointKind,
+        pair: &BodyPair,
+        (sa, sb): (&SolverBody, &SolverBody),
+        ctx: &StepContext,
+        state: &mut JointState,
+    ) -> Self {
+        match kind {
+            JointKind::Spring(s) => {
+                keep_only(state, Keep::Axial);
+                let prepared = s.prepare(pair, sa, sb, ctx);
+                if !prepared.is_soft() {
+                    state.axial_impulse = 0.0;
+                }
+                Self::Spring(prepared)
+            }
+            JointKind::Rope(r) => {
+                keep_only(state, Keep::Upper);
+                Self::Rope(r.prepare(pair, sa, sb))
+            }
+            JointKind::Rod(r) => {
+                keep_only(state, Keep::Axial);
+                Self::Rod(r.prepare(pair, sa, sb))
+            }
+            JointKind::Ball(_) => {
+                keep_only(state, Keep::Linear);
+                Self::Ball
+            }
+            JointKind::Hinge(h) => Self::Hinge(h.prepare(pair, ctx, state)),
+            JointKind::Fixed(_) => Self::Fixed(FixedJoint::prepare(pair, state)),
+            JointKind::Prismatic(p) => Self::Prismatic(p.prepare(pair, ctx, state)),
+            JointKind::Wheel(w) => Self::Wheel(w.prepare(ctx, state)),
+        }
+    }
+
+    /// Stage *apply forces*: the explicit Hooke force of a [`crate::SpringModel::Force`] spring on its
+    /// bodies over the substep `h` (s); nothing for every other joint.
+    #[inline]
+    pub(super) fn apply_forces(&self, pair: &BodyPair, solver_bodies: &mut [SolverBody], h: f32) {
+        let Self::Spring(spring) = self else {
+            return;
+        };
+        if spring.is_soft() {
+            return;
+        }
+        let Some((mut a, mut b)) = pair.load(solver_bodies) else {
+            return;
+        };
+        spring.apply_forces(pair, &mut a, &mut b, h);
+        pair.store(solver_bodies, a, b);
+    }
+
+    /// Stage *warm start*: the impulses of the last substep in `state`, again, along the current directions.
+    #[inline]
+    pub(super) fn warm_start(
+        &self,
+        pair: &BodyPair,
+        state: &JointState,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+    ) {
+        match self {
+            Self::Spring(p) => p.warm_start(pair, state, a, b),
+            Self::Rope(p) => p.warm_start(pair, state, a, b),
+            Self::Rod(p) => p.warm_start(pair, state, a, b),
+            Self::Ball => ball::warm_start(pair, state, a, b),
+            Self::Hinge(p) => p.warm_start(pair, state, a, b),
+            Self::Fixed(_) => PreparedFixed::warm_start(pair, state, a, b),
+            Self::Prismatic(_) => PreparedPrismatic::warm_start(pair, state, a, b),
+            Self::Wheel(_) => PreparedWheel::warm_start(pair, state, a, b),
+        }
+    }
+
+    /// Whether the joint acts in a pass of `bias`: springs act in the bias pass only (see [`crate::spring`]).
+    #[inline]
+    pub(super) fn acts_in(&self, bias: Bias) -> bool {
+        bias == Bias::On || !matches!(self, Self::Spring(_))
+    }
+
+    /// Whether a Gauss–Seidel pass visits the joint: a joint on no path, and a hinge on one for its limit,
+    /// motor and spring rows, if it has any (the path solves the rest).
+    pub(super) fn is_iterated(&self, on_path: bool) -> bool {
+        match self {
+            Self::Hinge(hinge) => !on_path || !hinge.has_no_coordinate_rows(),
+            _ => !on_path,
+        }
+    }
+
+    /// Stages *solve* and *relax*, one Gauss–Seidel visit of the joint's rows (of a hinge `on_path`, only its
+    /// limit, motor and spring rows).
+    #[inline]
+    pub(super) fn solve(
+        &mut self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        (a, b): (&mut SolverBody, &mut SolverBody),
+        stage: &Stage,
+        on_path: bool,
+    ) {
+        match self {
+            Self::Spring(p) => p.solve(pair, state, a, b, stage),
+            Self::Rope(p) => p.solve(pair, state, a, b, stage),
+            Self::Rod(p) => p.solve(pair, state, a, b, stage),
+            Self::Ball => ball::solve(pair, state, a, b, stage),
+            Self::Hinge(p) if on_path => p.solve_coordinate(pair, state, a, b, stage),
+            Self::Hinge(p) => p.solve(pair, state, a, b, stage),
+            Self::Fixed(p) => p.solve(pair, state, a, b, stage),
+            Self::Prismatic(p) => p.solve(pair, state, a, b, stage),
+            Self::Wheel(p) => p.solve(pair, state, a, b, stage),
+        }
+    }
+
+    /// The joint's rows for a direct pass of `stage` at its bodies' pose `a`, `b`, pushed into `rows`;
+    /// `false` for a kind without direct rows.
+    #[inline(always)]
+    pub(super) fn direct_rows(
+        &mut self,
+        pair: &BodyPair,
+        (a, b): (&SolverBody, &SolverBody),
+        stage: &Stage,
+        rows: &mut JointRows,
+    ) -> bool {
+        match self {
+            Self::Rope(p) => p.direct_row(pair, a, b, stage, rows),
+            Self::Rod(p) => p.direct_row(pair, a, b, stage, rows),
+            Self::Ball => ball::direct_rows(pair, a, b, stage, rows),
+            Self::Hinge(_) => PreparedHinge::direct_rows(pair, a, b, stage, rows),
+            _ => return false,
+        }
+        true
+    }
+
+    /// Whether a path carries the joint's rows from pose to pose instead of building them again (a hinge's:
+    /// their Jacobians depend on the bodies' rotations alone, see [`crate::path`]).
+    #[inline]
+    pub(super) fn carries_rows(&self) -> bool {
+        matches!(self, Self::Hinge(_))
+    }
+
+    /// Writes the impulses `lambda` of the joint's direct rows, in row order, into `state` (and notes a
+    /// rope's, for its restitution).
+    #[inline]
+    pub(super) fn store_direct_impulses(
+        &mut self,
+        state: &mut JointState,
+        lambda: [f32; MAX_ROWS],
+    ) {
+        match self {
+            Self::Rope(p) => p.store_direct_impulses(state, lambda),
+            Self::Rod(_) => PreparedRod::store_direct_impulses(state, lambda),
+            Self::Ball => ball::store_direct_impulses(state, lambda),
+            Self::Hinge(_) => PreparedHinge::store_direct_impulses(state, lambda),
+            _ => {}
+        }
+    }
+
+    /// The worst position error of the joint's direct rows at the pose `a`, `b` measured from the rows'
+    /// errors alone, for a kind whose rows are all equalities (a ball joint, a hinge): the value
+    /// [`JointRows::violation`] of the built rows gives, without building the Jacobians. `None` for the
+    /// other kinds, whose rows are built to be measured.
+    pub(super) fn equality_violation(
+        &self,
+        pair: &BodyPair,
+        (a, b): (&SolverBody, &SolverBody),
+        stage: &Stage,
+    ) -> Option<f32> {
+        match self {
+            Self::Ball => Some(equality_violation(&ball::direct_errors(pair, a, b), stage)),
+            Self::Hinge(_) => Some(equality_violation(
+                &PreparedHinge::direct_errors(pair, a, b),
+                stage,
+            )),
+            _ => None,
+        }
+    }
+
+    /// The length (m) of a rope or rod, whose one direct row the projection may stiffen against turning;
+    /// `None` for the other kinds.
+    pub(super) fn link_length(&self) -> Option<f32> {
+        match self {
+            Self::Rope(p) => Some(p.max_length()),
+            Self::Rod(p) => Some(p.length()),
+            _ => None,
+        }
+    }
+
+    /// Stage *restitution*: a rope that snapped taut during the step bounces back; nothing for the others.
+    pub(super) fn apply_restitution(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        solver_bodies: &mut [SolverBody],
+        ctx: &StepContext,
+    ) {
+        let Self::Rope(rope) = self else {
+            return;
+        };
+        let Some((mut a, mut b)) = pair.load(solver_bodies) else {
+            return;
+        };
+        rope.apply_restitution(pair, state, &mut a, &mut b, ctx);
+        pair.store(solver_bodies, a, b);
+    }
+
+    /// Whether the joint's equality rows can join a directly solved path ([`crate::path`]).
+    pub(super) fn is_direct_capable(&self) -> bool {
+        matches!(
+            self,
+            Self::Rope(_) | Self::Rod(_) | Self::Ball | Self::Hinge(_)
+        )
+    }
+
+    /// Whether all of the joint's rows are in the direct solve when it is on a path: a rope's, a rod's, a
+    /// ball joint's, a hinge's without limit, motor or spring.
+    pub(super) fn is_solved_directly_whole(&self) -> bool {
+        match self {
+            Self::Rope(_) | Self::Rod(_) | Self::Ball => true,
+            Self::Hinge(hinge) => hinge.has_no_coordinate_rows(),
+            _ => false,
+        }
+    }
+
+    /// The distance a joint allows between its anchors (m), for tethers: a rope's or rod's length, 0 for the
+    /// point joints; `None` for joints that do not bound it.
+    pub(super) fn bounded_length(&self) -> Option<f32> {
+        match self {
+            Self::Rope(p) => Some(p.max_length()),
+            Self::Rod(p) => Some(p.length()),
+            Self::Ball | Self::Hinge(_) | Self::Fixed(_) => Some(0.0),
+            Self::Spring(_) | Self::Prismatic(_) | Self::Wheel(_) => None,
+        }
+    }
+}
+
+/// One prepared joint: its source index, bodies, accumulated impulses and kind.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct PreparedJoint {
+    pub(super) source: usize,
+    pub(super) pair: BodyPair,
+    pub(super) state: JointState,
+    pub(super) break_force: f32,
+    pub(super) break_torque: f32,
+    pub(super) kind: Prepared,
+    /// The path solved directly ([`crate::path`]) that the joint's equality rows belong to, as an index
+    /// into the solver's `paths`; `None` for a joint solved by Gauss–Seidel alone.
+    pub(super) path: Option<usize>,
+    /// The joint's link in the solver's `links` (its index in `path_joints`) when it is on a path.
+    pub(super) link: Option<usize>,
+    /// The tether (an index into the solver's `tethers`) whose impulse the joint keeps for the next step.
+    pub(super) tether: Option<usize>,
+}
+
+/// The one impulse field a distance-type or ball joint uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Keep {
+    Axial,
+    Upper,
+    Linear,
+}
+
+/// Zeroes every impulse field but `keep` (so a joint whose kind changed is not warm-started with another
+/// kind's impulses).
+fn keep_only(state: &mut JointState, keep: Keep) {
+    let kept = *state;
+    *state = JointState {
+        tether_impulse: kept.tether_impulse,
+        ..JointState::default()
+    };
+    match keep {
+        Keep::Axial => state.axial_impulse = kept.axial_impulse,
+        Keep::Upper => state.upper_impulse = kept.upper_impulse,
+        Keep::Linear => state.linear_impulse = kept.linear_impulse,
+    }
+}
+
+/// The magnitudes of the linear (N·s) and angular (N·m·s) impulses a joint carried in the last substep. Rows
+/// of one joint act along orthogonal directions, so the magnitudes add in quadrature.
+pub(super) fn reaction_impulses(kind: &Prepared, s: &JointState) -> (f32, f32) {
+    let along = CoordinateRows::accumulated(s);
+    let hypot3 = |x: f32, y: f32, z: f32| (x * x + y * y + z * z).sqrt();
+    match kind {
+        Prepared::Spring(_) | Prepared::Rod(_) => (s.axial_impulse.abs(), 0.0),
+        Prepared::Rope(_) => (s.upper_impulse.abs(), 0.0),
+        Prepared::Ball => (s.linear_impulse.length(), 0.0),
+        Prepared::Hinge(_) => (
+            s.linear_impulse.length(),
+            hypot3(s.angular_impulse.x, s.angular_impulse.y, along),
+        ),
+        Prepared::Fixed(_) => (s.linear_impulse.length(), s.angular_impulse.length()),
+        Prepared::Prismatic(_) => (
+            hypot3(s.linear_impulse.x, s.linear_impulse.y, along),
+            s.angular_impulse.length(),
+        ),
+        Prepared::Wheel(_) => (
+            hypot3(
+                s.linear_impulse.x,
+                s.linear_impulse.y,
+                s.axial_impulse + s.lower_impulse + s.upper_impulse,
+            ),
+            hypot3(s.angular_impulse.x, s.angular_impulse.y, s.motor_impulse),
+        ),
+    }
+}
+
+/// The accumulated impulses of joint `j`'s direct rows, in row order (0 for a joint without direct rows).
+#[inline]
+pub(super) fn state_lambda(j: &PreparedJoint) -> [f32; MAX_ROWS] {
+    let s = &j.state;
+    match &j.kind {
+        Prepared::Rope(_) => PreparedRope::direct_impulses(s),
+        Prepared::Rod(_) => PreparedRod::direct_impulses(s),
+        Prepared::Ball => ball::direct_impulses(s),
+        Prepared::Hinge(_) => PreparedHinge::direct_impulses(s),
+        _ => [0.0; MAX_ROWS],
+    }
+}

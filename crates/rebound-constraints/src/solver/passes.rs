@@ -1,0 +1,181 @@
+//! The velocity stages of every substep — *apply forces*, *warm start*, *solve* (bias on) and *relax*
+//! (bias off) — and the stages after the substeps that are not the projection: *restitution* and *store
+//! impulses*. Each dispatches over the joint kinds; the paths are solved by `path_pass`.
+
+use super::dispatch::reaction_impulses;
+use super::joint_solver::JointSolver;
+use crate::stage::{Stage, Substep};
+use crate::state::{JointState, JointStates};
+use rebound_dynamics::{Bias, SolverBody, StepContext};
+
+impl JointSolver {
+    /// Stage *apply forces* (every substep, right after integrate velocities): the explicit Hooke force of
+    /// each [`crate::SpringModel::Force`] spring, `Δv = f·h·n/m` on both bodies (course items 1–2).
+    pub fn apply_forces(&self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
+        for j in &self.joints {
+            j.kind.apply_forces(&j.pair, solver_bodies, ctx.h);
+        }
+    }
+
+    /// Stage *warm start* (every substep): applies the impulses accumulated in the last substep again, along
+    /// the current directions.
+    pub fn warm_start(&self, solver_bodies: &mut [SolverBody]) {
+        for j in &self.joints {
+            // The bodies in place: a warm start changes velocities only (`prepare` never keeps a joint whose
+            // two bodies are one).
+            let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
+                continue;
+            };
+            let (pair, state) = (&j.pair, &j.state);
+            j.kind.warm_start(pair, state, a, b);
+        }
+        for t in &self.tethers {
+            let Some((mut a, mut b)) = t.pair.load(solver_bodies) else {
+                continue;
+            };
+            t.warm_start(&mut a, &mut b);
+            t.pair.store(solver_bodies, a, b);
+        }
+    }
+
+    /// [`JointSolver::solve_substep`] for a loop that does not name its substeps: the `k`-th relax pass since
+    /// [`JointSolver::prepare`] counts as substep `k − 1` of `ctx.substep_count`, and a solve pass as the
+    /// substep of the relax pass that follows it. A loop of `ctx.substep_count` substeps of one solve and one
+    /// relax pass each, as the crate README shows, gives the same passes as naming them.
+    pub fn solve(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
+        let substep = Substep::new(self.relax_passes, ctx.substep_count);
+        if bias == Bias::Off {
+            self.relax_passes = self.relax_passes.saturating_add(1);
+        }
+        self.solve_substep(solver_bodies, ctx, bias, substep);
+    }
+
+    /// Stages *solve* (`Bias::On`: [`crate::JointSettings::solve_iterations`] Gauss–Seidel passes with soft position
+    /// correction) and *relax* (`Bias::Off`: [`crate::JointSettings::relax_iterations`] passes on velocities only;
+    /// soft springs are left alone, see [`crate::spring`]). Each pass visits the joints in the order given to
+    /// [`JointSolver::prepare`] (all but those a direct path solves entirely), then the paths, then the
+    /// tethers.
+    ///
+    /// `substep` is the substep of the step the pass runs in, as the step counts them.
+    ///
+    /// A *closed* path (every row of its joints in the direct solve, no other joint or tether on its bodies)
+    /// is relaxed in the last substep only. The relax pass of an inner substep leaves the velocities at the
+    /// pose where the next substep's solve pass starts, and that pass solves the same rows of the same path
+    /// exactly: for rigid rows its result does not depend on the velocity along the rows at all (a
+    /// projection: `P·(P·v + g·h) = P·(v + g·h)`), and the soft step keeps `1 − mass_scale` of it (about a
+    /// tenth at the default joint softness). The last relax pass stays: it takes the bias velocity out of
+    /// the step's final velocities, and builds the rows the position projection starts from. A chain or a
+    /// bridge so skips a third of its direct solves (`docs/physics.md`, "Relaxing a closed path"). A path
+    /// with other rows on its bodies is relaxed every substep: without the path's relax, the path's exact
+    /// solve pushes a hinge limit solved by Gauss–Seidel before it past the limit (`tests/hinge.rs`).
+    pub fn solve_substep(
+        &mut self,
+        solver_bodies: &mut [SolverBody],
+        ctx: &StepContext,
+        bias: Bias,
+        substep: Substep,
+    ) {
+        let stage = Stage {
+            bias,
+            h: ctx.h,
+            inv_h: ctx.inv_h,
+            joint_softness: self.joint_softness,
+        };
+        let iterations = match bias {
+            Bias::On => self.settings.solve_iterations,
+            Bias::Off => self.settings.relax_iterations,
+        };
+        // The last relax pass of the step builds the paths' rows at the final pose instead of carrying them:
+        // the position projection ([`JointSolver::project_positions`]) starts at that pose and then reuses
+        // the rows and, for paths whose rows all stay in the system (hinges, ball joints, taut ropes), their
+        // factorisation — one factorisation of every such path a step fewer than building them there.
+        let last_relax = bias == Bias::Off && substep.is_last();
+        let mut carry_angle = self.carry_angle;
+        if last_relax {
+            carry_angle = 0.0;
+            // Every link is built again at the final pose, and with this step's inverse inertias.
+            for link in &mut self.links {
+                link.end_last_step();
+            }
+        }
+        for _ in 0..iterations {
+            // Joints on a direct path are solved below, all but a hinge's limit, motor and spring rows (they
+            // are not in `iterated`).
+            for &index in &self.iterated {
+                let Some(j) = self.joints.get_mut(index) else {
+                    continue;
+                };
+                // Springs act in the bias pass only: skip them in the relax pass without touching the bodies.
+                if !j.kind.acts_in(bias) {
+                    continue;
+                }
+                // The bodies in place (a pass changes velocities only).
+                let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
+                    continue;
+                };
+                let on_path = j.path.is_some();
+                j.kind.solve(&j.pair, &mut j.state, (a, b), &stage, on_path);
+            }
+            for path in 0..self.topology.paths.len() {
+                // A closed path is relaxed in the step's last substep only: see the method docs.
+                if bias == Bias::Off && !last_relax && self.topology.closed.get(path) == Some(&true)
+                {
+                    continue;
+                }
+                self.solve_path(path, solver_bodies, &stage, carry_angle);
+            }
+            for t in &mut self.tethers {
+                let Some((mut a, mut b)) = t.pair.load(solver_bodies) else {
+                    continue;
+                };
+                t.solve(&mut a, &mut b, &stage);
+                t.pair.store(solver_bodies, a, b);
+            }
+        }
+    }
+
+    /// Stage *restitution* (once, after the substeps): a rope with restitution `e` that snapped taut during
+    /// the step while its anchors separated faster than `ctx.restitution_threshold` gets `Ċ = −e·Ċ⁻`.
+    pub fn apply_restitution(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
+        for j in &mut self.joints {
+            j.kind
+                .apply_restitution(&j.pair, &mut j.state, solver_bodies, ctx);
+        }
+    }
+
+    /// Stage *store impulses*: writes each prepared joint's impulses and reaction force and torque (N, N·m)
+    /// into `states` (the slice given to [`JointSolver::prepare`]) for warm starting the next step. A joint
+    /// whose reaction exceeds its break force or torque is marked broken and its index pushed into `broken`
+    /// (which is not cleared first).
+    pub fn store_impulses(&self, states: &mut [JointState], broken: &mut Vec<usize>) {
+        self.store_impulses_to(states, broken);
+    }
+
+    /// [`JointSolver::store_impulses`] into the states where they are kept ([`JointStates`]): joint `i` of
+    /// [`JointSolver::prepare_from`] is written to `states.state_mut(i)`, once.
+    pub fn store_impulses_to<S: JointStates + ?Sized>(
+        &self,
+        states: &mut S,
+        broken: &mut Vec<usize>,
+    ) {
+        let inv_h = if self.h > 0.0 { 1.0 / self.h } else { 0.0 };
+        for j in &self.joints {
+            let Some(out) = states.state_mut(j.source) else {
+                continue;
+            };
+            let (linear, angular) = reaction_impulses(&j.kind, &j.state);
+            let tether = j.tether.and_then(|k| self.tethers.get(k));
+            *out = JointState {
+                reaction_force: linear * inv_h,
+                reaction_torque: angular * inv_h,
+                tether_impulse: tether.map_or(0.0, |t| t.impulse),
+                broken: false,
+                ..j.state
+            };
+            if out.reaction_force > j.break_force || out.reaction_torque > j.break_torque {
+                out.broken = true;
+                broken.push(j.source);
+            }
+        }
+    }
+}

@@ -1,0 +1,274 @@
+//! One direct pass over a path (every solve and relax pass, and the projection's Newton steps): each
+//! member's rows at the current pose — kept, carried or built by its joint — handed to the path solver
+//! ([`crate::path`]), its active-set rounds, and the impulses written back to the joints.
+
+use super::dispatch::{PreparedJoint, state_lambda};
+use super::joint_solver::JointSolver;
+use crate::path::{
+    BuiltAt, InvMass, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations, resize_links,
+    solve_path,
+};
+use crate::stage::Stage;
+use rebound_dynamics::SolverBody;
+
+/// How many times a direct path solve may drop rows that would push, add rows it would violate, and solve
+/// again.
+pub(super) const ACTIVE_SET_ROUNDS: usize = 4;
+
+impl JointSolver {
+    /// One direct pass over path `path` ([`crate::path`]): the rows of its joints at the current pose, the
+    /// exact solve of their coupled system, the soft update of each row.
+    ///
+    /// A link whose bodies are where they were when its rows were built — the bits of their displacements
+    /// and rotations ([`PoseKey`]) unchanged, as from a relax pass to the next substep's solve pass, where
+    /// only velocities change — keeps its rows and recomputes only their targets for this pass's stage; the
+    /// others are built again. The solve keeps each link's factorisation while that link and its neighbours
+    /// have the rows, and the rows in the system, it was made for ([`solve_path`]). Both give the bits a
+    /// rebuild would.
+    pub(super) fn solve_path(
+        &mut self,
+        path: usize,
+        solver_bodies: &mut [SolverBody],
+        stage: &Stage,
+        carry_angle: f32,
+    ) {
+        let Some(range) = self.topology.paths.get(path).cloned() else {
+            return;
+        };
+        let Self {
+            joints,
+            topology,
+            links,
+            solution,
+            ..
+        } = self;
+        // `prepare` sized the links to the path members; a solver never prepared has no paths.
+        let path_joints = &topology.path_joints;
+        resize_links(links, path_joints.len());
+        let (Some(members), Some(links)) = (path_joints.get(range.clone()), links.get_mut(range))
+        else {
+            return;
+        };
+        for (link, &index) in links.iter_mut().zip(members) {
+            let j = &mut joints[index];
+            // The bodies in place serve the rows and the activation.
+            match j.pair.bodies_mut(solver_bodies) {
+                Some([a, b]) => {
+                    link_rows(j, Some((&*a, &*b)), stage, link, carry_angle);
+                    link.activate(a, b);
+                }
+                None => link_rows(j, None, stage, link, carry_angle),
+            }
+        }
+        solve_links(joints, members, links, solution, solver_bodies);
+        for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
+            let j = &mut joints[index];
+            let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
+                continue;
+            };
+            link.apply_solution(x, a, b);
+            j.kind.store_direct_impulses(&mut j.state, link.lambda);
+        }
+    }
+
+    /// Drops the rows and factorisations kept between passes, so that the next pass builds everything again
+    /// (what a pass did before they were kept).
+    #[cfg(test)]
+    pub(super) fn forget_rows(&mut self) {
+        for link in &mut self.links {
+            link.forget();
+        }
+    }
+
+    /// How many links of the paths have rows built at the bodies' current pose (the next pass reuses them).
+    #[cfg(test)]
+    pub(super) fn reusable_links(&self, solver_bodies: &[SolverBody]) -> usize {
+        self.topology
+            .path_joints
+            .iter()
+            .zip(&self.links)
+            .filter(|&(&index, link)| {
+                let pose = self.joints[index]
+                    .pair
+                    .load(solver_bodies)
+                    .map(|(a, b)| PoseKey::of(&a, &b));
+                pose.is_some_and(|pose| link.is_built_at(&pose))
+            })
+            .count()
+    }
+}
+
+/// The rows of joint `j` for a direct pass at its bodies' current pose, written into `rows` (after a reset
+/// to the joint's bodies), and its accumulated impulses in row order (no rows for a body pair out of range,
+/// which the world never hands over).
+pub(super) fn direct_rows(
+    j: &mut PreparedJoint,
+    solver_bodies: &[SolverBody],
+    stage: &Stage,
+    link: &mut Link,
+) -> [f32; MAX_ROWS] {
+    let bodies = j.pair.bodies(solver_bodies);
+    rows_at(j, bodies, stage, link, false)
+}
+
+/// [`direct_rows`] with the joint's bodies already loaded (`None`: no rows), with the joint's inverse masses
+/// or, if `keep_masses`, those the link has (a link of a path kept from the last step: `K` must turn each
+/// body by one inverse inertia until the last relax pass builds every link again, see `crate::path`).
+// Inlined into the pass loops (as `link_rows`): they run once per link and pass, and a rope's rows cost
+// less to build than the calls.
+#[inline(always)]
+pub(super) fn rows_at(
+    j: &mut PreparedJoint,
+    bodies: Option<(&SolverBody, &SolverBody)>,
+    stage: &Stage,
+    link: &mut Link,
+    keep_masses: bool,
+) -> [f32; MAX_ROWS] {
+    let mass = |inv_mass, inertia| InvMass {
+        mass: inv_mass,
+        inertia,
+    };
+    if keep_masses {
+        link.clear();
+    } else {
+        link.reset(
+            mass(j.pair.inv_mass_a, j.pair.inv_inertia_a),
+            mass(j.pair.inv_mass_b, j.pair.inv_inertia_b),
+        );
+    }
+    let rows = &mut link.rows;
+    let Some((a, b)) = bodies else {
+        return [0.0; MAX_ROWS];
+    };
+    if !j.kind.direct_rows(&j.pair, (a, b), stage, rows) {
+        return [0.0; MAX_ROWS];
+    }
+    state_lambda(j)
+}
+
+/// The rows of joint `j` in `link` for a pass of `stage` at its bodies' current pose, and its accumulated
+/// impulses: the rows already there if they were built at this very pose ([`PoseKey`]: the same bits of
+/// both bodies' displacements and rotations) — only their targets recomputed for `stage`
+/// ([`Link::reuse`]); a hinge's rows built earlier in the step (or kept from the last) if neither body has
+/// turned by more than `carry_angle` (rad) since — their errors carried to this pose ([`Link::carry`]); else
+/// built again
+/// ([`rows_at`]). `bodies` are the joint's bodies (`None`: no rows). The position projection passes
+/// `carry_angle` = 0: its Newton steps need the Jacobians of the pose.
+#[inline(always)]
+pub(super) fn link_rows(
+    j: &mut PreparedJoint,
+    bodies: Option<(&SolverBody, &SolverBody)>,
+    stage: &Stage,
+    link: &mut Link,
+    carry_angle: f32,
+) {
+    let pose = bodies.map(|(a, b)| PoseKey::of(a, b));
+    if pose.as_ref().is_some_and(|pose| link.is_built_at(pose)) {
+        link.reuse(stage);
+        link.lambda = state_lambda(j);
+        return;
+    }
+    if let (true, Some((a, b)), Some(now)) = (j.kind.carries_rows(), bodies, &pose) {
+        if carry_angle > 0.0
+            && (link.recarry(now, stage) || carry(j, link, (a, b), now, stage, carry_angle))
+        {
+            link.lambda = state_lambda(j);
+            return;
+        }
+        // Built again: carried from here, in this step or the next; with the kept rows' inverse masses on a
+        // path kept from the last step.
+        let keep_masses = link.keeps_last_step_masses();
+        link.lambda = rows_at(j, bodies, stage, link, keep_masses);
+        link.built_at(pose);
+        link.built = Some(build_site(j, a, b));
+        return;
+    }
+    link.lambda = rows_at(j, bodies, stage, link, false);
+    link.built_at(pose);
+}
+
+/// Where joint `j`'s rows are when its bodies are at `a`, `b`, in world terms ([`BuiltAt`]).
+pub(super) fn build_site(j: &PreparedJoint, a: &SolverBody, b: &SolverBody) -> BuiltAt {
+    BuiltAt {
+        frames: j.pair.frames(a, b),
+        relative: j.pair.delta_center + (b.delta_position - a.delta_position),
+        owner: (j.source, j.pair.index_a, j.pair.index_b),
+    }
+}
+
+/// [`Link::carry`] of joint `j`'s rows in `link` to its bodies' pose `a`, `b` (`now`, its key).
+#[inline(never)]
+pub(super) fn carry(
+    j: &PreparedJoint,
+    link: &mut Link,
+    (a, b): (&SolverBody, &SolverBody),
+    now: &PoseKey,
+    stage: &Stage,
+    max_angle: f32,
+) -> bool {
+    let site = build_site(j, a, b);
+    link.carry(site.frames, site.relative, now, stage, max_angle)
+}
+
+/// Solves the path (with the active-set rounds that drop rows which would push) into `solution`; its links
+/// are linked through their shared bodies ([`JointSolver::prepare`], `link_paths`).
+pub(super) fn solve_links(
+    joints: &[PreparedJoint],
+    members: &[usize],
+    links: &mut [Link],
+    solution: &mut Vec<[Real; MAX_ROWS]>,
+    solver_bodies: &mut [SolverBody],
+) {
+    // Active set: a rope the solution would make push is released, a rope left out that the solution would
+    // stretch is added, and the system solved again; the last round's solution is the one applied.
+    // A round after the first sweeps again only from the link before the first one it changed ([`Resume`]).
+    let mut resume = Resume::default();
+    for round in 0..ACTIVE_SET_ROUNDS {
+        let solved = solve_path(
+            links,
+            |slot| joints[members[slot]].pair.bodies(solver_bodies),
+            solution,
+            &mut resume,
+        );
+        if round + 1 == ACTIVE_SET_ROUNDS {
+            break;
+        }
+        // Each step below sweeps every link: skipped when the solve saw nothing for it to do.
+        let activated = if solved.left_out {
+            activate_violations(links, solution, |slot| {
+                joints[members[slot]].pair.bodies(solver_bodies)
+            })
+        } else {
+            None
+        };
+        let mut changed = activated.is_some();
+        if let Some(slot) = activated {
+            resume.changed(slot);
+        }
+        if !solved.released {
+            if !changed {
+                break;
+            }
+            continue;
+        }
+        for (slot, ((link, x), &index)) in links
+            .iter_mut()
+            .zip(solution.iter())
+            .zip(members)
+            .enumerate()
+        {
+            if !link.would_deactivate(x) {
+                continue;
+            }
+            if let Some([a, b]) = joints[index].pair.bodies_mut(solver_bodies)
+                && link.deactivate_violations(x, a, b)
+            {
+                resume.changed(slot);
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+}

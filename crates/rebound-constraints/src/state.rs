@@ -1,0 +1,61 @@
+//! A joint's persistent solver state ([`JointState`]): the impulses it carried in the last step, its reaction
+//! and whether it broke. Read at *prepare* (warm starting), written at *store impulses*.
+
+use rebound_math::Vec3;
+
+/// The persistent solver state of one joint: the impulses accumulated over the last substep of the last step
+/// (for warm starting the next step), the reaction it carried, and whether it has broken. The world keeps one
+/// per joint; [`crate::JointSolver::prepare`] reads it and [`crate::JointSolver::store_impulses`] writes it.
+///
+/// Impulses are per substep (N·s for linear rows, N·m·s for angular ones); divide by the substep length `h`
+/// for a force. Which fields a kind uses:
+///
+/// | field | spring | rope | rod | ball | hinge | fixed | prismatic | wheel |
+/// |---|---|---|---|---|---|---|---|---|
+/// | `linear_impulse` | | | | point | point | point | across (x, y) | across (x, y) |
+/// | `angular_impulse` | | | | | axis (x, y) | rotation | rotation | axle (x, y) |
+/// | `axial_impulse` | spring | | rod | | spring | | spring | suspension |
+/// | `lower_impulse` (≥ 0) | | | | | limit | | limit | limit |
+/// | `upper_impulse` (≤ 0) | | rope | | | limit | | limit | limit |
+/// | `motor_impulse` | | | | | motor | | motor | drive |
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct JointState {
+    /// Impulse of the point block or the two rows across an axis (N·s). Default: 0.
+    pub linear_impulse: Vec3,
+    /// Impulse of the rotation lock or the two axis-alignment rows (N·m·s). Default: 0.
+    pub angular_impulse: Vec3,
+    /// Impulse of the spring or rod row (N·s or N·m·s; for [`crate::SpringModel::Force`] the force·h of the last
+    /// substep, recorded, not warm-started). Default: 0.
+    pub axial_impulse: f32,
+    /// Impulse of the lower limit (≥ 0). Default: 0.
+    pub lower_impulse: f32,
+    /// Impulse of the upper limit or the rope (≤ 0). Default: 0.
+    pub upper_impulse: f32,
+    /// Impulse of the motor. Default: 0.
+    pub motor_impulse: f32,
+    /// Impulse of the long-range tether of the body this joint leads to, if it has one (N·s, ≤ 0; see
+    /// [`crate::JointSettings::tethers`]). Default: 0.
+    pub tether_impulse: f32,
+    /// Magnitude of the constraint force the joint carried in the last substep of the last step (N).
+    pub reaction_force: f32,
+    /// Magnitude of the constraint torque it carried (N·m).
+    pub reaction_torque: f32,
+    /// Whether the joint has broken (exceeded its break force or torque). A broken joint is skipped until
+    /// this is reset to `false`. Default: false.
+    pub broken: bool,
+}
+
+/// Where [`crate::JointSolver::store_impulses_to`] writes the joints' states back: joint `i` of the step (in
+/// the order [`crate::JointSolver::prepare_from`] read them) to `state_mut(i)`. A slice is one; a world
+/// writes straight into its stored joints.
+pub trait JointStates {
+    /// The state of joint `i` of the step, if it has one.
+    fn state_mut(&mut self, i: usize) -> Option<&mut JointState>;
+}
+
+impl JointStates for [JointState] {
+    fn state_mut(&mut self, i: usize) -> Option<&mut JointState> {
+        self.get_mut(i)
+    }
+}
