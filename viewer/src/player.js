@@ -63,9 +63,10 @@ export class Player {
     if (!this.playing || !(wallSeconds > 0)) return false;
     // A stalled tab (hidden, debugger) must not jump far ahead when it resumes.
     this.carry += Math.min(wallSeconds, 0.25) * this.speed;
-    const advance = Math.floor(this.carry / this.frameDt);
+    // The tolerance keeps 0.3 s / 0.1 s from rounding down to 2 frames.
+    const advance = Math.floor(this.carry / this.frameDt + 1e-9);
     if (advance === 0) return false;
-    this.carry -= advance * this.frameDt;
+    this.carry = Math.max(0, this.carry - advance * this.frameDt);
     this.frame = (this.frame + advance) % this.frameCount;
     return true;
   }
