@@ -51,7 +51,7 @@ function openBytes(bytes, fileName) {
   player = new Player(recording.frameCount, recording.frameDt);
   player.setSpeed(Number($('speed').value));
   view.load(recording);
-  view.fit(recording.frame(0));
+  view.fit();
   plot.setSeries(recording.energySeries());
   $('timeline').max = String(recording.frameCount - 1);
   $('title').textContent = `${fileName} — ${recording.bodies.length} bodies, ${recording.frameCount} frames`;

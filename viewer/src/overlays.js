@@ -20,6 +20,8 @@ class LineBuffer {
   constructor(scene, colour, points) {
     this.positions = new Float32Array(0);
     this.geometry = new THREE.BufferGeometry();
+    // Rewritten every frame and never culled: a fixed bound spares three.js recomputing one per frame.
+    this.geometry.boundingSphere = new THREE.Sphere(new THREE.Vector3(), Infinity);
     const material = points
       ? new THREE.PointsMaterial({ color: colour, size: 7, sizeAttenuation: false, depthTest: false })
       : new THREE.LineBasicMaterial({ color: colour, depthTest: false });

@@ -180,31 +180,41 @@ export class SceneView {
     }
   }
 
-  /** Frames the camera on the moving bodies at `frame` (all bodies if none moves), looking from the front. */
-  fit(frame) {
-    const dynamicBounds = new THREE.Box3();
-    const allBounds = new THREE.Box3();
-    for (const group of this.groups) {
-      for (const instance of group.instances) {
-        if (!frame.present[instance.body]) continue;
-        bodyMatrix(frame, instance.body, scratch.body);
-        scratch.world.multiplyMatrices(scratch.body, instance.unscaledLocal);
-        const box = instance.bounds.clone().applyMatrix4(scratch.world);
-        allBounds.union(box);
-        if (frame.kinds[instance.body] !== 'fixed') dynamicBounds.union(box);
+  /**
+   * Frames the camera on where the moving bodies go over the whole recording (all bodies if none moves),
+   * looking from the front and a little above, and lays a ground grid under them.
+   */
+  fit() {
+    const moving = new THREE.Box3();
+    const all = new THREE.Box3();
+    const box = new THREE.Box3();
+    const samples = Math.min(24, this.recording.frameCount);
+    for (let k = 0; k < samples; k++) {
+      const frame = this.recording.frame(Math.round((k * (this.recording.frameCount - 1)) / Math.max(1, samples - 1)));
+      for (const group of this.groups) {
+        for (const instance of group.instances) {
+          if (!frame.present[instance.body]) continue;
+          bodyMatrix(frame, instance.body, scratch.body);
+          scratch.world.multiplyMatrices(scratch.body, instance.unscaledLocal);
+          box.copy(instance.bounds).applyMatrix4(scratch.world);
+          all.union(box);
+          if (frame.kinds[instance.body] !== 'fixed') moving.union(box);
+        }
       }
     }
-    const bounds = dynamicBounds.isEmpty() ? allBounds : dynamicBounds;
+    const bounds = moving.isEmpty() ? all : moving;
     if (bounds.isEmpty()) bounds.set(new THREE.Vector3(-1, -1, -1), new THREE.Vector3(1, 1, 1));
     const centre = bounds.getCenter(new THREE.Vector3());
     const radius = Math.max(0.5, bounds.getSize(new THREE.Vector3()).length() / 2);
-    const distance = (radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2))) * 1.05;
+    // The narrower of the two fields of view decides the distance at which the bounding sphere fits.
+    const vertical = THREE.MathUtils.degToRad(this.camera.fov);
+    const horizontal = 2 * Math.atan(Math.tan(vertical / 2) * this.camera.aspect);
+    const distance = radius / Math.sin(Math.min(vertical, horizontal) / 2);
     const direction = new THREE.Vector3(0.3, 0.35, 1).normalize();
     this.setCamera(centre.clone().addScaledVector(direction, distance).toArray(), centre.toArray());
 
     const extent = Math.max(4, Math.ceil(radius * 4));
     this.grid = new THREE.GridHelper(extent * 2, extent * 2, 0x4a505c, 0x2f333b);
-    this.grid.position.y = 0;
     this.scene.add(this.grid);
   }
 
