@@ -1,0 +1,1 @@
+//! Backend-agnostic debug drawing for Rebound: what to draw for colliders, bounding boxes, contacts and joints.
