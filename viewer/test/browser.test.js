@@ -91,6 +91,7 @@ function countColour(png, rgb, tolerance) {
 const BACKGROUND = [0x1b, 0x1e, 0x24];
 const CONTACT = [0xff, 0x00, 0xff];
 const JOINT = [0xff, 0xd4, 0x00];
+const AABB = [0x39, 0xd3, 0x53];
 const near = (a, b, tolerance) => a.every((v, i) => Math.abs(v - b[i]) <= tolerance);
 
 test('the page shows, at a stepped-to frame, the body positions the engine recorded', async () => {
@@ -167,6 +168,13 @@ test('the screenshot has the last ball where the recording puts it, and contacts
   const jointsOn = countColour(await screenshot(page), JOINT, 40);
   assert.equal(jointsOff, 0);
   assert.ok(jointsOn > 50, `${jointsOn} joint pixels`);
+
+  // Bounding boxes: green outlines round every ball.
+  const boxesOff = countColour(await screenshot(page), AABB, 40);
+  await page.check('#show-aabbs');
+  const boxesOn = countColour(await screenshot(page), AABB, 40);
+  assert.equal(boxesOff, 0);
+  assert.ok(boxesOn > 100, `${boxesOn} bounding-box pixels`);
   assert.deepEqual(errors, []);
   await page.close();
 });
