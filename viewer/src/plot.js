@@ -14,7 +14,7 @@ export class EnergyPlot {
   }
 
   /**
-   * @param {{name: string, values: ArrayLike<number>}[]} series energy series in joules, one value a frame
+   * @param {{name: string, values: ArrayLike<number>}[]} series energy series (J), one value a frame
    */
   setSeries(series) {
     const { canvas, margin } = this;
@@ -51,7 +51,7 @@ export class EnergyPlot {
     g.fillStyle = '#8a919c';
     g.fillText(`${formatJoules(hi)}`, 2, margin.top + 4);
     g.fillText(`${formatJoules(lo)}`, 2, margin.top + h);
-    g.fillText('energy (J) over time', margin.left, cache.height - 2);
+    g.fillText('energy change since frame 0 (J)', margin.left, cache.height - 2);
     g.strokeStyle = '#333842';
     g.strokeRect(margin.left, margin.top, w, h);
 

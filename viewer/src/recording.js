@@ -387,27 +387,25 @@ export class Recording {
     };
   }
 
-  /** Kinetic, potential, spring and total energy (J), one value a frame. */
+  /**
+   * Total, kinetic, potential and (if any) spring energy, one value a frame, each as its change since the
+   * first frame (J): potential energy is measured from an arbitrary height, and differences are what show
+   * a drift or an exchange between the kinds.
+   */
   energySeries() {
     const n = this.frameCount;
-    const kinetic = new Float64Array(n);
-    const potential = new Float64Array(n);
-    const spring = new Float64Array(n);
-    const total = new Float64Array(n);
+    const names = ['total', 'kinetic', 'potential', 'spring'];
+    const series = names.map((name) => ({ name, values: new Float64Array(n) }));
+    const first = this.header(0);
+    const firstTotal = first.kinetic + first.potential + first.spring;
     for (let i = 0; i < n; i++) {
       const h = this.header(i);
-      kinetic[i] = h.kinetic;
-      potential[i] = h.potential;
-      spring[i] = h.spring;
-      total[i] = h.kinetic + h.potential + h.spring;
+      series[0].values[i] = h.kinetic + h.potential + h.spring - firstTotal;
+      series[1].values[i] = h.kinetic - first.kinetic;
+      series[2].values[i] = h.potential - first.potential;
+      series[3].values[i] = h.spring - first.spring;
     }
-    const series = [
-      { name: 'total', values: total },
-      { name: 'kinetic', values: kinetic },
-      { name: 'potential', values: potential },
-    ];
-    if (spring.some((v) => v !== 0)) series.push({ name: 'spring', values: spring });
-    return series;
+    return series.filter((s) => s.name !== 'spring' || s.values.some((v) => v !== 0));
   }
 
   /** Frame `i` in the drawing model (see decodeFrame); the last one decoded is kept. */

@@ -215,6 +215,8 @@ export class SceneView {
 
     const extent = Math.max(4, Math.ceil(radius * 4));
     this.grid = new THREE.GridHelper(extent * 2, extent * 2, 0x4a505c, 0x2f333b);
+    // On the ground (y = 0), or under the bodies when they hang below it.
+    this.grid.position.y = Math.min(0, bounds.min.y);
     this.scene.add(this.grid);
   }
 

@@ -39,8 +39,10 @@ test('a well-formed file reads back its numbers bit for bit', () => {
     separation: f32(-0.01) }]);
   assert.deepEqual(r.events(1), [{ kind: 1, a: 0, b: 1, value: 6 }]);
   assert.equal(r.header(1).kinetic, 1.5);
-  const total = r.energySeries().find((s) => s.name === 'total').values;
-  assert.deepEqual([...total], [10, 10.5, 11]);
+  const series = r.energySeries();
+  assert.deepEqual(series.map((s) => s.name), ['total', 'kinetic', 'potential']);
+  assert.deepEqual([...series[0].values], [0, 0.5, 1]);
+  assert.deepEqual([...series[1].values], [0, 1.5, 3]);
   assert.ok(Math.abs(r.frameDt - 1 / 60) < 1e-12, `frame spacing ${r.frameDt}`);
   assert.equal(r.truncated, null);
 });
