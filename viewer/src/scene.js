@@ -1,11 +1,12 @@
-// The three.js scene of a recording: one InstancedMesh per shared shape geometry, overlays for contacts,
+// The three.js scene of a recording: one InstancedMesh per shared shape geometry (one BallBatch for all
+// balls), overlays for contacts,
 // joints and bounding boxes, the orbit camera, and picking a body under the pointer.
 
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { shapeGeometry } from './shapes.js';
 import { Overlays } from './overlays.js';
-import { ballImpostorMaterial, raycastBalls } from './ball_impostor.js';
+import { BallBatch, ballImpostorMaterial, raycastBalls } from './ball_impostor.js';
 
 /** Body colours by kind; sleeping bodies are blended towards SLEEP_TINT. */
 export const COLOURS = {
@@ -30,7 +31,7 @@ export class SceneView {
   /** @param {HTMLElement} container */
   constructor(container) {
     this.container = container;
-    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias: false });
     this.renderer.setPixelRatio(1);
     this.renderer.setClearColor(COLOURS.background);
     container.appendChild(this.renderer.domElement);
@@ -102,13 +103,16 @@ export class SceneView {
     });
 
     for (const group of byKey.values()) {
-      const material = group.impostor
-        ? ballImpostorMaterial(this.hemisphere, this.sun)
-        : new THREE.MeshLambertMaterial({ color: 0xffffff });
-      const mesh = new THREE.InstancedMesh(group.geometry, material, group.instances.length);
-      mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
-      // Bounds change every frame; the whole scene is small enough to draw without culling.
-      mesh.frustumCulled = false;
+      let mesh;
+      if (group.impostor) {
+        mesh = new BallBatch(group.instances.length, ballImpostorMaterial(this.hemisphere, this.sun));
+      } else {
+        const material = new THREE.MeshLambertMaterial({ color: 0xffffff });
+        mesh = new THREE.InstancedMesh(group.geometry, material, group.instances.length);
+        mesh.instanceMatrix.setUsage(THREE.DynamicDrawUsage);
+        // Bounds change every frame; the whole scene is small enough to draw without culling.
+        mesh.frustumCulled = false;
+      }
       group.instances.forEach((_, slot) => mesh.setColorAt(slot, COLOURS.dynamic));
       group.mesh = mesh;
       this.content.add(mesh);
@@ -123,7 +127,7 @@ export class SceneView {
       this.content.remove(group.mesh);
       group.mesh.geometry.dispose();
       group.mesh.material.dispose();
-      group.mesh.dispose();
+      group.mesh.dispose?.();
     }
     this.groups = [];
     this.partsByBody = [];
@@ -159,8 +163,12 @@ export class SceneView {
         if (b === this.selected) colour.lerp(COLOURS.selected, 0.6);
         mesh.setColorAt(slot, colour);
       });
-      mesh.instanceMatrix.needsUpdate = true;
-      if (mesh.instanceColor) mesh.instanceColor.needsUpdate = true;
+      if (mesh.isBallBatch) {
+        mesh.markUpdated();
+      } else {
+        mesh.instanceMatrix.needsUpdate = true;
+        if (mesh.instanceColor) mesh.instanceColor.needsUpdate = true;
+      }
     }
     this.overlays.update(frame, this, toggles);
     this.dirty = true;

@@ -8,12 +8,11 @@
 
 import * as THREE from 'three';
 import { ConvexGeometry } from 'three/addons/geometries/ConvexGeometry.js';
-import { ballImpostorGeometry } from './ball_impostor.js';
 
 const ROUND_SEGMENTS = 20;
 
 /**
- * `impostor` marks the balls, drawn by ball_impostor.js rather than as triangles.
+ * `impostor` marks the balls, drawn by ball_impostor.js's BallBatch rather than as triangles (no geometry).
  * @typedef {{geometry: () => THREE.BufferGeometry, key: string, scale: THREE.Vector3,
  *            localBounds: THREE.Box3, impostor?: boolean}} ShapeGeometry
  */
@@ -30,7 +29,7 @@ export function shapeGeometry(shape, uid) {
       return {
         key: 'ball',
         impostor: true,
-        geometry: ballImpostorGeometry,
+        geometry: () => null,
         scale: new THREE.Vector3(r, r, r),
         localBounds: new THREE.Box3(new THREE.Vector3(-r, -r, -r), new THREE.Vector3(r, r, r)),
       };
