@@ -234,6 +234,7 @@ window.rebound = {
       toggles: { ...toggles },
       selected: view.selected,
       inspector: $('inspector').hidden ? null : $('inspector').textContent,
+      camera: { position: view.camera.position.toArray(), target: view.controls.target.toArray() },
       bodies: view.displayedPoses(),
     };
   },

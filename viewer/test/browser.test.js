@@ -259,3 +259,39 @@ test('a broken file shows a clear message, keeps the page working, and a cut fil
   assert.deepEqual(errors, []);
   await page.close();
 });
+
+test('the mouse orbits, pans and zooms the camera', async () => {
+  const { page, errors } = await openViewer(`?file=${cradle.url}`);
+  await loaded(page);
+  const box = await page.locator('#viewport canvas').boundingBox();
+  const cx = box.x + box.width / 2;
+  const cy = box.y + box.height / 2;
+  const camera = () => page.evaluate(() => window.rebound.state().camera);
+  const distance = (c) => Math.hypot(...c.position.map((p, i) => p - c.target[i]));
+  const start = await camera();
+
+  await page.mouse.move(cx, cy);
+  await page.mouse.down();
+  await page.mouse.move(cx + 120, cy, { steps: 6 });
+  await page.mouse.up();
+  const orbited = await camera();
+  assert.deepEqual(orbited.target, start.target, 'orbiting keeps the target');
+  assert.ok(Math.hypot(...orbited.position.map((p, i) => p - start.position[i])) > 0.1, 'the eye moved round');
+  assert.ok(Math.abs(distance(orbited) - distance(start)) < 1e-6 * distance(start), 'at the same distance');
+
+  await page.mouse.move(cx, cy);
+  await page.mouse.down({ button: 'right' });
+  await page.mouse.move(cx + 80, cy + 40, { steps: 6 });
+  await page.mouse.up({ button: 'right' });
+  const panned = await camera();
+  assert.ok(Math.hypot(...panned.target.map((p, i) => p - orbited.target[i])) > 0.01, 'panning moves the target');
+
+  await page.mouse.move(cx, cy);
+  await page.mouse.wheel(0, -400);
+  await page.waitForFunction((d) => {
+    const c = window.rebound.state().camera;
+    return Math.hypot(...c.position.map((p, i) => p - c.target[i])) < d;
+  }, distance(panned) * 0.99, { timeout: 5000 });
+  assert.deepEqual(errors, []);
+  await page.close();
+});
