@@ -312,7 +312,8 @@ class WorldDescription {
     const body = {
       index,
       kind: b.kind,
-      mass: num(b.mass, `${what}.mass`),
+      // The manifest writes each f32 in its shortest form; fround gives back the recorded value itself.
+      mass: Math.fround(num(b.mass, `${what}.mass`)),
       localCenterOfMass: vec(b.local_center_of_mass, 3, `${what}.local_center_of_mass`),
       parts: index < this.bodies.length ? this.bodies[index].parts : [],
     };
