@@ -15,18 +15,15 @@
 import * as THREE from 'three';
 
 const vertexShader = /* glsl */ `
-uniform vec3 sunDirection;
-
 attribute vec3 centre;
 attribute float radius;
 attribute vec3 colour;
 
-varying vec3 vCentre;
+// Constant over a ball's quad, so not interpolated (the software rasteriser pays per interpolated float).
+flat varying vec3 vCentre;
+flat varying vec4 vSphere; // 1/r, |c|² − r², and two unused lanes
+flat varying vec3 vColour;
 varying vec3 vPosition;
-varying float vRadius;
-varying vec3 vColour;
-varying vec3 vUp;
-varying vec3 vSun;
 
 void main() {
   vec4 viewCentre = modelViewMatrix * vec4(centre, 1.0);
@@ -40,11 +37,9 @@ void main() {
   vec3 v = cross(w, u);
   vec3 corner = viewCentre.xyz + (u * position.x + v * position.y) * radius * min(grow, 8.0);
   vCentre = viewCentre.xyz;
-  vPosition = corner;
-  vRadius = radius;
+  vSphere = vec4(1.0 / radius, d * d - radius * radius, 0.0, 0.0);
   vColour = colour;
-  vUp = (viewMatrix * vec4(0.0, 1.0, 0.0, 0.0)).xyz;
-  vSun = (viewMatrix * vec4(sunDirection, 0.0)).xyz;
+  vPosition = corner;
   gl_Position = projectionMatrix * vec4(corner, 1.0);
 }
 `;
@@ -56,28 +51,28 @@ uniform mat4 projectionMatrix;
 uniform vec3 skyColour;
 uniform vec3 groundColour;
 uniform vec3 sunColour;
+// The world's up and the direction to the sun, in view space (set before each draw).
+uniform vec3 viewUp;
+uniform vec3 viewSun;
 
-varying vec3 vCentre;
+flat varying vec3 vCentre;
+flat varying vec4 vSphere;
+flat varying vec3 vColour;
 varying vec3 vPosition;
-varying float vRadius;
-varying vec3 vColour;
-varying vec3 vUp;
-varying vec3 vSun;
 
 void main() {
+  // The ray from the eye through this pixel meets the sphere |p − c| = r at t = b − √(b² − (|c|² − r²)).
   vec3 ray = normalize(vPosition);
   float b = dot(ray, vCentre);
-  float c = dot(vCentre, vCentre) - vRadius * vRadius;
-  float discriminant = b * b - c;
+  float discriminant = b * b - vSphere.y;
   if (discriminant < 0.0) discard;
-  float t = b - sqrt(discriminant);
-  vec3 hit = ray * t;
-  vec3 n = (hit - vCentre) / vRadius;
+  vec3 hit = ray * (b - sqrt(discriminant));
+  vec3 n = (hit - vCentre) * vSphere.x;
 
-  vec4 clip = projectionMatrix * vec4(hit, 1.0);
-  gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;
+  // Depth of the hit as the projection would give it: z_ndc = (P₂₂·z + P₃₂) / −z.
+  gl_FragDepth = 0.5 * ((projectionMatrix[2][2] * hit.z + projectionMatrix[3][2]) / -hit.z) + 0.5;
 
-  vec3 irradiance = mix(groundColour, skyColour, 0.5 * dot(n, vUp) + 0.5) + max(dot(n, vSun), 0.0) * sunColour;
+  vec3 irradiance = mix(groundColour, skyColour, 0.5 * dot(n, viewUp) + 0.5) + max(dot(n, viewSun), 0.0) * sunColour;
   gl_FragColor = vec4(vColour * irradiance * RECIPROCAL_PI, 1.0);
   #include <colorspace_fragment>
 }
@@ -89,16 +84,23 @@ void main() {
  * @param {THREE.DirectionalLight} sun
  */
 export function ballImpostorMaterial(hemisphere, sun) {
-  return new THREE.ShaderMaterial({
+  const sunDirection = sun.position.clone().sub(sun.target.position).normalize();
+  const material = new THREE.ShaderMaterial({
     vertexShader,
     fragmentShader,
     uniforms: {
       skyColour: { value: hemisphere.color.clone().multiplyScalar(hemisphere.intensity) },
       groundColour: { value: hemisphere.groundColor.clone().multiplyScalar(hemisphere.intensity) },
       sunColour: { value: sun.color.clone().multiplyScalar(sun.intensity) },
-      sunDirection: { value: sun.position.clone().sub(sun.target.position).normalize() },
+      viewUp: { value: new THREE.Vector3() },
+      viewSun: { value: new THREE.Vector3() },
     },
   });
+  material.onBeforeRender = (renderer, scene, camera) => {
+    material.uniforms.viewUp.value.set(0, 1, 0).transformDirection(camera.matrixWorldInverse);
+    material.uniforms.viewSun.value.copy(sunDirection).transformDirection(camera.matrixWorldInverse);
+  };
+  return material;
 }
 
 /**
