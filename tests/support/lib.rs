@@ -5,6 +5,7 @@
 //! themselves ([`scenes`]), which the scene tests, the criterion benches (`benches/scenes.rs`) and the
 //! `compare` binary (`benches/compare/`) share.
 
+pub mod demos;
 pub mod scenes;
 
 /// The scene generator of SCENES.md: xorshift64*.

@@ -110,13 +110,25 @@ kind_from!(Spring => Spring, Rope => Rope, Rod => Rod, BallJoint => Ball, HingeJ
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Joint {
     kind: JointKind,
+    // Missing anchors, frames and break limits take `Joint::new`'s values, so a scene file names only the kind
+    // and what differs.
+    #[cfg_attr(feature = "serde", serde(default))]
     local_anchor_a: Vec3,
+    #[cfg_attr(feature = "serde", serde(default))]
     local_anchor_b: Vec3,
+    #[cfg_attr(feature = "serde", serde(default))]
     local_basis_a: Quat,
+    #[cfg_attr(feature = "serde", serde(default))]
     local_basis_b: Quat,
-    #[cfg_attr(feature = "serde", serde(with = "unbounded"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(with = "unbounded", default = "unbounded::infinity")
+    )]
     break_force: f32,
-    #[cfg_attr(feature = "serde", serde(with = "unbounded"))]
+    #[cfg_attr(
+        feature = "serde",
+        serde(with = "unbounded", default = "unbounded::infinity")
+    )]
     break_torque: f32,
 }
 
@@ -628,6 +640,11 @@ mod tests {
 #[cfg(feature = "serde")]
 pub(crate) mod unbounded {
     use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+    /// The value of a limit that is not given: +∞.
+    pub(crate) fn infinity() -> f32 {
+        f32::INFINITY
+    }
 
     pub(crate) fn serialize<S: Serializer>(value: &f32, serializer: S) -> Result<S::Ok, S::Error> {
         let finite = value.is_finite().then_some(*value);

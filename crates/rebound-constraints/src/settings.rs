@@ -20,6 +20,8 @@ use rebound_math::validity::{check_non_negative, check_positive};
 /// [`crate::tether`]) carry such loads straight to the fixed anchor instead.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Missing fields take their defaults, so a scene file names only what differs.
+#[cfg_attr(feature = "serde", serde(default))]
 pub struct JointSettings {
     /// Stiffness of the position correction of hard joint parts, as a natural frequency (Hz), > 0.
     /// Default: 60 Hz.

@@ -44,6 +44,8 @@ pub enum Integrator {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Missing fields take their defaults, so a scene file names only what differs.
+#[cfg_attr(feature = "serde", serde(default))]
 pub struct BodyDesc {
     /// Dynamic, fixed or kinematic. Default: dynamic.
     pub body_type: BodyType,

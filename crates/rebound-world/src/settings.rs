@@ -11,6 +11,8 @@ use rebound_math::validity::{check_finite, check_finite_vec3, check_non_negative
 /// [`crate::World::set_settings`] check them.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+// Missing fields take their defaults, so a scene file names only what differs.
+#[cfg_attr(feature = "serde", serde(default))]
 pub struct WorldSettings {
     /// Gravity (m/s²). Default: (0, −9.81, 0).
     pub gravity: Vec3,

@@ -77,6 +77,8 @@ impl CollisionGroups {
 /// assert!(trigger.is_sensor);
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+// Missing fields take their defaults, so a scene file names only what differs.
+#[serde(default)]
 pub struct ColliderDesc {
     /// The geometry. Default: a ball of radius 0.5 m.
     pub shape: ColliderShape,

@@ -1,0 +1,39 @@
+//! `rebound`: run Rebound scene files and see what happened.
+//!
+//! ```text
+//! rebound run scenes/newtons_cradle.ron --gif cradle.gif
+//! rebound run scenes/pyramid.ron --seconds 5 --png-every 60 frames/ --camera 14,12,26:0,7,0:45
+//! ```
+//!
+//! Each subcommand lives in its own module; `main` parses the arguments (clap), runs the subcommand and turns
+//! an error into a message on standard error and exit status 1 (clap's own usage errors exit with 2).
+
+mod cli;
+mod error;
+mod pictures;
+mod progress;
+mod run;
+
+use clap::Parser;
+use std::io::Write;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    let cli = cli::Cli::parse();
+    let result = match &cli.command {
+        cli::Command::Run(args) => run::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(error) => {
+            let mut message = format!("error: {error}");
+            let mut source = std::error::Error::source(&error);
+            while let Some(cause) = source {
+                message.push_str(&format!("\n  caused by: {cause}"));
+                source = cause.source();
+            }
+            let _ = writeln!(std::io::stderr(), "{message}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,25 @@
+//! A progress bar for long runs and renders (indicatif), drawn on standard error only when both standard
+//! output and standard error are terminals, so that pipes, files and tests see no control characters.
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
+
+/// Runs shorter than this many items get no bar.
+const MIN_ITEMS: u64 = 200;
+
+/// A bar of `total` items labelled `what`, hidden when not on a terminal or for short jobs.
+#[must_use]
+pub fn bar(total: u64, what: &str) -> ProgressBar {
+    let on_terminal = std::io::stdout().is_terminal() && std::io::stderr().is_terminal();
+    if !on_terminal || total < MIN_ITEMS {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
+    if let Ok(style) =
+        ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos}/{len} ({eta} left)")
+    {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar.set_message(what.to_owned());
+    bar
+}
