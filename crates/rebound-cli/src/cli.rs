@@ -19,6 +19,22 @@ pub struct Cli {
 pub enum Command {
     /// Load a scene file, check it, step it, and write what was asked (GIF, PNG frames).
     Run(RunArgs),
+    /// Serve the web viewer and a recording on 127.0.0.1, print the address to open, and run until Ctrl-C.
+    View(ServeArgs),
+}
+
+/// `rebound view`.
+#[derive(Debug, Args)]
+pub struct ServeArgs {
+    /// The recording (`.rrec`, see docs/recording.md) to open in the viewer.
+    pub recording: PathBuf,
+    /// The port on 127.0.0.1. Default: 0, a free one (the printed address names it).
+    #[arg(long, default_value_t = 0)]
+    pub port: u16,
+    /// The viewer's directory (with `npm ci` run in it). Default: `REBOUND_VIEWER_DIR`, else this source
+    /// tree's `viewer/`.
+    #[arg(long, value_name = "DIR")]
+    pub viewer_dir: Option<PathBuf>,
 }
 
 /// `rebound run`.

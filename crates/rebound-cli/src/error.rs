@@ -11,6 +11,9 @@ pub enum CliError {
     /// A picture could not be drawn or encoded.
     #[error(transparent)]
     Render(#[from] rebound_render::RenderError),
+    /// `rebound view` cannot start (viewer files missing, not a recording, no port).
+    #[error(transparent)]
+    View(#[from] crate::view::ViewError),
     /// A file or folder could not be written.
     #[error("cannot write {path}: {source}")]
     Write {

@@ -3,6 +3,7 @@
 //! ```text
 //! rebound run scenes/newtons_cradle.ron --gif cradle.gif
 //! rebound run scenes/pyramid.ron --seconds 5 --png-every 60 frames/ --camera 14,12,26:0,7,0:45
+//! rebound view cradle.rrec
 //! ```
 //!
 //! Each subcommand lives in its own module; `main` parses the arguments (clap), runs the subcommand and turns
@@ -13,6 +14,7 @@ mod error;
 mod pictures;
 mod progress;
 mod run;
+mod view;
 
 use clap::Parser;
 use std::io::Write;
@@ -22,6 +24,7 @@ fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     let result = match &cli.command {
         cli::Command::Run(args) => run::run(args),
+        cli::Command::View(args) => view::view(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
