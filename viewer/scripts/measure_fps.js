@@ -17,7 +17,7 @@ const argument = (name, fallback) => {
 const seconds = argument('--seconds', 10);
 const steps = argument('--steps', 240);
 
-const file = record('balls', 'pile.rrec', steps);
+const file = record('scenes/benchmarks/balls.ron', 'pile.rrec', steps);
 const server = await serveViewer({ '/rec/pile.rrec': file });
 const chromium = await launchChromium();
 try {

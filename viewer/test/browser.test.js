@@ -18,7 +18,7 @@ let cradle;
 let cradleDump;
 
 before(async () => {
-  const cradleFile = record('cradle', 'cradle.rrec', 180);
+  const cradleFile = record('scenes/newtons_cradle.ron', 'cradle.rrec', 180);
   const broken = path.join(OUT_DIR, 'cradle-cut.rrec');
   const bytes = fs.readFileSync(cradleFile);
   fs.writeFileSync(broken, bytes.subarray(0, Math.floor(bytes.length * 0.6)));

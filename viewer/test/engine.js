@@ -35,7 +35,7 @@ function fixtures(args) {
   return run.stdout;
 }
 
-/** Records `scene` ("cradle" or "balls") for `steps` steps to OUT_DIR/`name`; returns the file's path. */
+/** Records the scene file `scene` (a path under the repository) for `steps` steps to OUT_DIR/`name`. */
 export function record(scene, name, steps) {
   fs.mkdirSync(OUT_DIR, { recursive: true });
   const out = path.join(OUT_DIR, name);

@@ -8,7 +8,7 @@ import { readRecording } from '../src/recording.js';
 import { record, dumpFrames } from './engine.js';
 
 test('the reader gives the Rust reader\'s numbers for every frame of an engine recording', () => {
-  const file = record('cradle', 'cradle-reader.rrec', 90);
+  const file = record('scenes/newtons_cradle.ron', 'cradle-reader.rrec', 90);
   const recording = readRecording(fs.readFileSync(file));
   const all = [...Array(recording.frameCount).keys()];
   const dump = dumpFrames(file, all);
