@@ -21,7 +21,7 @@ fn scenes_dir() -> PathBuf {
 /// Loads `path` (writing it from `scene` first if asked) and checks it reads back as `scene`.
 fn load(path: &PathBuf, scene: &Scene) -> PhysicsWorld {
     if std::env::var_os("REBOUND_WRITE_SCENES").is_some() {
-        std::fs::write(path, scene.to_ron()).unwrap();
+        std::fs::write(path, scene.to_ron()).expect("the scene file is written");
     }
     let (from_file, built) =
         rebound_scene::load_file(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

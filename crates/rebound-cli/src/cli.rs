@@ -17,8 +17,14 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Load a scene file, check it, step it, and write what was asked (GIF, PNG frames).
+    /// Load a scene file, check it, step it, and write what was asked (recording, GIF, PNG frames, plot).
     Run(RunArgs),
+    /// Summarise a recording: bodies, steps, energy drift, worst penetration and joint error.
+    Info(InfoArgs),
+    /// Draw a recording as an animated GIF and/or PNG frames.
+    Render(RenderArgs),
+    /// Plot a recording's energy, momentum, joint error and penetration against time, as SVG.
+    Plot(PlotArgs),
     /// Serve the web viewer and a recording on 127.0.0.1, print the address to open, and run until Ctrl-C.
     View(ServeArgs),
 }
@@ -37,6 +43,53 @@ pub struct ServeArgs {
     pub viewer_dir: Option<PathBuf>,
 }
 
+/// `rebound info`.
+#[derive(Debug, Args)]
+pub struct InfoArgs {
+    /// The recording (`.rrec`).
+    pub recording: PathBuf,
+    /// Print the summary as one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `rebound render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// The recording (`.rrec`).
+    pub recording: PathBuf,
+    /// What to write.
+    #[command(flatten)]
+    pub output: PictureArgs,
+    /// Picture options.
+    #[command(flatten)]
+    pub view: ViewArgs,
+}
+
+/// `rebound plot`.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// The recording (`.rrec`).
+    pub recording: PathBuf,
+    /// The SVG file to write.
+    #[arg(long, short, value_name = "FILE.svg")]
+    pub output: PathBuf,
+}
+
+/// Which pictures to write.
+#[derive(Debug, Args, Clone)]
+pub struct PictureArgs {
+    /// Write an animated GIF here.
+    #[arg(long, value_name = "FILE")]
+    pub gif: Option<PathBuf>,
+    /// Write every K-th step as a PNG into DIR (`step_00000.png` is the start), creating DIR if needed.
+    #[arg(long, num_args = 2, value_names = ["K", "DIR"])]
+    pub png_every: Option<Vec<String>>,
+    /// Frames per second of the GIF (the frame interval is rounded to whole steps).
+    #[arg(long, default_value_t = 30.0)]
+    pub fps: f32,
+}
+
 /// `rebound run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
@@ -48,15 +101,15 @@ pub struct RunArgs {
     /// How long to run (s of simulated time, rounded to whole steps).
     #[arg(long)]
     pub seconds: Option<f64>,
-    /// Write an animated GIF of the run here.
+    /// Write a recording of the run (`.rrec`, see docs/recording.md) here.
     #[arg(long, value_name = "FILE")]
-    pub gif: Option<PathBuf>,
-    /// Write every K-th step as a PNG into DIR (`step_00000.png` is the start), creating DIR if needed.
-    #[arg(long, num_args = 2, value_names = ["K", "DIR"])]
-    pub png_every: Option<Vec<String>>,
-    /// Frames per second of the GIF (the frame interval is rounded to whole steps). Default: 30.
-    #[arg(long, default_value_t = 30.0)]
-    pub fps: f32,
+    pub record: Option<PathBuf>,
+    /// Write an SVG plot of energy, momentum, joint error and penetration against time here.
+    #[arg(long, value_name = "FILE.svg")]
+    pub plot: Option<PathBuf>,
+    /// Pictures to write.
+    #[command(flatten)]
+    pub output: PictureArgs,
     /// Picture options.
     #[command(flatten)]
     pub view: ViewArgs,
@@ -112,7 +165,11 @@ pub fn parse_camera(text: &str) -> Result<CameraArg, String> {
     let (eye, target, fov) = match parts.as_slice() {
         [eye, target] => (eye, target, None),
         [eye, target, fov] => (eye, target, Some(fov)),
-        _ => return Err(format!("`{text}` is not EYE:TARGET[:FOV], e.g. 0,2,10:0,1,0:45")),
+        _ => {
+            return Err(format!(
+                "`{text}` is not EYE:TARGET[:FOV], e.g. 0,2,10:0,1,0:45"
+            ));
+        }
     };
     let fov_degrees = fov
         .map(|f| {
@@ -120,7 +177,9 @@ pub fn parse_camera(text: &str) -> Result<CameraArg, String> {
                 .parse::<f32>()
                 .ok()
                 .filter(|v| *v > 0.0 && *v < 180.0)
-                .ok_or_else(|| format!("field of view `{f}` is not a number of degrees in (0, 180)"))
+                .ok_or_else(|| {
+                    format!("field of view `{f}` is not a number of degrees in (0, 180)")
+                })
         })
         .transpose()?;
     let camera = CameraArg {
@@ -129,7 +188,9 @@ pub fn parse_camera(text: &str) -> Result<CameraArg, String> {
         fov_degrees,
     };
     if camera.position == camera.target {
-        return Err(format!("the eye and the target are the same point in `{text}`"));
+        return Err(format!(
+            "the eye and the target are the same point in `{text}`"
+        ));
     }
     Ok(camera)
 }

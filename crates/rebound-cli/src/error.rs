@@ -14,6 +14,21 @@ pub enum CliError {
     /// `rebound view` cannot start (viewer files missing, not a recording, no port).
     #[error(transparent)]
     View(#[from] crate::view::ViewError),
+    /// A recording could not be written or read.
+    #[error(transparent)]
+    Recording(#[from] rebound_record::RecordingError),
+    /// A plot could not be drawn.
+    #[error(transparent)]
+    Plot(#[from] rebound_render::PlotError),
+    /// A file could not be opened.
+    #[error("cannot read {path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// What the system said.
+        #[source]
+        source: std::io::Error,
+    },
     /// A file or folder could not be written.
     #[error("cannot write {path}: {source}")]
     Write {

@@ -3,6 +3,10 @@
 //! ```text
 //! rebound run scenes/newtons_cradle.ron --gif cradle.gif
 //! rebound run scenes/pyramid.ron --seconds 5 --png-every 60 frames/ --camera 14,12,26:0,7,0:45
+//! rebound run scenes/rope_bridge.ron --record bridge.rrec --plot bridge.svg
+//! rebound info bridge.rrec --json
+//! rebound render bridge.rrec --gif bridge.gif --size 320x240
+//! rebound plot bridge.rrec -o bridge.svg
 //! rebound view cradle.rrec
 //! ```
 //!
@@ -10,9 +14,14 @@
 //! an error into a message on standard error and exit status 1 (clap's own usage errors exit with 2).
 
 mod cli;
+mod drawing;
 mod error;
+mod info;
 mod pictures;
+mod plot;
 mod progress;
+mod recording_file;
+mod render;
 mod run;
 mod view;
 
@@ -24,6 +33,9 @@ fn main() -> ExitCode {
     let cli = cli::Cli::parse();
     let result = match &cli.command {
         cli::Command::Run(args) => run::run(args),
+        cli::Command::Info(args) => info::info(args),
+        cli::Command::Render(args) => render::render(args),
+        cli::Command::Plot(args) => plot::plot(args),
         cli::Command::View(args) => view::view(args),
     };
     match result {
@@ -32,7 +44,11 @@ fn main() -> ExitCode {
             let mut message = format!("error: {error}");
             let mut source = std::error::Error::source(&error);
             while let Some(cause) = source {
-                message.push_str(&format!("\n  caused by: {cause}"));
+                // Most errors quote their cause already; print only what is new.
+                let cause_text = cause.to_string();
+                if !message.contains(&cause_text) {
+                    message.push_str(&format!("\n  caused by: {cause_text}"));
+                }
                 source = cause.source();
             }
             let _ = writeln!(std::io::stderr(), "{message}");

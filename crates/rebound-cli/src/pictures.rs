@@ -1,14 +1,15 @@
 //! Pictures of a run as it goes: frames of the world drawn by `rebound-render` from one camera, gathered
 //! into an animated GIF and/or written as numbered PNG files.
 
-use crate::cli::ViewArgs;
+use crate::cli::{PictureArgs, ViewArgs};
 use crate::error::CliError;
 use rebound::prelude::*;
+use rebound_record::{FrameReader, Manifest, Recorder};
 use rebound_render::{Camera, GifWriter, RenderOptions, RenderScene};
 use rebound_scene::SceneCamera;
 use std::fs::File;
 use std::io::BufWriter;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Vertical field of view when neither the command line nor the scene gives one (degrees).
 const DEFAULT_FOV_DEGREES: f32 = 45.0;
@@ -17,7 +18,11 @@ const DEFAULT_FOV_DEGREES: f32 = 45.0;
 ///
 /// # Errors
 /// [`CliError::Render`] if the resulting camera is unusable (the picture size, checked by the renderer).
-pub fn camera(view: &ViewArgs, scene: Option<SceneCamera>, world: &PhysicsWorld) -> Result<Camera, CliError> {
+pub fn camera(
+    view: &ViewArgs,
+    scene: Option<SceneCamera>,
+    bodies: &[(Vec3, bool)],
+) -> Result<Camera, CliError> {
     let (width, height) = view.size;
     let (position, target, fov_degrees) = match (view.camera, scene) {
         (Some(c), scene) => (
@@ -28,7 +33,7 @@ pub fn camera(view: &ViewArgs, scene: Option<SceneCamera>, world: &PhysicsWorld)
                 .unwrap_or(DEFAULT_FOV_DEGREES),
         ),
         (None, Some(s)) => (s.position, s.target, s.fov_degrees),
-        (None, None) => framing(world),
+        (None, None) => framing(bodies),
     };
     let camera = Camera {
         position,
@@ -41,20 +46,16 @@ pub fn camera(view: &ViewArgs, scene: Option<SceneCamera>, world: &PhysicsWorld)
     Ok(camera)
 }
 
-/// A view of every moving body (or of every body, if none moves): looking at the centre of their positions
-/// from in front, above and to the right, far enough for their spread to fit the default field of view.
-fn framing(world: &PhysicsWorld) -> (Vec3, Vec3, f32) {
-    let moving: Vec<Vec3> = world
-        .bodies()
+/// A view of every moving body (or of every body, if none moves), given as positions with whether the body
+/// moves: looking at the centre of their positions from in front, above and to the right, far enough for
+/// their spread to fit the default field of view.
+fn framing(bodies: &[(Vec3, bool)]) -> (Vec3, Vec3, f32) {
+    let any_moving = bodies.iter().any(|(_, moving)| *moving);
+    let points: Vec<Vec3> = bodies
         .iter()
-        .filter(|(_, b)| b.body_type() != BodyType::Fixed)
-        .map(|(_, b)| b.position())
+        .filter(|(_, moving)| *moving || !any_moving)
+        .map(|(p, _)| *p)
         .collect();
-    let points = if moving.is_empty() {
-        world.bodies().iter().map(|(_, b)| b.position()).collect()
-    } else {
-        moving
-    };
     let (lo, hi) = points.iter().fold(
         (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY)),
         |(lo, hi), p| (lo.min(*p), hi.max(*p)),
@@ -69,6 +70,28 @@ fn framing(world: &PhysicsWorld) -> (Vec3, Vec3, f32) {
     (centre + direction * distance, centre, DEFAULT_FOV_DEGREES)
 }
 
+/// `--png-every K DIR` as a step interval and a folder.
+fn png_every(args: &PictureArgs) -> Result<Option<(u32, PathBuf)>, CliError> {
+    let Some(values) = &args.png_every else {
+        return Ok(None);
+    };
+    let [k, dir] = values.as_slice() else {
+        return Err(CliError::Argument {
+            argument: "--png-every",
+            message: "needs K and DIR".to_owned(),
+        });
+    };
+    let k = k
+        .parse::<u32>()
+        .ok()
+        .filter(|k| *k >= 1)
+        .ok_or_else(|| CliError::Argument {
+            argument: "--png-every",
+            message: format!("K must be a whole number ≥ 1, got `{k}`"),
+        })?;
+    Ok(Some((k, PathBuf::from(dir))))
+}
+
 /// Where a run's pictures go.
 pub struct Pictures {
     camera: Camera,
@@ -81,20 +104,30 @@ pub struct Pictures {
 }
 
 impl Pictures {
-    /// Opens the outputs: the GIF file (a frame every `gif_every` steps of `dt`) and the PNG folder (every
-    /// `png_every.0` steps), creating the folder.
+    /// Checks `args` and opens the outputs it asks for: the GIF file (a frame every whole number of steps of
+    /// `dt`, as close to `args.fps` as that allows) and the PNG folder, creating the folder.
     ///
     /// # Errors
-    /// A file or folder that cannot be created, or a picture size the GIF cannot hold.
+    /// A bad frame rate or `--png-every`, a file or folder that cannot be created, or a picture size the GIF
+    /// cannot hold.
     pub fn open(
         camera: Camera,
         contacts: bool,
-        gif: Option<&Path>,
-        gif_every: u32,
+        args: &PictureArgs,
         dt: f32,
-        png_every: Option<(u32, PathBuf)>,
     ) -> Result<Self, CliError> {
-        let gif = gif
+        if !(args.fps.is_finite() && args.fps > 0.0) {
+            return Err(CliError::Argument {
+                argument: "--fps",
+                message: format!("must be finite and > 0, got {}", args.fps),
+            });
+        }
+        let png_every = png_every(args)?;
+        // The cast saturates; at least one step per frame.
+        let gif_every = ((1.0 / (args.fps * dt)).round() as u32).max(1);
+        let gif = args
+            .gif
+            .as_deref()
             .map(|path| {
                 let file = File::create(path).map_err(|source| CliError::Write {
                     path: path.to_owned(),
@@ -134,18 +167,33 @@ impl Pictures {
         self.gif.is_none() && self.png.is_none()
     }
 
-    /// Draws `world` after `step` steps (0 = the start) into the outputs that want this step.
+    /// Whether the picture after `step` steps (0 = the start) is wanted by any output.
+    #[must_use]
+    pub fn wants(&self, step: u64) -> bool {
+        let (gif, png) = self.wanted_by(step);
+        gif || png
+    }
+
+    /// Whether the GIF and whether the PNG folder want the picture after `step` steps.
+    fn wanted_by(&self, step: u64) -> (bool, bool) {
+        let gif = self.gif.is_some() && step.is_multiple_of(u64::from(self.gif_every));
+        let png = self
+            .png
+            .as_ref()
+            .is_some_and(|(k, _)| step.is_multiple_of(u64::from(*k)));
+        (gif, png)
+    }
+
+    /// Draws `scene`, the state after `step` steps (0 = the start), into the outputs that want this step.
     ///
     /// # Errors
     /// A picture that cannot be drawn, encoded or written.
-    pub fn capture(&mut self, step: u32, world: &PhysicsWorld) -> Result<(), CliError> {
-        let gif_wants = self.gif.is_some() && step % self.gif_every == 0;
-        let png_wants = self.png.as_ref().is_some_and(|(k, _)| step % k == 0);
+    pub fn capture(&mut self, step: u64, scene: &RenderScene) -> Result<(), CliError> {
+        let (gif_wants, png_wants) = self.wanted_by(step);
         if !(gif_wants || png_wants) {
             return Ok(());
         }
-        let scene = RenderScene::from_world(world)?;
-        let image = rebound_render::render(&scene, &self.camera, &self.options)?;
+        let image = rebound_render::render(scene, &self.camera, &self.options)?;
         if gif_wants && let Some((_, gif)) = &mut self.gif {
             gif.add_frame(&image)?;
         }
@@ -176,4 +224,14 @@ impl Pictures {
         }
         Ok(lines)
     }
+}
+
+/// The manifest a recording of `world` starts with (the descriptions of its bodies, colliders and joints),
+/// read back from the header a recorder writes.
+///
+/// # Errors
+/// [`CliError::Recording`] if the header cannot be written or read back (not for a valid world).
+pub fn manifest_of(world: &PhysicsWorld) -> Result<Manifest, CliError> {
+    let header = Recorder::new(world, Vec::new())?.finish()?;
+    Ok(FrameReader::new(header.as_slice())?.manifest().clone())
 }

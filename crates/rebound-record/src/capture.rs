@@ -207,17 +207,13 @@ impl Tracker {
             let count = manifold.point_count.min(manifold.points.len());
             frame
                 .contacts
-                .extend(manifold.points[..count].iter().map(|p| {
-                    let on_a = pose_a.transform_point(p.local_anchor_a);
-                    let on_b = pose_b.transform_point(p.local_anchor_b);
-                    ContactSample {
-                        body_a: a,
-                        body_b: b,
-                        point: (on_a + on_b) * 0.5,
-                        normal: manifold.normal,
-                        normal_impulse: p.normal_impulse,
-                        separation: p.separation,
-                    }
+                .extend(manifold.points[..count].iter().map(|p| ContactSample {
+                    body_a: a,
+                    body_b: b,
+                    point: p.world_point(pose_a, pose_b),
+                    normal: manifold.normal,
+                    normal_impulse: p.normal_impulse,
+                    separation: p.separation,
                 }));
         }
         frame.joints.clear();

@@ -76,7 +76,8 @@ pub struct ContactSample {
     pub point: Vec3,
     /// Unit normal in world space, from A to B.
     pub normal: Vec3,
-    /// Normal impulse of the step (N·s, ≥ 0).
+    /// Normal impulse of the step's last substep (N·s, ≥ 0): about `m·g·h` on a resting contact, `h` the
+    /// substep.
     pub normal_impulse: f32,
     /// Signed distance between the surfaces (m): negative when overlapping, positive for a speculative point;
     /// as the step measured it before solving.

@@ -1,5 +1,10 @@
 //! `GifWriter`: pictures gathered into a looping animated GIF (the `gif` crate: each frame quantised to its
 //! own 256-colour palette with NeuQuant, LZW-compressed).
+//!
+//! Each frame after the first stores only the pixels that changed: the others are written transparent and
+//! the frame is shown over the one before (disposal "keep"). With a still camera the background, the grid
+//! and everything at rest are the same from frame to frame, and runs of the transparent index compress to
+//! almost nothing.
 
 use std::io::Write;
 
@@ -25,6 +30,8 @@ pub struct GifWriter<W: Write> {
     delay_cs: u16,
     /// Frames written.
     frames: usize,
+    /// The last frame's pixels (RGBA), to find what changed.
+    previous: Vec<u8>,
 }
 
 impl<W: Write> std::fmt::Debug for GifWriter<W> {
@@ -81,6 +88,7 @@ impl<W: Write> GifWriter<W> {
             height,
             delay_cs,
             frames: 0,
+            previous: Vec::new(),
         })
     }
 
@@ -99,11 +107,21 @@ impl<W: Write> GifWriter<W> {
             });
         }
         let mut rgba = image.rgba().to_vec();
+        if self.previous.len() == rgba.len() {
+            for (pixel, before) in rgba.chunks_exact_mut(4).zip(self.previous.chunks_exact(4)) {
+                if pixel == before {
+                    pixel.copy_from_slice(&[0; 4]);
+                }
+            }
+        }
         // The sides were checked to fit in u16 in `new`, and the image has the same sides.
         let (w, h) = (self.width as u16, self.height as u16);
         let mut frame = gif::Frame::from_rgba_speed(w, h, &mut rgba, QUANTISER_SPEED);
         frame.delay = self.delay_cs;
+        frame.dispose = gif::DisposalMethod::Keep;
         self.encoder.write_frame(&frame)?;
+        self.previous.clear();
+        self.previous.extend_from_slice(image.rgba());
         self.frames += 1;
         Ok(())
     }

@@ -49,7 +49,44 @@ impl Default for Camera {
     }
 }
 
+/// The direction from the target to the camera that [`Camera::framing`] uses: in front (+z), a little to the
+/// right and raised about 25° (unnormalised).
+pub const FRAMING_DIRECTION: Vec3 = Vec3::new(0.3, 0.5, 1.0);
+
+/// How much larger than the framed sphere [`Camera::framing`] makes the view (dimensionless).
+pub const FRAMING_MARGIN: f32 = 1.1;
+
 impl Camera {
+    /// A camera of the default field of view looking at `centre` from [`FRAMING_DIRECTION`], as close as it
+    /// can be while the sphere of `radius` (m) about `centre`, widened by [`FRAMING_MARGIN`], is wholly in a
+    /// `width × height` picture:
+    ///
+    /// ```text
+    /// distance = FRAMING_MARGIN · radius / sin(θ),   θ = min(fov_y/2, atan(tan(fov_y/2) · width/height))
+    /// ```
+    ///
+    /// A radius that is not finite and positive is taken as 1 m; the result is checked when used.
+    #[must_use]
+    pub fn framing(centre: Vec3, radius: f32, width: u32, height: u32) -> Self {
+        let fov_y = Self::default().fov_y;
+        let radius = if radius.is_finite() && radius > 0.0 {
+            radius
+        } else {
+            1.0
+        };
+        let half_y = 0.5 * fov_y;
+        let aspect = width as f32 / height.max(1) as f32;
+        let half = half_y.min((half_y.tan() * aspect).atan());
+        let distance = FRAMING_MARGIN * radius / half.sin();
+        Self {
+            position: centre + FRAMING_DIRECTION.normalize() * distance,
+            target: centre,
+            fov_y,
+            width,
+            height,
+        }
+    }
+
     /// Checks the fields and computes the projection.
     ///
     /// # Errors

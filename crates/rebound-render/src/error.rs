@@ -29,6 +29,9 @@ pub enum RenderError {
     /// A shape description is invalid (the facade's own check, as when a collider is inserted).
     #[error("shape: {0}")]
     Shape(#[from] ShapeError),
+    /// A recording's descriptions or changes are inconsistent.
+    #[error("recording: {0}")]
+    Recording(#[from] rebound_record::RecordingError),
     /// A frame given to an animation is not of the animation's size.
     #[error(
         "frame is {width}×{height} pixels but the animation is {expected_width}×{expected_height}"
@@ -61,8 +64,8 @@ pub enum PlotError {
     /// The time axis is empty.
     #[error("the time axis has no samples")]
     NoSamples,
-    /// A time is not finite or is less than the one before it.
-    #[error("time[{index}] is {value}: times must be finite and non-decreasing")]
+    /// A time is not finite, is beyond ±[`crate::MAX_PLOT_MAGNITUDE`] or is less than the one before it.
+    #[error("time[{index}] is {value}: times must be finite, within ±3.4e38 s and non-decreasing")]
     Time {
         /// Index of the sample.
         index: usize,
@@ -79,8 +82,8 @@ pub enum PlotError {
         /// The number of time samples.
         expected: usize,
     },
-    /// A series value is not finite.
-    #[error("series `{series}`[{index}] is {value}: values must be finite")]
+    /// A series value is not finite or is beyond ±[`crate::MAX_PLOT_MAGNITUDE`].
+    #[error("series `{series}`[{index}] is {value}: values must be finite and within ±3.4e38")]
     Value {
         /// The series' name.
         series: String,

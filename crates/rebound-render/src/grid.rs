@@ -4,7 +4,7 @@
 //! depth t, and the grid shows there only if nothing drawn is nearer (the depth buffer of the solids), so
 //! boxes standing on the ground hide the lines behind them while a ground box's top face at the same height
 //! does not. A line's coverage falls off linearly over one pixel's footprint on the plane, and the grid fades
-//! out where its cells shrink below a few pixels, instead of turning into moiré.
+//! out where a cell shrinks to a few pixels along the view, instead of turning into moiré.
 
 use rebound::prelude::Vec3;
 
@@ -71,25 +71,32 @@ impl Grid {
     /// Blends the grid into `canvas` where the plane is visible.
     pub(crate) fn draw(&self, canvas: &mut DepthCanvas<'_>, projection: &Projection) {
         let rise = self.height - projection.position.y;
+        if rise == 0.0 {
+            return;
+        }
+        let inv_rise = 1.0 / rise;
         let alpha = f32::from(self.colour.a) / 255.0;
         let line = [self.colour.r, self.colour.g, self.colour.b].map(f32::from);
         let inv_spacing = 1.0 / self.spacing;
+        let nearest = 1.0 / crate::NEAR_PLANE;
         for y in 0..canvas.height {
             for x in 0..canvas.width {
                 let ray = projection.ray(x as f32 + 0.5, y as f32 + 0.5);
-                // Depth of the plane along this pixel's ray (the ray's forward component is 1).
-                let t = rise / ray.y;
-                if !(t.is_finite() && t > crate::NEAR_PLANE) {
+                // 1/depth of the plane along this pixel's ray (the ray's forward component is 1): positive
+                // where the ray meets the plane in front of the camera.
+                let inv_t = ray.y * inv_rise;
+                if !(inv_t > 0.0 && inv_t < nearest) {
                     continue;
                 }
                 let i = y * canvas.width + x;
                 let hidden = canvas
                     .inv_depth
                     .get(i)
-                    .is_none_or(|&solid| solid * (1.0 - DEPTH_TOLERANCE) > 1.0 / t);
+                    .is_none_or(|&solid| solid * (1.0 - DEPTH_TOLERANCE) > inv_t);
                 if hidden {
                     continue;
                 }
+                let t = 1.0 / inv_t;
                 let hit = projection.position + ray * t;
                 if hit.x.abs() > self.half_extent || hit.z.abs() > self.half_extent {
                     continue;
@@ -114,7 +121,7 @@ impl Grid {
         // One pixel's width on the plane across the ray, and along it (stretched at grazing angles).
         let across = t * length / focal;
         let along = across * length / ray.y.abs();
-        let fade = (2.0 - 6.0 * along * inv_spacing).clamp(0.0, 1.0);
+        let fade = (1.5 - 2.0 * along * inv_spacing).clamp(0.0, 1.0);
         if fade <= 0.0 {
             return 0.0;
         }

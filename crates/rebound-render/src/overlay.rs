@@ -1,5 +1,6 @@
 //! Contacts and joints drawn over the solids with tiny-skia (anti-aliased strokes and dots, no depth test:
-//! they are meant to be seen through what hides them). Segments crossing the near plane are clipped first.
+//! they are meant to be seen through what hides them). Segments crossing the near plane are clipped first;
+//! points that are not finite are left out (tiny-skia refuses a whole path with one of them).
 
 use rebound::prelude::Vec3;
 use tiny_skia::{FillRule, Paint, PathBuilder, Pixmap, Stroke, Transform};
@@ -15,7 +16,7 @@ const LINE_WIDTH: f32 = 1.5;
 /// The part of the world segment a→b in front of the near plane, on the picture (pixels).
 fn clip_segment(projection: &Projection, a: Vec3, b: Vec3) -> Option<((f32, f32), (f32, f32))> {
     let (mut va, mut vb) = (projection.to_view(a), projection.to_view(b));
-    if va.z < NEAR_PLANE && vb.z < NEAR_PLANE {
+    if !(va.is_finite() && vb.is_finite()) || (va.z < NEAR_PLANE && vb.z < NEAR_PLANE) {
         return None;
     }
     if va.z < NEAR_PLANE {
@@ -59,7 +60,10 @@ fn draw(
     }
     let mut circles = PathBuilder::new();
     for &p in dots {
-        if let Some((x, y, _)) = projection.project(p) {
+        if let Some((x, y, _)) = projection.project(p)
+            && x.is_finite()
+            && y.is_finite()
+        {
             circles.push_circle(x, y, DOT_RADIUS);
         }
     }

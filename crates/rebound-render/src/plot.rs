@@ -49,6 +49,10 @@ pub const MIN_PLOT_SIDE: u32 = 100;
 /// The largest plot width or panel height (pixels).
 pub const MAX_PLOT_SIDE: u32 = 8_192;
 
+/// The largest magnitude of a time or value plotted: the f32 range a recording's numbers come from
+/// (≈ 3.4·10³⁸). Beyond it the padded axis range can overflow to infinity, where plotters finds no ticks.
+pub const MAX_PLOT_MAGNITUDE: f64 = f32::MAX as f64;
+
 /// Colours of a panel's series, in turn.
 const SERIES_COLOURS: [RGBColor; 6] = [
     RGBColor(214, 39, 40),
@@ -62,9 +66,10 @@ const SERIES_COLOURS: [RGBColor; 6] = [
 /// Draws `panels` stacked, against `time` (s), as an SVG document.
 ///
 /// # Errors
-/// [`PlotError::NoSamples`] for an empty time axis; [`PlotError::Time`] for a non-finite or decreasing time;
-/// [`PlotError::Length`] for a series without one value per time; [`PlotError::Value`] for a non-finite
-/// value; [`PlotError::Size`] for a size out of range.
+/// [`PlotError::NoSamples`] for an empty time axis; [`PlotError::Time`] for a decreasing time or one beyond
+/// ±[`MAX_PLOT_MAGNITUDE`]; [`PlotError::Length`] for a series without one value per time;
+/// [`PlotError::Value`] for a value beyond ±[`MAX_PLOT_MAGNITUDE`] or not finite; [`PlotError::Size`] for a
+/// size out of range.
 pub fn plot_svg(
     time: &[f64],
     panels: &[Panel],
@@ -106,7 +111,7 @@ fn check(time: &[f64], panels: &[Panel], options: &PlotOptions) -> Result<(), Pl
     }
     let mut previous = f64::NEG_INFINITY;
     for (index, &t) in time.iter().enumerate() {
-        if !(t.is_finite() && t >= previous) {
+        if !plottable(t) || t < previous {
             return Err(PlotError::Time {
                 index,
                 value: t.to_string(),
@@ -126,7 +131,7 @@ fn check(time: &[f64], panels: &[Panel], options: &PlotOptions) -> Result<(), Pl
             .values
             .iter()
             .enumerate()
-            .find(|(_, v)| !v.is_finite())
+            .find(|(_, v)| !plottable(**v))
         {
             return Err(PlotError::Value {
                 series: series.name.clone(),
@@ -136,6 +141,11 @@ fn check(time: &[f64], panels: &[Panel], options: &PlotOptions) -> Result<(), Pl
         }
     }
     Ok(())
+}
+
+/// Finite and within ±[`MAX_PLOT_MAGNITUDE`].
+fn plottable(v: f64) -> bool {
+    v.is_finite() && v.abs() <= MAX_PLOT_MAGNITUDE
 }
 
 /// A plotters error as ours.

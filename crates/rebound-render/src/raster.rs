@@ -5,7 +5,8 @@
 //! looks — a ground face spanning the whole view sorts in front of the boxes on it, and shapes that
 //! interpenetrate at a contact have no correct order at all. A z-buffer of one `f32` per pixel resolves
 //! both per pixel. The fill is the classic one: edge functions evaluated at pixel centres over the
-//! triangle's bounding box, with inverse depth (linear in screen space) interpolated and tested.
+//! triangle's rows, each row's covered span found from where its three edge values cross zero, with inverse
+//! depth (linear in screen space) interpolated along it and tested.
 
 use crate::Rgba;
 
@@ -32,9 +33,17 @@ pub(crate) struct ScreenVertex {
     pub inv_depth: f32,
 }
 
-/// Twice the signed area of (a, b, p): positive when p is to one side of a→b.
-fn edge(a: ScreenVertex, b: ScreenVertex, x: f32, y: f32) -> f32 {
-    (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x)
+/// Twice the signed area of (a, b, p): positive when p is to one side of a→b. In f64: a ground face
+/// clipped at the near plane reaches pixel coordinates of 10⁵ and more, where f32 edge values along a shared
+/// edge round to a negative on both sides and leave holes between the two triangles.
+fn edge(a: ScreenVertex, b: ScreenVertex, x: f64, y: f64) -> f64 {
+    let (ax, ay, bx, by) = (
+        f64::from(a.x),
+        f64::from(a.y),
+        f64::from(b.x),
+        f64::from(b.y),
+    );
+    (bx - ax) * (y - ay) - (by - ay) * (x - ax)
 }
 
 impl<'a> DepthCanvas<'a> {
@@ -51,9 +60,14 @@ impl<'a> DepthCanvas<'a> {
     /// Fills the triangle (either winding) where it is nearer than what is drawn, in `colour` (opaque).
     /// Pixels whose centre lies on the triangle or its edges are covered.
     pub fn fill_triangle(&mut self, v: [ScreenVertex; 3], colour: Rgba) {
+        let finite =
+            |v: &ScreenVertex| v.x.is_finite() && v.y.is_finite() && v.inv_depth.is_finite();
+        if !v.iter().all(finite) {
+            return;
+        }
         let [a, mut b, mut c] = v;
-        let mut area = edge(a, b, c.x, c.y);
-        if !(area.is_finite() && area.abs() > f32::EPSILON) {
+        let mut area = edge(a, b, f64::from(c.x), f64::from(c.y));
+        if !(area.is_finite() && area.abs() > f64::from(f32::EPSILON)) {
             return;
         }
         if area < 0.0 {
@@ -69,32 +83,56 @@ impl<'a> DepthCanvas<'a> {
             return;
         }
         let inv_area = 1.0 / area;
-        // wa is the weight of a (the edge b→c), and so on; each steps by a constant per pixel along a row.
-        let (step_a, step_b, step_c) = (b.y - c.y, c.y - a.y, a.y - b.y);
-        let px = x0 as f32 + 0.5;
+        // wa is the weight of a (the edge b→c), and so on; along a row each is linear in the pixel index k
+        // from x0: w(k) = w(0) + step·k, and so is the inverse depth (wa·za + wb·zb + wc·zc)/area.
+        let steps = [
+            f64::from(b.y) - f64::from(c.y),
+            f64::from(c.y) - f64::from(a.y),
+            f64::from(a.y) - f64::from(b.y),
+        ];
+        let z = [a, b, c].map(|v| f64::from(v.inv_depth));
+        let z_step = (steps[0] * z[0] + steps[1] * z[1] + steps[2] * z[2]) * inv_area;
+        let px = x0 as f64 + 0.5;
+        let last = (x1 - x0 - 1) as f64;
         let pixel = [colour.r, colour.g, colour.b, 255];
         for y in y0..y1 {
-            // Each row starts from the exact edge values, so stepping errors do not pile up down the triangle.
-            let py = y as f32 + 0.5;
-            let (mut wa, mut wb, mut wc) =
-                (edge(b, c, px, py), edge(c, a, px, py), edge(a, b, px, py));
-            let row = y * self.width;
-            for x in x0..x1 {
-                if wa >= 0.0 && wb >= 0.0 && wc >= 0.0 {
-                    let z = (wa * a.inv_depth + wb * b.inv_depth + wc * c.inv_depth) * inv_area;
-                    let i = row + x;
-                    if let Some(depth) = self.inv_depth.get_mut(i)
-                        && z > *depth
-                    {
-                        *depth = z;
-                        if let Some(out) = self.rgba.get_mut(4 * i..4 * i + 4) {
-                            out.copy_from_slice(&pixel);
-                        }
-                    }
+            // Each row starts from the exact edge values, so no stepping error piles up down the triangle.
+            let py = y as f64 + 0.5;
+            let w = [edge(b, c, px, py), edge(c, a, px, py), edge(a, b, px, py)];
+            // The pixels of the row inside all three edges: w(k) ≥ 0 bounds k from below where the edge
+            // value grows along the row and from above where it falls.
+            let (mut lo, mut hi) = (0.0f64, last);
+            for (w, step) in w.iter().zip(steps) {
+                if step > 0.0 {
+                    lo = lo.max((-w / step).ceil());
+                } else if step < 0.0 {
+                    hi = hi.min((w / -step).floor());
+                } else if *w < 0.0 {
+                    hi = -1.0;
                 }
-                wa += step_a;
-                wb += step_b;
-                wc += step_c;
+            }
+            if lo > hi {
+                continue;
+            }
+            let (lo, hi) = (lo as usize, hi as usize);
+            let z_row = (w[0] * z[0] + w[1] * z[1] + w[2] * z[2]) * inv_area;
+            let start = y * self.width + x0;
+            let (Some(depths), Some(colours)) = (
+                self.inv_depth.get_mut(start + lo..=start + hi),
+                self.rgba.get_mut(4 * (start + lo)..4 * (start + hi + 1)),
+            ) else {
+                continue;
+            };
+            for (k, (depth, out)) in depths
+                .iter_mut()
+                .zip(colours.chunks_exact_mut(4))
+                .enumerate()
+            {
+                let inv_depth = (z_row + z_step * (lo + k) as f64) as f32;
+                if inv_depth > *depth {
+                    *depth = inv_depth;
+                    out.copy_from_slice(&pixel);
+                }
             }
         }
     }

@@ -62,6 +62,25 @@ pub const PALETTE: [Rgba; 6] = [
     Rgba::opaque(95, 190, 190),
 ];
 
+/// Share of its colour a sleeping body keeps.
+pub const SLEEPING_SHADE: f32 = 0.6;
+
+/// The colour of body number `index` (its handle's slot in a world, its index in a recording — the same for
+/// a world whose bodies were never removed): [`FIXED_COLOUR`] unless `dynamic`, else [`PALETTE`] in turn,
+/// darkened by [`SLEEPING_SHADE`] while `sleeping`.
+#[must_use]
+pub fn body_colour(index: u32, dynamic: bool, sleeping: bool) -> Rgba {
+    if !dynamic {
+        return FIXED_COLOUR;
+    }
+    let colour = PALETTE[index as usize % PALETTE.len()];
+    if sleeping {
+        colour.scaled(SLEEPING_SHADE)
+    } else {
+        colour
+    }
+}
+
 impl RenderScene {
     /// An empty scene.
     #[must_use]
@@ -74,8 +93,8 @@ impl RenderScene {
         self.objects.push(SceneObject { mesh, pose, colour });
     }
 
-    /// The enabled, non-sensor colliders of `world` at their current poses — fixed bodies in
-    /// [`FIXED_COLOUR`], the others from [`PALETTE`] by body index, sleeping ones darker — and the contact
+    /// The enabled, non-sensor colliders of `world` at their current poses, coloured by [`body_colour`],
+    /// and the contact
     /// points of its manifolds (on body A's surface, with the normal from A to B). No joints: a live world
     /// does not expose its joints' world anchors; a recording does.
     ///

@@ -64,24 +64,33 @@ fn a_gif_holds_every_frame_at_the_stated_delay_and_refuses_a_wrong_size() {
         .read_info(std::io::Cursor::new(bytes))
         .expect("a GIF");
     assert_eq!((decoder.width(), decoder.height()), (80, 60));
+    // Each frame holds the changed pixels; transparent ones show the frame before (disposal "keep").
+    let mut shown = vec![0u8; 80 * 60 * 4];
     let mut frames = 0;
-    let first = picture(0.0);
     while let Some(frame) = decoder.read_next_frame().expect("decodes") {
         // 1/30 s is 3.33 cs, written as 3.
         assert_eq!(frame.delay, 3);
-        if frames == 0 {
-            // Quantised to 256 colours: each channel within a few levels of the picture.
-            let worst = frame
-                .buffer
-                .iter()
-                .zip(first.rgba())
-                .map(|(a, b)| a.abs_diff(*b))
-                .max();
-            assert!(
-                worst.is_some_and(|w| w <= 24),
-                "worst channel error {worst:?}"
-            );
+        assert_eq!(frame.dispose, gif::DisposalMethod::Keep);
+        assert_eq!(
+            (frame.left, frame.top, frame.width, frame.height),
+            (0, 0, 80, 60)
+        );
+        for (out, new) in shown.chunks_exact_mut(4).zip(frame.buffer.chunks_exact(4)) {
+            if new[3] != 0 {
+                out.copy_from_slice(new);
+            }
         }
+        // Quantised to 256 colours: each channel within a few levels of the picture.
+        let expected = picture(frames as f32);
+        let worst = shown
+            .iter()
+            .zip(expected.rgba())
+            .map(|(a, b)| a.abs_diff(*b))
+            .max();
+        assert!(
+            worst.is_some_and(|w| w <= 24),
+            "frame {frames}: worst channel error {worst:?}"
+        );
         frames += 1;
     }
     assert_eq!(frames, 3);

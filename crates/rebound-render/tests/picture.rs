@@ -439,3 +439,61 @@ fn a_non_finite_pose_draws_nothing_and_does_not_panic() {
     let image = render(&scene, &front_camera(), &plain()).expect("renders");
     assert!(image.rgba().chunks(4).all(|p| p == [10, 20, 30, 255]));
 }
+
+#[test]
+fn a_framed_sphere_fills_the_picture_to_the_margin() {
+    let (centre, radius) = (Vec3::new(4.0, 2.0, -1.0), 3.0);
+    for (width, height) in [(160, 120), (90, 160)] {
+        let camera = Camera::framing(centre, radius, width, height);
+        let mut scene = RenderScene::new();
+        scene.push(mesh(&ColliderShape::Ball { radius }), at(centre), Rgba::RED);
+        let image = render(&scene, &camera, &plain()).expect("renders");
+        // The outline's radius is focal·r/√(D² − r²) pixels (as in the ball test); framing puts it inside the
+        // shorter half-side by about the margin.
+        let distance = (camera.position - centre).length();
+        let outline = focal(&camera) * radius / (distance * distance - radius * radius).sqrt();
+        let half_side = 0.5 * width.min(height) as f32;
+        assert!(
+            outline < half_side && outline > 0.85 * half_side,
+            "{outline} of {half_side}"
+        );
+        let red = |x: u32, y: u32| is_red(pixel(&image, x, y));
+        let row: Vec<u32> = (0..width).filter(|&x| red(x, height / 2)).collect();
+        let column: Vec<u32> = (0..height).filter(|&y| red(width / 2, y)).collect();
+        for extent in [row.len(), column.len()] {
+            // Tessellated (inside the sphere by up to 1 − cos(π/8)) and pixel-rounded.
+            let diameter = 2.0 * outline;
+            assert!(extent as f32 <= diameter + 2.0 && extent as f32 >= 0.9 * diameter);
+        }
+        // Nothing of the ball on the picture's border.
+        for x in 0..width {
+            assert!(!red(x, 0) && !red(x, height - 1));
+        }
+        for y in 0..height {
+            assert!(!red(0, y) && !red(width - 1, y));
+        }
+    }
+}
+
+#[test]
+fn a_non_finite_contact_or_joint_is_left_out_and_the_others_drawn() {
+    let mut scene = RenderScene::new();
+    for point in [Vec3::NAN, Vec3::new(0.0, 0.0, 1.0)] {
+        scene.contacts.push(ContactMark {
+            point,
+            normal: Vec3::Y,
+        });
+    }
+    scene.joints.push(JointSegment {
+        anchor_a: Vec3::new(f32::INFINITY, 0.0, 0.0),
+        anchor_b: Vec3::ZERO,
+    });
+    let options = RenderOptions {
+        contacts: true,
+        joints: true,
+        contact_colour: Rgba::RED,
+        ..plain()
+    };
+    let image = render(&scene, &front_camera(), &options).expect("renders");
+    assert_eq!(pixel(&image, 32, 24), Rgba::RED);
+}

@@ -143,6 +143,12 @@ fn bad_data_are_refused_naming_the_series_and_sample() {
         })
     ));
     let mut h = history(10);
+    h.spring_energy[2] = 1.0e300;
+    assert!(matches!(
+        h.to_svg(&PlotOptions::default()),
+        Err(PlotError::Value { index: 2, .. })
+    ));
+    let mut h = history(10);
     h.time[3] = 0.0;
     assert!(matches!(
         h.to_svg(&PlotOptions::default()),
@@ -166,4 +172,27 @@ fn bad_data_are_refused_naming_the_series_and_sample() {
 fn a_single_sample_still_plots() {
     let svg = history(1).to_svg(&PlotOptions::default()).expect("plots");
     assert!(roxmltree::Document::parse(&svg).is_ok());
+}
+
+#[test]
+fn extreme_ranges_plot_without_panicking() {
+    let cases: [(Vec<f64>, Vec<f64>); 5] = [
+        (vec![0.0, 1e-9, 2e-9], vec![0.0, 1e-30, 2e-30]),
+        (vec![0.0, 1.0, 2.0], vec![-3.0e38, 0.0, 3.0e38]),
+        (vec![5.0, 5.0, 5.0], vec![1.0, 1.0, 1.0]),
+        (vec![0.0, 1e6, 2e6], vec![1e-300, -1e-300, 0.0]),
+        (vec![-1e30, 0.0, 1e30], vec![7.0, 8.0, 7.0]),
+    ];
+    for (time, values) in cases {
+        let panels = [Panel {
+            title: "extreme".to_owned(),
+            y_label: "x".to_owned(),
+            series: vec![Series {
+                name: "x".to_owned(),
+                values,
+            }],
+        }];
+        let svg = plot_svg(&time, &panels, &PlotOptions::default()).expect("plots");
+        assert_eq!(polylines(&svg, 3).len(), 1);
+    }
 }

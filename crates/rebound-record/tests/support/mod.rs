@@ -205,3 +205,47 @@ pub fn bits(frame: &Frame) -> Vec<u64> {
     v(&mut out, d.angular_momentum);
     out
 }
+
+/// A small recording with bodies, a joint, contacts and events: a ball dropped on the ground next to a
+/// pendulum.
+pub fn small() -> Vec<u8> {
+    let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
+    let ground = world.insert_body(BodyDesc::fixed()).unwrap();
+    world
+        .insert_collider(ColliderDesc::cuboid(Vec3::new(5.0, 0.5, 5.0)), ground)
+        .unwrap();
+    let ball = world
+        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 1.0, 0.0)))
+        .unwrap();
+    world
+        .insert_collider(ColliderDesc::ball(0.5), ball)
+        .unwrap();
+    let bob = world
+        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(3.0, 3.0, 0.0)))
+        .unwrap();
+    world.insert_collider(ColliderDesc::ball(0.2), bob).unwrap();
+    world
+        .insert_world_joint(
+            Joint::new(Rod::new(1.0).unwrap())
+                .with_local_anchors(Vec3::new(2.0, 3.0, 0.0), Vec3::ZERO)
+                .unwrap(),
+            bob,
+        )
+        .unwrap();
+    record(&mut world, 5).0
+}
+
+pub fn word(bytes: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap())
+}
+
+/// The file offsets where frames start, and the end.
+pub fn frame_starts(bytes: &[u8]) -> Vec<usize> {
+    let mut at = 16 + word(bytes, 12) as usize;
+    let mut starts = vec![at];
+    while at < bytes.len() {
+        at += 4 + word(bytes, at) as usize;
+        starts.push(at);
+    }
+    starts
+}

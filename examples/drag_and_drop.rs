@@ -1,24 +1,20 @@
 //! Drag and drop: a ray from the "mouse" picks a box, a stiff damped spring from the moving cursor to the
 //! picked point carries it across the floor and lifts it, then lets it go.
 //!
-//! Run: `cargo run --release --example drag_and_drop`
+//! Run: `cargo run --release --example drag_and_drop [-- --record drag.rrec --gif drag.gif]`
 
 #![allow(clippy::print_stdout, reason = "an example prints its results")]
 
-use rebound::prelude::*;
+mod support;
 
-fn main() -> Result<(), Error> {
-    let mut world = PhysicsWorld::new(WorldSettings::default())?;
-    let ground = world.insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -0.5, 0.0)))?;
-    world.insert_collider(ColliderDesc::cuboid(Vec3::new(20.0, 0.5, 20.0)), ground)?;
-    let crate_box =
-        world.insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 0.5, 0.0)))?;
-    world.insert_collider(
-        ColliderDesc::cuboid(Vec3::splat(0.5)).with_density(200.0),
-        crate_box,
-    )?;
+use rebound::prelude::*;
+use rebound_suite::demos::{DT, drag_and_drop};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut world = drag_and_drop::build()?.world;
+    let mut output = support::Output::start(&world, &drag_and_drop::ABOUT)?;
     for _ in 0..30 {
-        world.step(1.0 / 60.0);
+        output.step(&mut world, DT)?;
     }
 
     // The mouse ray from above picks the box.
@@ -45,7 +41,7 @@ fn main() -> Result<(), Error> {
         // Right at 2 m/s for 1.5 s while rising to 2 m, then hold.
         let target = hit.point + Vec3::new(2.0 * t.min(1.5), 2.0 * (t / 1.5).min(1.0), 0.0);
         world.set_kinematic_target(cursor, Pose::from_position(target))?;
-        world.step(1.0 / 60.0);
+        output.step(&mut world, DT)?;
         let grabbed = world
             .body(hit.body)
             .map_or(target, |b| b.pose().transform_point(hit.local_point));
@@ -61,14 +57,16 @@ fn main() -> Result<(), Error> {
     world.remove_joint(drag)?;
     let mut fall_time = f32::NAN;
     for step in 1..=180 {
-        world.step(1.0 / 60.0);
-        if world.body(hit.body).is_some_and(|b| b.position().y < 0.51) {
+        output.step(&mut world, DT)?;
+        if fall_time.is_nan() && world.body(hit.body).is_some_and(|b| b.position().y < 0.51) {
             fall_time = step as f32 / 60.0;
-            break;
         }
     }
     println!(
         "largest lag while dragging: {max_lag:.3} m; released, the box lands after {fall_time:.2} s"
     );
+    for line in output.finish()? {
+        println!("{line}");
+    }
     Ok(())
 }

@@ -1,50 +1,34 @@
 //! A 100-link rope chain released horizontally from a fixed point, with a 10× heavier ball at its end: it
 //! swings down and hangs. Prints the stretch of the chain as it goes.
 //!
-//! Run: `cargo run --release --example chain`
+//! Run: `cargo run --release --example chain [-- --record chain.rrec --gif chain.gif]`
 
 #![allow(clippy::print_stdout, reason = "an example prints its results")]
 
+mod support;
+
 use rebound::prelude::*;
+use rebound_suite::demos::{DT, chain};
 
-const LINKS: usize = 100;
-const LINK: f32 = 0.25;
-
-fn main() -> Result<(), Error> {
-    let mut world = PhysicsWorld::new(WorldSettings::default())?;
-    let mut balls = Vec::new();
-    let mut previous = None;
-    for i in 0..LINKS {
-        let density = if i == LINKS - 1 { 10_000.0 } else { 1_000.0 };
-        let ball = world.insert_body(
-            BodyDesc::dynamic()
-                .with_position(Vec3::new((i + 1) as f32 * LINK, 0.0, 0.0))
-                .with_can_sleep(false),
-        )?;
-        world.insert_collider(ColliderDesc::ball(0.1).with_density(density), ball)?;
-        let rope = Joint::new(Rope::new(LINK)?);
-        match previous {
-            None => world.insert_world_joint(rope, ball)?,
-            Some(prev) => world.insert_joint(rope, prev, ball)?,
-        };
-        balls.push(ball);
-        previous = Some(ball);
-    }
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let chain::Chain { mut world, balls } = chain::build()?;
+    let mut output = support::Output::start(&world, &chain::ABOUT)?;
+    let (link, links) = (chain::LINK, chain::LINKS);
     let stretch = |world: &PhysicsWorld| {
         let mut prev = Vec3::ZERO;
         let (mut worst, mut total) = (0.0f32, 0.0f32);
         for b in &balls {
             let p = world.body(*b).map_or(prev, rebound::RigidBody::position);
             let d = (p - prev).length();
-            worst = worst.max(d / LINK - 1.0);
+            worst = worst.max(d / link - 1.0);
             total += d;
             prev = p;
         }
-        (worst, total / (LINK * LINKS as f32) - 1.0)
+        (worst, total / (link * links as f32) - 1.0)
     };
     let mut worst_run = 0.0f32;
     for step in 1..=600 {
-        world.step(1.0 / 60.0);
+        output.step(&mut world, DT)?;
         worst_run = worst_run.max(stretch(&world).0);
         if step % 150 == 0 {
             let (worst, total) = stretch(&world);
@@ -66,5 +50,8 @@ fn main() -> Result<(), Error> {
         "worst link stretch at any step of the swing: {:.2} %",
         worst_run * 100.0
     );
+    for line in output.finish()? {
+        println!("{line}");
+    }
     Ok(())
 }

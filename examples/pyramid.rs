@@ -1,36 +1,22 @@
 //! A pyramid of boxes, base 20 (210 boxes), left to stand for 10 s.
 //!
-//! Run: `cargo run --release --example pyramid`
+//! Run: `cargo run --release --example pyramid [-- --record pyramid.rrec --gif pyramid.gif]`
 
 #![allow(clippy::print_stdout, reason = "an example prints its results")]
 
-use rebound::prelude::*;
+mod support;
 
-fn main() -> Result<(), Error> {
-    let mut world = PhysicsWorld::new(WorldSettings::default())?;
-    let ground = world.insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -0.5, 0.0)))?;
-    world.insert_collider(ColliderDesc::cuboid(Vec3::new(50.0, 0.5, 50.0)), ground)?;
+use rebound_suite::demos::{DT, pyramid};
 
-    let base = 20;
-    let mut boxes = Vec::new();
-    for row in 0..base {
-        for j in 0..(base - row) {
-            let x = j as f32 - (base - row - 1) as f32 / 2.0;
-            let y = 0.5 + row as f32;
-            let body =
-                world.insert_body(BodyDesc::dynamic().with_position(Vec3::new(x, y, 0.0)))?;
-            world.insert_collider(
-                ColliderDesc::cuboid(Vec3::splat(0.5)).with_density(1.0),
-                body,
-            )?;
-            boxes.push((body, Vec3::new(x, y, 0.0)));
-        }
-    }
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let pyramid::Pyramid { mut world, boxes } = pyramid::build()?;
+    let mut output = support::Output::start(&world, &pyramid::ABOUT)?;
+    let base = pyramid::BASE;
     let top = boxes.last().map(|(b, _)| *b);
     let start = std::time::Instant::now();
     let mut worst_step = std::time::Duration::ZERO;
     for _ in 0..600 {
-        worst_step = worst_step.max(world.step(1.0 / 60.0).profile.total);
+        worst_step = worst_step.max(output.step(&mut world, DT)?.profile.total);
     }
     let elapsed = start.elapsed().as_secs_f64() * 1000.0;
     let drift = boxes
@@ -61,7 +47,8 @@ fn main() -> Result<(), Error> {
         boxes.len()
     );
     println!(
-        "  wall time: {elapsed:.0} ms for 600 steps ({:.2} ms/step average, {:.2} ms worst)",
+        "  wall time: {elapsed:.0} ms for 600 steps ({:.2} ms/step average, {:.2} ms worst; recording and \
+         drawing included when asked)",
         elapsed / 600.0,
         worst_step.as_secs_f64() * 1000.0
     );
@@ -69,5 +56,8 @@ fn main() -> Result<(), Error> {
         "  standing (every box within 5 cm of its start): {}",
         if drift < 0.05 { "yes" } else { "NO" }
     );
+    for line in output.finish()? {
+        println!("{line}");
+    }
     Ok(())
 }
