@@ -14,7 +14,7 @@ pub struct Cli {
     pub command: Command,
 }
 
-/// The subcommands. (A browser viewer of recordings, `view`, has its place here.)
+/// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Load a scene file, check it, step it, and write what was asked (recording, GIF, PNG frames, plot).
@@ -25,6 +25,22 @@ pub enum Command {
     Render(RenderArgs),
     /// Plot a recording's energy, momentum, joint error and penetration against time, as SVG.
     Plot(PlotArgs),
+    /// Serve the web viewer and a recording on 127.0.0.1, print the address to open, and run until Ctrl-C.
+    View(ServeArgs),
+}
+
+/// `rebound view`.
+#[derive(Debug, Args)]
+pub struct ServeArgs {
+    /// The recording (`.rrec`, see docs/recording.md) to open in the viewer.
+    pub recording: PathBuf,
+    /// The port on 127.0.0.1. Default: 0, a free one (the printed address names it).
+    #[arg(long, default_value_t = 0)]
+    pub port: u16,
+    /// The viewer's directory (with `npm ci` run in it). Default: `REBOUND_VIEWER_DIR`, else this source
+    /// tree's `viewer/`.
+    #[arg(long, value_name = "DIR")]
+    pub viewer_dir: Option<PathBuf>,
 }
 
 /// `rebound info`.

@@ -11,6 +11,9 @@ pub enum CliError {
     /// A picture could not be drawn or encoded.
     #[error(transparent)]
     Render(#[from] rebound_render::RenderError),
+    /// `rebound view` cannot start (viewer files missing, not a recording, no port).
+    #[error(transparent)]
+    View(#[from] crate::view::ViewError),
     /// A recording could not be written or read.
     #[error(transparent)]
     Recording(#[from] rebound_record::RecordingError),

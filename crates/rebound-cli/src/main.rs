@@ -7,6 +7,7 @@
 //! rebound info bridge.rrec --json
 //! rebound render bridge.rrec --gif bridge.gif --size 320x240
 //! rebound plot bridge.rrec -o bridge.svg
+//! rebound view cradle.rrec
 //! ```
 //!
 //! Each subcommand lives in its own module; `main` parses the arguments (clap), runs the subcommand and turns
@@ -22,6 +23,7 @@ mod progress;
 mod recording_file;
 mod render;
 mod run;
+mod view;
 
 use clap::Parser;
 use std::io::Write;
@@ -34,6 +36,7 @@ fn main() -> ExitCode {
         cli::Command::Info(args) => info::info(args),
         cli::Command::Render(args) => render::render(args),
         cli::Command::Plot(args) => plot::plot(args),
+        cli::Command::View(args) => view::view(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
