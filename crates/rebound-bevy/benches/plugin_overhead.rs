@@ -99,12 +99,23 @@ fn main() -> Result<(), Error> {
         measured_facade_steps(&mut scene);
         let per_step = start.elapsed() / MEASURED as u32;
         digests.0 = Some(scene.world().state_digest());
-        println!("facade: {per_step:?} per step (wall clock), digest {:016x}", scene.world().state_digest());
+        println!(
+            "facade: {per_step:?} per step (wall clock), digest {:016x}",
+            scene.world().state_digest()
+        );
     }
     if run_plugin {
         let mut app = plugin_app();
-        let dt = app.world().resource::<Time<Fixed>>().timestep().as_secs_f32();
-        assert_eq!(dt.to_bits(), DT.to_bits(), "the app steps by the scene's dt");
+        let dt = app
+            .world()
+            .resource::<Time<Fixed>>()
+            .timestep()
+            .as_secs_f32();
+        assert_eq!(
+            dt.to_bits(),
+            DT.to_bits(),
+            "the app steps by the scene's dt"
+        );
         for _ in 0..WARM_UP {
             app.update();
         }

@@ -13,6 +13,7 @@ use bevy_time::{TimePlugin, TimeUpdateStrategy};
 use bevy_transform::components::Transform;
 use core::time::Duration;
 use rebound_bevy::prelude::*;
+use rebound_bevy::rebound;
 use rebound_bevy::rebound::SoftSpring;
 
 /// Frames to run (8 s).
@@ -22,7 +23,7 @@ const FRAMES: u32 = 512;
 #[derive(Resource)]
 struct Chassis(Entity);
 
-fn main() -> Result<AppExit, rebound_bevy::rebound::ConstraintError> {
+fn main() -> Result<AppExit, rebound::ConstraintError> {
     let mut app = App::new();
     app.add_plugins((
         ScheduleRunnerPlugin::run_loop(Duration::ZERO),
@@ -70,7 +71,11 @@ fn main() -> Result<AppExit, rebound_bevy::rebound::ConstraintError> {
             .world_mut()
             .spawn((
                 Body::dynamic(),
-                Collider::new(ColliderDesc::ball(0.4).with_density(400.0).with_friction(1.0)),
+                Collider::new(
+                    ColliderDesc::ball(0.4)
+                        .with_density(400.0)
+                        .with_friction(1.0),
+                ),
                 Transform::from_translation(origin + mount),
             ))
             .id();

@@ -38,7 +38,8 @@ pub mod prelude {
     pub use crate::{
         Body, Collider, ExternalForce, ExternalImpulse, KinematicTarget, MassOverride, Physics,
         PhysicsError, PhysicsEvent, PhysicsJoint, PhysicsSettings, PhysicsState, PhysicsSystems,
-        ReboundPlugin, Sleeping, SpatialQuery, SpatialQueryFilter, TransformInterpolation, Velocity,
+        ReboundPlugin, Sleeping, SpatialQuery, SpatialQueryFilter, TransformInterpolation,
+        Velocity,
     };
     pub use rebound::prelude::{
         BallJoint, BodyType, ColliderDesc, ColliderShape, CollisionGroups, CombineRule, FixedJoint,

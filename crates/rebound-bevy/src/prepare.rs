@@ -5,8 +5,8 @@
 //!
 //! Every value goes through the facade's checked calls. A refused value is logged and sent as a
 //! [`PhysicsError`], and the world keeps what it had: edits of several fields of one body are made on a copy
-//! of the body and committed together. New entities are handled in `Entity` order, so the world's handles
-//! are the same from run to run.
+//! of the body and committed together. New entities are handled in spawn order ([`spawn_order`]), so the
+//! world's handles are the same from run to run.
 
 use crate::body::pose_of;
 use crate::physics::{BodyRecord, ColliderRecord};
@@ -115,7 +115,7 @@ pub(crate) fn insert_bodies(
     if todo.is_empty() {
         return;
     }
-    todo.sort_unstable();
+    todo.sort_unstable_by_key(|&entity| spawn_order(entity));
     for entity in todo {
         let Ok((_, body, transform, velocity, sleeping, mass)) = query.get(entity) else {
             continue;
@@ -167,7 +167,11 @@ fn edit_body(physics: &mut Physics, handle: BodyHandle, body: &Body) -> Result<(
 }
 
 /// Replaces the world's body behind `handle` with an edited copy.
-fn commit(physics: &mut Physics, handle: BodyHandle, edited: RigidBody) -> Result<(), rebound::Error> {
+fn commit(
+    physics: &mut Physics,
+    handle: BodyHandle,
+    edited: RigidBody,
+) -> Result<(), rebound::Error> {
     let slot = physics
         .world
         .body_mut(handle)
@@ -215,13 +219,20 @@ pub(crate) fn sync_body_edits(
         let pose = pose_of(&transform);
         if !same_pose(pose, record.written_pose) {
             record.written_pose = pose;
-            match physics.world.body_mut(record.handle).map(|b| b.set_pose(pose)) {
+            match physics
+                .world
+                .body_mut(record.handle)
+                .map(|b| b.set_pose(pose))
+            {
                 Some(Ok(())) => {
                     record.previous_pose = pose;
                     record.current_pose = pose;
                 }
                 Some(Err(error)) => {
-                    report(&mut errors, PhysicsError::refused(entity, "Transform", error));
+                    report(
+                        &mut errors,
+                        PhysicsError::refused(entity, "Transform", error),
+                    );
                 }
                 None => {}
             }
@@ -232,7 +243,10 @@ pub(crate) fn sync_body_edits(
         {
             record.written_velocity = value;
             if let Err(error) = set_velocity(&mut physics.world, record.handle, value) {
-                report(&mut errors, PhysicsError::refused(entity, "Velocity", error));
+                report(
+                    &mut errors,
+                    PhysicsError::refused(entity, "Velocity", error),
+                );
             }
         }
         if sleeping.0 != record.written_sleeping {
@@ -242,7 +256,10 @@ pub(crate) fn sync_body_edits(
                     body.set_sleeping(true);
                 }
             } else if let Err(error) = physics.world.wake_body(record.handle) {
-                report(&mut errors, PhysicsError::refused(entity, "Sleeping", error));
+                report(
+                    &mut errors,
+                    PhysicsError::refused(entity, "Sleeping", error),
+                );
             }
         }
     }
@@ -309,7 +326,7 @@ pub(crate) fn insert_colliders(
     if todo.is_empty() {
         return;
     }
-    todo.sort_unstable();
+    todo.sort_unstable_by_key(|&entity| spawn_order(entity));
     todo.dedup();
     for entity in todo {
         let Ok(collider) = colliders.get(entity) else {
@@ -345,7 +362,10 @@ pub(crate) fn insert_colliders(
                 physics.collider_entities.insert(handle, entity);
                 physics.mass_dirty.insert(body_entity);
             }
-            Err(error) => report(&mut errors, PhysicsError::refused(entity, "Collider", error)),
+            Err(error) => report(
+                &mut errors,
+                PhysicsError::refused(entity, "Collider", error),
+            ),
         }
     }
 }
@@ -359,11 +379,7 @@ enum Resolved {
     NotABody,
 }
 
-fn resolve(
-    physics: &Physics,
-    entity: Entity,
-    bodies: &Query<'_, '_, (), With<Body>>,
-) -> Resolved {
+fn resolve(physics: &Physics, entity: Entity, bodies: &Query<'_, '_, (), With<Body>>) -> Resolved {
     match physics.bodies.get(&entity) {
         Some(record) => Resolved::Body(record.handle),
         None if bodies.contains(entity) => Resolved::Waiting,
@@ -391,7 +407,7 @@ pub(crate) fn insert_joints(
     if todo.is_empty() {
         return;
     }
-    todo.sort_unstable();
+    todo.sort_unstable_by_key(|&(entity, _)| spawn_order(entity));
     for (entity, is_new_value) in todo {
         let Ok(joint) = joints.get(entity) else {
             physics.pending_joints.remove(&entity);
@@ -400,7 +416,11 @@ pub(crate) fn insert_joints(
         let a = joint
             .body_a
             .map(|a| (resolve(physics, a, &bodies), "body_a", a));
-        let b = (resolve(physics, joint.body_b, &bodies), "body_b", joint.body_b);
+        let b = (
+            resolve(physics, joint.body_b, &bodies),
+            "body_b",
+            joint.body_b,
+        );
         let mut handles = [None, None];
         let mut waiting = false;
         for (slot, side) in [a, Some(b)].into_iter().enumerate() {
@@ -433,7 +453,10 @@ pub(crate) fn insert_joints(
         }
         physics.pending_joints.remove(&entity);
         if let Err(error) = place_joint(physics, entity, joint, handles[0], body_b) {
-            report(&mut errors, PhysicsError::refused(entity, "PhysicsJoint", error));
+            report(
+                &mut errors,
+                PhysicsError::refused(entity, "PhysicsJoint", error),
+            );
         }
     }
 }
@@ -488,11 +511,15 @@ pub(crate) fn apply_mass_overrides(
     let mut todo: Vec<Entity> = changed.iter().chain(removed.read()).collect();
     // Colliders changed the mass of these bodies; only an override needs putting back.
     let dirty = core::mem::take(&mut physics.mass_dirty);
-    todo.extend(dirty.into_iter().filter(|&entity| overrides.contains(entity)));
+    todo.extend(
+        dirty
+            .into_iter()
+            .filter(|&entity| overrides.contains(entity)),
+    );
     if todo.is_empty() {
         return;
     }
-    todo.sort_unstable();
+    todo.sort_unstable_by_key(|&entity| spawn_order(entity));
     todo.dedup();
     for entity in todo {
         let Some(handle) = physics.body_handle(entity) else {
@@ -506,7 +533,10 @@ pub(crate) fn apply_mass_overrides(
                 .set_body_mass_properties(handle, MassProperties::default()),
         };
         if let Err(error) = result {
-            report(&mut errors, PhysicsError::refused(entity, "MassOverride", error));
+            report(
+                &mut errors,
+                PhysicsError::refused(entity, "MassOverride", error),
+            );
         }
     }
 }
@@ -548,7 +578,10 @@ pub(crate) fn apply_forces(
         if let Err(error) = result
             && force.is_changed()
         {
-            report(&mut errors, PhysicsError::refused(entity, "ExternalForce", error));
+            report(
+                &mut errors,
+                PhysicsError::refused(entity, "ExternalForce", error),
+            );
         }
     }
     for (entity, mut impulse) in &mut impulses {
@@ -564,7 +597,10 @@ pub(crate) fn apply_forces(
             body.apply_angular_impulse(impulse.angular_impulse)
         });
         if let Err(error) = result {
-            report(&mut errors, PhysicsError::refused(entity, "ExternalImpulse", error));
+            report(
+                &mut errors,
+                PhysicsError::refused(entity, "ExternalImpulse", error),
+            );
         }
         // One-shot: a refused impulse is dropped too, not refused again at every step.
         *impulse = ExternalImpulse::default();
@@ -579,7 +615,10 @@ pub(crate) fn apply_forces(
         if let Err(error) = physics.world.set_kinematic_target(handle, target.pose())
             && target.is_changed()
         {
-            report(&mut errors, PhysicsError::refused(entity, "KinematicTarget", error));
+            report(
+                &mut errors,
+                PhysicsError::refused(entity, "KinematicTarget", error),
+            );
         }
     }
 }
@@ -601,10 +640,16 @@ fn edit_copy(
     Ok(())
 }
 
+/// The order new entities reach the world in: by index, then generation — for fresh entities, the order they
+/// were spawned in. (`Entity`'s own `Ord` compares its bit pattern, which runs the other way.)
+pub(crate) fn spawn_order(entity: Entity) -> (u32, u64) {
+    (entity.index_u32(), entity.to_bits())
+}
+
 /// The entities of an iterator, sorted (removal order does not depend on the ECS's internal order).
 fn sorted(entities: impl Iterator<Item = Entity>) -> Vec<Entity> {
     let mut entities: Vec<Entity> = entities.collect();
-    entities.sort_unstable();
+    entities.sort_unstable_by_key(|&entity| spawn_order(entity));
     entities.dedup();
     entities
 }

@@ -147,10 +147,10 @@ impl SpatialQuery<'_> {
         max_distance: f32,
         filter: &SpatialQueryFilter,
     ) -> Result<Option<EntityRayHit>, rebound::Error> {
-        let hit = self
-            .physics
-            .world
-            .cast_ray(origin, direction, max_distance, &self.filter(filter))?;
+        let hit =
+            self.physics
+                .world
+                .cast_ray(origin, direction, max_distance, &self.filter(filter))?;
         Ok(hit.and_then(|hit| self.ray_hit(hit)))
     }
 
@@ -182,7 +182,10 @@ impl SpatialQuery<'_> {
             max_distance,
             &self.filter(filter),
         )?;
-        Ok(hits.into_iter().filter_map(|hit| self.ray_hit(hit)).collect())
+        Ok(hits
+            .into_iter()
+            .filter_map(|hit| self.ray_hit(hit))
+            .collect())
     }
 
     /// Sweeps `shape` from `pose` along `direction` for up to `max_distance` (m) and returns the first collider
@@ -273,7 +276,10 @@ impl SpatialQuery<'_> {
         direction: Vec3,
         max_distance: f32,
     ) -> Result<Option<EntityPickHit>, rebound::Error> {
-        let hit = self.physics.world.pick_body(origin, direction, max_distance)?;
+        let hit = self
+            .physics
+            .world
+            .pick_body(origin, direction, max_distance)?;
         Ok(hit.and_then(|hit| {
             let (collider, body) = self.entities(hit.collider, hit.body)?;
             Some(EntityPickHit {

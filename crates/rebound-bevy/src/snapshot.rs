@@ -58,7 +58,9 @@ impl PhysicsState {
             .iter()
             .map(|(&entity, &joint)| (joint, entity))
             .collect();
-        physics.pending_colliders.clone_from(&self.pending_colliders);
+        physics
+            .pending_colliders
+            .clone_from(&self.pending_colliders);
         physics.pending_joints.clone_from(&self.pending_joints);
         physics.mass_dirty.clear();
         physics.removed_bodies.clear();

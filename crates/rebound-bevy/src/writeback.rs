@@ -4,7 +4,9 @@
 //! step's events with entities.
 
 use crate::prepare::{same_pose, same_vec3};
-use crate::{Body, Physics, PhysicsEvent, PhysicsSettings, Sleeping, TransformInterpolation, Velocity};
+use crate::{
+    Body, Physics, PhysicsEvent, PhysicsSettings, Sleeping, TransformInterpolation, Velocity,
+};
 use bevy_ecs::entity::Entity;
 use bevy_ecs::message::MessageWriter;
 use bevy_ecs::query::{Has, With};

@@ -29,18 +29,30 @@ fn ball_entity_matches_facade_ball_bit_for_bit() {
 
     // The facade world built with the calls the plugin makes: bodies in entity order, then colliders.
     let mut facade = PhysicsWorld::new(WorldSettings::default()).unwrap();
-    let ground_body = facade.insert_body(BodyDesc::fixed().with_position(ground_pose)).unwrap();
-    let ball_body = facade.insert_body(BodyDesc::dynamic().with_position(start)).unwrap();
+    let ground_body = facade
+        .insert_body(BodyDesc::fixed().with_position(ground_pose))
+        .unwrap();
+    let ball_body = facade
+        .insert_body(BodyDesc::dynamic().with_position(start))
+        .unwrap();
     facade.insert_collider(ground_desc, ground_body).unwrap();
     facade.insert_collider(ball_desc, ball_body).unwrap();
 
     let dt = dt(&app);
-    assert_eq!(dt.to_bits(), (1.0f32 / 64.0).to_bits(), "Bevy's default fixed timestep");
+    assert_eq!(
+        dt.to_bits(),
+        (1.0f32 / 64.0).to_bits(),
+        "Bevy's default fixed timestep"
+    );
     let mut touched = false;
     for frame in 1..=400 {
         app.update();
         facade.step(dt);
-        assert_eq!(physics(&app).world().step_count(), frame, "one step per frame");
+        assert_eq!(
+            physics(&app).world().step_count(),
+            frame,
+            "one step per frame"
+        );
         assert_eq!(
             physics(&app).state_digest(),
             facade.state_digest(),
@@ -54,5 +66,8 @@ fn ball_entity_matches_facade_ball_bit_for_bit() {
     }
     assert!(touched, "the ball reached the ground");
     let y = app.world().get::<Transform>(ball).unwrap().translation.y;
-    assert!((y - 0.5).abs() < 0.02, "resting on the ground (top at y = 0): {y}");
+    assert!(
+        (y - 0.5).abs() < 0.02,
+        "resting on the ground (top at y = 0): {y}"
+    );
 }

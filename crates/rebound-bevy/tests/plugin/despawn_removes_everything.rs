@@ -48,15 +48,27 @@ fn despawning_a_body_removes_its_colliders_and_joints() {
         ))
         .id();
     app.update();
-    assert_eq!(counts(&app), (2, 3, 1), "two bodies, three colliders, a joint");
+    assert_eq!(
+        counts(&app),
+        (2, 3, 1),
+        "two bodies, three colliders, a joint"
+    );
     let handle = physics(&app).collider_handle(child).unwrap();
     let on = physics(&app).world().collider(handle).unwrap();
-    assert_eq!(Some(on.body()), physics(&app).body_handle(car), "child collider on the parent's body");
+    assert_eq!(
+        Some(on.body()),
+        physics(&app).body_handle(car),
+        "child collider on the parent's body"
+    );
     assert_eq!(on.local_pose().position, Vec3::new(1.0, 0.0, 0.0));
 
     app.world_mut().despawn(car);
     app.update();
-    assert_eq!(counts(&app), (1, 1, 0), "the car's body, both its colliders and the joint are gone");
+    assert_eq!(
+        counts(&app),
+        (1, 1, 0),
+        "the car's body, both its colliders and the joint are gone"
+    );
     let physics = physics(&app);
     assert_eq!(physics.body_handle(car), None);
     assert_eq!(physics.collider_handle(child), None);
@@ -67,7 +79,10 @@ fn despawning_a_body_removes_its_colliders_and_joints() {
 #[test]
 fn despawning_a_collider_or_joint_entity_removes_only_it() {
     let mut app = app();
-    let a = app.world_mut().spawn((Body::fixed(), Collider::ball(0.2))).id();
+    let a = app
+        .world_mut()
+        .spawn((Body::fixed(), Collider::ball(0.2)))
+        .id();
     let b = app
         .world_mut()
         .spawn((Body::dynamic(), Transform::from_xyz(0.0, -1.0, 0.0)))

@@ -52,7 +52,10 @@ fn contact_sensor_and_sleep_events_name_the_entities() {
             _ => false,
         }
     };
-    assert!(seen.iter().any(pair(ground, ball)), "contact ground-ball: {seen:?}");
+    assert!(
+        seen.iter().any(pair(ground, ball)),
+        "contact ground-ball: {seen:?}"
+    );
     assert!(
         seen.contains(&PhysicsEvent::SensorEntered {
             sensor,
@@ -71,7 +74,10 @@ fn contact_sensor_and_sleep_events_name_the_entities() {
         .iter()
         .position(|e| matches!(e, PhysicsEvent::SensorEntered { .. }));
     let touched = seen.iter().position(pair(ground, ball));
-    assert!(entered < touched, "through the sensor before reaching the ground");
+    assert!(
+        entered < touched,
+        "through the sensor before reaching the ground"
+    );
     assert!(
         seen.contains(&PhysicsEvent::BodyFellAsleep { entity: ball }),
         "the ball fell asleep at rest: {seen:?}"
@@ -96,7 +102,10 @@ fn broken_joint_event_names_the_joint_entity() {
         .unwrap()
         .with_break_force(1.0)
         .unwrap();
-    let joint = app.world_mut().spawn(PhysicsJoint::to_world(rope, ball)).id();
+    let joint = app
+        .world_mut()
+        .spawn(PhysicsJoint::to_world(rope, ball))
+        .id();
     let mut seen = Vec::new();
     for _ in 0..10 {
         app.update();

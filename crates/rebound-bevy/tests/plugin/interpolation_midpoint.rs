@@ -4,7 +4,6 @@
 use crate::support::{app_with, body};
 use bevy_time::{Fixed, Time, TimeUpdateStrategy};
 use bevy_transform::components::Transform;
-use core::time::Duration;
 use rebound::prelude::*;
 use rebound_bevy::interpolate_pose;
 use rebound_bevy::prelude::{Body, Collider, TransformInterpolation, Velocity};

@@ -40,8 +40,11 @@ fn restore_replays_bit_identically() {
             .id();
         boxes.push(id);
     }
-    app.world_mut()
-        .spawn(PhysicsJoint::new(Rope::new(2.0).unwrap(), boxes[0], boxes[5]));
+    app.world_mut().spawn(PhysicsJoint::new(
+        Rope::new(2.0).unwrap(),
+        boxes[0],
+        boxes[5],
+    ));
     for _ in 0..30 {
         app.update();
     }
@@ -59,7 +62,11 @@ fn restore_replays_bit_identically() {
         .unwrap();
     for frame in 0..40 {
         app.update();
-        assert_eq!(physics(&app).state_digest(), digests[frame], "frame {frame}");
+        assert_eq!(
+            physics(&app).state_digest(),
+            digests[frame],
+            "frame {frame}"
+        );
         assert_eq!(transforms(&app, &boxes), poses[frame], "frame {frame}");
     }
     assert_ne!(digests[0], digests[39], "the boxes moved in between");

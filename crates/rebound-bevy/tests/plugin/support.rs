@@ -4,10 +4,12 @@ use bevy_app::App;
 use bevy_ecs::entity::Entity;
 use bevy_ecs::message::Messages;
 use bevy_time::{Fixed, Time, TimePlugin, TimeUpdateStrategy};
+use rebound::RigidBody;
 use rebound::prelude::*;
 use rebound_bevy::{Physics, PhysicsError, PhysicsEvent, PhysicsSettings, ReboundPlugin};
 
-/// An app with the plugin on `settings`, running exactly one fixed step per `update`.
+/// An app with the plugin on `settings`, running exactly one fixed step per `update` from now on (Bevy's
+/// clock starts at the first update, which runs no fixed step: it is run here, on an empty world).
 pub fn app_with(settings: WorldSettings) -> App {
     let mut app = App::new();
     app.add_plugins((
@@ -18,6 +20,7 @@ pub fn app_with(settings: WorldSettings) -> App {
         }),
     ));
     app.insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
+    app.update();
     app
 }
 
@@ -28,7 +31,10 @@ pub fn app() -> App {
 
 /// The fixed step length the app uses (s): Bevy's default timestep, 1/64 s, exact in `f32`.
 pub fn dt(app: &App) -> f32 {
-    app.world().resource::<Time<Fixed>>().timestep().as_secs_f32()
+    app.world()
+        .resource::<Time<Fixed>>()
+        .timestep()
+        .as_secs_f32()
 }
 
 /// The physics resource.
@@ -39,7 +45,9 @@ pub fn physics(app: &App) -> &Physics {
 /// The body of an entity in the plugin's world.
 pub fn body(app: &App, entity: Entity) -> Option<&RigidBody> {
     let physics = physics(app);
-    physics.body_handle(entity).and_then(|h| physics.world().body(h))
+    physics
+        .body_handle(entity)
+        .and_then(|h| physics.world().body(h))
 }
 
 /// Takes every physics event sent since the last call.

@@ -19,8 +19,12 @@ fn transform_edit_teleports_the_body() {
         ))
         .id();
     let mut facade = PhysicsWorld::new(WorldSettings::default()).unwrap();
-    let handle = facade.insert_body(BodyDesc::dynamic().with_position(start)).unwrap();
-    facade.insert_collider(ColliderDesc::ball(0.5), handle).unwrap();
+    let handle = facade
+        .insert_body(BodyDesc::dynamic().with_position(start))
+        .unwrap();
+    facade
+        .insert_collider(ColliderDesc::ball(0.5), handle)
+        .unwrap();
     let dt = dt(&app);
     for _ in 0..10 {
         app.update();
@@ -44,7 +48,11 @@ fn transform_edit_teleports_the_body() {
     let moved = body(&app, ball).unwrap().position();
     assert!(moved.distance(target.position) < 0.1, "teleported: {moved}");
     let transform = app.world().get::<Transform>(ball).unwrap();
-    assert_eq!(transform.translation.to_array(), moved.to_array(), "written back");
+    assert_eq!(
+        transform.translation.to_array(),
+        moved.to_array(),
+        "written back"
+    );
     for _ in 0..5 {
         app.update();
         facade.step(dt);
@@ -64,5 +72,8 @@ fn velocity_edit_sets_the_velocity() {
     app.update();
     let x = body(&app, ball).unwrap().position().x;
     let expected = 2.0 * dt(&app);
-    assert!((x - expected).abs() < 1e-6, "x = v·dt without gravity: {x} vs {expected}");
+    assert!(
+        (x - expected).abs() < 1e-6,
+        "x = v·dt without gravity: {x} vs {expected}"
+    );
 }
