@@ -6,6 +6,10 @@
 //! Run: `cargo run -p rebound-bevy --example car`
 
 #![allow(clippy::print_stdout, reason = "an example prints its results")]
+#![allow(
+    clippy::needless_pass_by_value,
+    reason = "Bevy system parameters are passed by value"
+)]
 
 use bevy_app::{App, AppExit, ScheduleRunnerPlugin, Update};
 use bevy_ecs::prelude::*;
@@ -109,7 +113,7 @@ fn report(
         return;
     };
     *max_tilt = max_tilt.max((transform.rotation * Vec3::Y).angle_between(Vec3::Y));
-    if *frame % 64 == 0 {
+    if frame.is_multiple_of(64) {
         println!(
             "t = {:.0} s: chassis at x = {:6.2} m, y = {:.2} m, speed {:.2} m/s",
             *frame as f32 / 64.0,

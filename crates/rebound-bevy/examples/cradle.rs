@@ -5,6 +5,10 @@
 //! Run: `cargo run -p rebound-bevy --example cradle`
 
 #![allow(clippy::print_stdout, reason = "an example prints its results")]
+#![allow(
+    clippy::needless_pass_by_value,
+    reason = "Bevy system parameters are passed by value"
+)]
 
 use bevy_app::{App, AppExit, ScheduleRunnerPlugin, Update};
 use bevy_ecs::prelude::*;

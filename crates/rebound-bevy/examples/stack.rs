@@ -4,6 +4,10 @@
 //! Run: `cargo run -p rebound-bevy --example stack`
 
 #![allow(clippy::print_stdout, reason = "an example prints its results")]
+#![allow(
+    clippy::needless_pass_by_value,
+    reason = "Bevy system parameters are passed by value"
+)]
 
 use bevy_app::{App, AppExit, ScheduleRunnerPlugin, Update};
 use bevy_ecs::prelude::*;
@@ -64,7 +68,7 @@ fn report(
 ) {
     *frame += 1;
     let y = |e: Entity| transforms.get(e).map_or(f32::NAN, |t| t.translation.y);
-    if *frame % 64 == 0 {
+    if frame.is_multiple_of(64) {
         let top = stack.0.last().map_or(f32::NAN, |&e| y(e));
         let asleep = stack
             .0

@@ -1,4 +1,14 @@
 #![doc = include_str!("../README.md")]
+// Bevy systems take their parameters (`Res`, `Query`) by value and spell out their queries' types: the two
+// lints Bevy itself allows for the same reason.
+#![allow(
+    clippy::needless_pass_by_value,
+    reason = "Bevy system parameters are passed by value"
+)]
+#![allow(
+    clippy::type_complexity,
+    reason = "Bevy queries are spelled out in system signatures"
+)]
 
 mod body;
 mod collider;

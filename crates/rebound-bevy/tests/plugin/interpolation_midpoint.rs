@@ -1,9 +1,10 @@
 //! With `TransformInterpolation`, a frame that ends halfway between two fixed steps (overstep fraction 0.5)
 //! shows the midpoint of the body's last two physics poses: the mean position and the half-way rotation.
 
-use crate::support::{app_with, body};
+use crate::support::{app_with, bits, body};
 use bevy_time::{Fixed, Time, TimeUpdateStrategy};
 use bevy_transform::components::Transform;
+use rebound::RigidBody;
 use rebound::prelude::*;
 use rebound_bevy::interpolate_pose;
 use rebound_bevy::prelude::{Body, Collider, TransformInterpolation, Velocity};
@@ -35,7 +36,7 @@ fn interpolated_transform_at_half_a_step_is_the_midpoint_pose() {
             // The test sees only the pose after the frame's last step; with one or two steps per frame, keep
             // the pose of the step before from the last frame only when exactly one step ran.
             previous = if count == steps + 1 { current } else { None };
-            current = body(&app, ball).map(|b| b.pose());
+            current = body(&app, ball).map(RigidBody::pose);
             steps = count;
         }
         let alpha = app.world().resource::<Time<Fixed>>().overstep_fraction();
@@ -47,8 +48,14 @@ fn interpolated_transform_at_half_a_step_is_the_midpoint_pose() {
         }
         let shown = app.world().get::<Transform>(ball).unwrap();
         let expected = interpolate_pose(previous, current, 0.5);
-        assert_eq!(shown.translation.to_array(), expected.position.to_array());
-        assert_eq!(shown.rotation.to_array(), expected.rotation.to_array());
+        assert_eq!(
+            bits(shown.translation.to_array()),
+            bits(expected.position.to_array())
+        );
+        assert_eq!(
+            bits(shown.rotation.to_array()),
+            bits(expected.rotation.to_array())
+        );
         let mean = (previous.position + current.position) * 0.5;
         assert!(shown.translation.distance(mean) < 1e-5, "the mean position");
         let to_previous = shown.rotation.angle_between(previous.rotation);

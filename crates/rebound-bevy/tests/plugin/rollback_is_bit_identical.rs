@@ -1,19 +1,19 @@
 //! Rolling back: a snapshot taken mid-run and restored later makes the app replay the same frames bit for bit
 //! — the same state digests and the same `Transform`s — through contacts, a joint and a pile of boxes.
 
-use crate::support::{app, physics};
+use crate::support::{app, bits, physics};
 use bevy_ecs::entity::Entity;
 use bevy_transform::components::Transform;
 use rebound::prelude::*;
 use rebound_bevy::prelude::{Body, Collider, PhysicsJoint};
 
-fn transforms(app: &bevy_app::App, entities: &[Entity]) -> Vec<[f32; 7]> {
+fn transforms(app: &bevy_app::App, entities: &[Entity]) -> Vec<[u32; 7]> {
     entities
         .iter()
         .map(|&e| {
-            let t = app.world().get::<Transform>(e).unwrap();
+            let t = app.world().get::<Transform>(e).expect("a body entity");
             let (p, q) = (t.translation, t.rotation);
-            [p.x, p.y, p.z, q.x, q.y, q.z, q.w]
+            bits([p.x, p.y, p.z, q.x, q.y, q.z, q.w])
         })
         .collect()
 }

@@ -61,3 +61,8 @@ pub fn take_errors(app: &mut App) -> Vec<PhysicsError> {
     let mut messages = app.world_mut().resource_mut::<Messages<PhysicsError>>();
     messages.drain().collect()
 }
+
+/// The bit patterns of some floats, for bit-exact comparisons.
+pub fn bits<const N: usize>(values: [f32; N]) -> [u32; N] {
+    values.map(f32::to_bits)
+}
