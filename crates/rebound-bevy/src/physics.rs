@@ -52,6 +52,8 @@ pub struct Physics {
     pub(crate) collider_entities: BTreeMap<ColliderHandle, Entity>,
     pub(crate) joints: BTreeMap<Entity, JointHandle>,
     pub(crate) joint_entities: BTreeMap<JointHandle, Entity>,
+    /// Body entities the world refused; tried again when their `Transform` or `Velocity` changes.
+    pub(crate) refused_bodies: BTreeSet<Entity>,
     /// Collider entities waiting for their body to exist.
     pub(crate) pending_colliders: BTreeSet<Entity>,
     /// Joint entities waiting for their bodies to exist.
@@ -80,6 +82,7 @@ impl Physics {
             collider_entities: BTreeMap::new(),
             joints: BTreeMap::new(),
             joint_entities: BTreeMap::new(),
+            refused_bodies: BTreeSet::new(),
             pending_colliders: BTreeSet::new(),
             pending_joints: BTreeSet::new(),
             mass_dirty: BTreeSet::new(),
@@ -154,7 +157,7 @@ impl Physics {
     /// Rolls the physics back to `state`. The next physics step first writes the restored poses,
     /// velocities and sleep states to the body entities' components (so they are not mistaken for edits),
     /// then steps on. Entities spawned after the snapshot keep their components but lose their bodies
-    /// until those components change; despawn them on rollback.
+    /// until their `Body` changes; despawn them on rollback.
     ///
     /// # Errors
     /// [`rebound::Error::BadSnapshot`] for a snapshot the world refuses; nothing changes.

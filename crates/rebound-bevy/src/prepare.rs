@@ -19,7 +19,7 @@ use bevy_ecs::entity::Entity;
 use bevy_ecs::hierarchy::ChildOf;
 use bevy_ecs::lifecycle::RemovedComponents;
 use bevy_ecs::message::MessageWriter;
-use bevy_ecs::query::{Changed, Or, With, Without};
+use bevy_ecs::query::{Changed, With, Without};
 use bevy_ecs::system::{Query, Res, ResMut};
 use bevy_transform::components::Transform;
 use rebound::prelude::{BodyType, MassProperties, Pose, Vec3};
@@ -82,6 +82,7 @@ pub(crate) fn remove_despawned(
         }
     }
     for entity in sorted(removed_bodies.read()) {
+        physics.refused_bodies.remove(&entity);
         if let Some(record) = physics.bodies.get(&entity).copied() {
             let _ = physics.world.remove_body(record.handle);
             physics.forget_body(entity, record.handle);
@@ -92,44 +93,51 @@ pub(crate) fn remove_despawned(
 /// Inserts new bodies (and retries refused ones whose components changed), and applies `Body` edits.
 pub(crate) fn insert_bodies(
     mut physics: ResMut<'_, Physics>,
+    changed: Query<'_, '_, Entity, Changed<Body>>,
     query: Query<
         '_,
         '_,
         (
-            Entity,
             Ref<'_, Body>,
-            &Transform,
-            &Velocity,
+            Ref<'_, Transform>,
+            Ref<'_, Velocity>,
             &Sleeping,
             Option<&MassOverride>,
         ),
-        Or<(Changed<Body>, Changed<Transform>, Changed<Velocity>)>,
     >,
     mut errors: MessageWriter<'_, PhysicsError>,
 ) {
-    let mut todo: Vec<Entity> = query
-        .iter()
-        .filter(|(entity, body, ..)| body.is_changed() || !physics.bodies.contains_key(entity))
-        .map(|(entity, ..)| entity)
-        .collect();
+    // New or edited bodies, and refused ones whose pose or velocity has changed since.
+    let mut todo: Vec<Entity> = changed.iter().collect();
+    let physics = &mut *physics;
+    physics
+        .refused_bodies
+        .retain(|&entity| query.contains(entity));
+    todo.extend(physics.refused_bodies.iter().copied().filter(|&entity| {
+        query.get(entity).is_ok_and(|(_, transform, velocity, ..)| {
+            transform.is_changed() || velocity.is_changed()
+        })
+    }));
     if todo.is_empty() {
         return;
     }
     todo.sort_unstable_by_key(|&entity| spawn_order(entity));
+    todo.dedup();
     for entity in todo {
-        let Ok((_, body, transform, velocity, sleeping, mass)) = query.get(entity) else {
+        let Ok((body, transform, velocity, sleeping, mass)) = query.get(entity) else {
             continue;
         };
         if let Some(record) = physics.bodies.get(&entity).copied() {
-            if let Err(error) = edit_body(&mut physics, record.handle, &body) {
+            if let Err(error) = edit_body(physics, record.handle, &body) {
                 report(&mut errors, PhysicsError::refused(entity, "Body", error));
             }
             continue;
         }
-        let pose = pose_of(transform);
+        let pose = pose_of(&transform);
         let desc = body.desc(pose, *velocity, sleeping.0, mass.map(|m| m.0));
         match physics.world.insert_body(desc) {
             Ok(handle) => {
+                physics.refused_bodies.remove(&entity);
                 physics.bodies.insert(
                     entity,
                     BodyRecord {
@@ -143,7 +151,10 @@ pub(crate) fn insert_bodies(
                 );
                 physics.body_entities.insert(handle, entity);
             }
-            Err(error) => report(&mut errors, PhysicsError::refused(entity, "Body", error)),
+            Err(error) => {
+                physics.refused_bodies.insert(entity);
+                report(&mut errors, PhysicsError::refused(entity, "Body", error));
+            }
         }
     }
 }
@@ -209,21 +220,19 @@ pub(crate) fn sync_body_edits(
         }
         return;
     }
-    for (entity, transform, velocity, sleeping) in &mut query {
+    // Walking the ordered table and looking each entity up is cheaper than a table lookup per entity.
+    let Physics { world, bodies, .. } = physics;
+    for (&entity, record) in bodies.iter_mut() {
+        let Ok((_, transform, velocity, sleeping)) = query.get_mut(entity) else {
+            continue;
+        };
         if !(transform.is_changed() || velocity.is_changed() || sleeping.is_changed()) {
             continue;
         }
-        let Some(record) = physics.bodies.get_mut(&entity) else {
-            continue;
-        };
         let pose = pose_of(&transform);
         if !same_pose(pose, record.written_pose) {
             record.written_pose = pose;
-            match physics
-                .world
-                .body_mut(record.handle)
-                .map(|b| b.set_pose(pose))
-            {
+            match world.body_mut(record.handle).map(|b| b.set_pose(pose)) {
                 Some(Ok(())) => {
                     record.previous_pose = pose;
                     record.current_pose = pose;
@@ -242,7 +251,7 @@ pub(crate) fn sync_body_edits(
             || !same_vec3(value.1, record.written_velocity.1)
         {
             record.written_velocity = value;
-            if let Err(error) = set_velocity(&mut physics.world, record.handle, value) {
+            if let Err(error) = set_velocity(world, record.handle, value) {
                 report(
                     &mut errors,
                     PhysicsError::refused(entity, "Velocity", error),
@@ -252,10 +261,10 @@ pub(crate) fn sync_body_edits(
         if sleeping.0 != record.written_sleeping {
             record.written_sleeping = sleeping.0;
             if sleeping.0 {
-                if let Some(body) = physics.world.body_mut(record.handle) {
+                if let Some(body) = world.body_mut(record.handle) {
                     body.set_sleeping(true);
                 }
-            } else if let Err(error) = physics.world.wake_body(record.handle) {
+            } else if let Err(error) = world.wake_body(record.handle) {
                 report(
                     &mut errors,
                     PhysicsError::refused(entity, "Sleeping", error),

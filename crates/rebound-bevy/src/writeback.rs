@@ -7,7 +7,6 @@ use crate::prepare::{same_pose, same_vec3};
 use crate::{
     Body, Physics, PhysicsEvent, PhysicsSettings, Sleeping, TransformInterpolation, Velocity,
 };
-use bevy_ecs::entity::Entity;
 use bevy_ecs::message::MessageWriter;
 use bevy_ecs::query::{Has, With};
 use bevy_ecs::system::{Query, Res, ResMut};
@@ -41,7 +40,6 @@ pub(crate) fn writeback(
         '_,
         '_,
         (
-            Entity,
             &mut Transform,
             &mut Velocity,
             &mut Sleeping,
@@ -55,11 +53,14 @@ pub(crate) fn writeback(
     if !physics.stepped {
         return;
     }
-    for (entity, mut transform, mut velocity, mut sleeping, interpolated) in &mut query {
-        let Some(record) = physics.bodies.get_mut(&entity) else {
+    // Walking the ordered table and looking each entity up is cheaper than a table lookup per entity.
+    let Physics { world, bodies, .. } = physics;
+    for (&entity, record) in bodies.iter_mut() {
+        let Ok((mut transform, mut velocity, mut sleeping, interpolated)) = query.get_mut(entity)
+        else {
             continue;
         };
-        let Some(body) = physics.world.body(record.handle) else {
+        let Some(body) = world.body(record.handle) else {
             continue;
         };
         let pose = body.pose();
@@ -78,7 +79,7 @@ pub(crate) fn writeback(
             *velocity = Velocity::new(linear, angular);
             record.written_velocity = (linear, angular);
         }
-        let asleep = physics.world.is_sleeping(record.handle).unwrap_or(false);
+        let asleep = world.is_sleeping(record.handle).unwrap_or(false);
         if asleep != record.written_sleeping {
             sleeping.0 = asleep;
             record.written_sleeping = asleep;
