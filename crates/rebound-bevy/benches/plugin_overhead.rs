@@ -44,6 +44,8 @@ fn plugin_app() -> App {
     ));
     app.insert_resource(Time::<Fixed>::from_duration(Duration::from_secs_f32(DT)));
     app.insert_resource(TimeUpdateStrategy::FixedTimesteps(1));
+    // Bevy's clock starts at the first update, which runs no fixed step.
+    app.update();
     app.world_mut().spawn((
         Body::fixed(),
         Collider::cuboid(Vec3::new(100.0, 0.5, 100.0)),
