@@ -14,8 +14,8 @@ use rebound::prelude::Joint;
 ///   error ([`crate::PhysicsError::NotABody`]).
 ///
 /// Editing the component updates the joint in place when it joins the same bodies (its accumulated impulses
-/// are kept) and re-creates it otherwise. Despawning either body removes the joint; it comes back if the
-/// body is spawned again under the same entity (the component still names it).
+/// are kept) and re-creates it otherwise. Despawning either body removes the joint; it comes back if that
+/// entity gets a `Body` again (the component still names it).
 ///
 /// ```
 /// use bevy_ecs::world::World;
