@@ -409,6 +409,30 @@ impl Joint {
         self.set_motor(Some(motor))
     }
 
+    /// The limits of a hinge (rad), prismatic joint (m) or wheel suspension (m), if it has any; `None` for
+    /// other kinds. See [`Joint::set_limits`].
+    #[must_use]
+    pub fn limits(&self) -> Option<Limits> {
+        match &self.kind {
+            JointKind::Hinge(j) => j.limits(),
+            JointKind::Prismatic(j) => j.limits(),
+            JointKind::Wheel(j) => j.suspension_limits(),
+            _ => None,
+        }
+    }
+
+    /// The length of a distance joint (m): a spring's rest length, a rope's maximum length or a rod's length;
+    /// `None` for other kinds. See [`Joint::set_length`].
+    #[must_use]
+    pub fn length(&self) -> Option<f32> {
+        match &self.kind {
+            JointKind::Spring(s) => Some(s.rest_length()),
+            JointKind::Rope(r) => Some(r.max_length()),
+            JointKind::Rod(r) => Some(r.length()),
+            _ => None,
+        }
+    }
+
     /// Sets or removes the limits of a hinge (rad, within `[−π, π]`), prismatic joint (m) or wheel suspension
     /// (m); nothing changes on error.
     ///
@@ -548,6 +572,20 @@ pub struct JointBodies {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn limits_and_length_read_back_what_their_setters_set() {
+        let mut hinge = Joint::new(HingeJoint::new());
+        assert_eq!(hinge.limits(), None);
+        let limits = Limits::new(-0.5, 0.25).unwrap();
+        hinge.set_limits(Some(limits)).unwrap();
+        assert_eq!(hinge.limits(), Some(limits));
+        assert_eq!(hinge.length(), None);
+        let mut rope = Joint::new(Rope::new(2.0).unwrap());
+        rope.set_length(3.0).unwrap();
+        assert_eq!(rope.length(), Some(3.0));
+        assert_eq!(rope.limits(), None);
+    }
 
     #[test]
     fn bases_put_x_on_the_axis_and_y_on_the_secondary_direction() {

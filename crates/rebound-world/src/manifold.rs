@@ -3,7 +3,7 @@
 //! the `rebound` facade implements the trait with parry3d; [`crate::testing`] has a small one for tests.
 
 use crate::{BodyHandle, BodySet, WorldSettings};
-use rebound_math::{Quat, Vec3};
+use rebound_math::{Pose, Quat, Vec3};
 
 /// The most points a manifold carries.
 pub const MAX_MANIFOLD_POINTS: usize = rebound_dynamics::MAX_CONTACT_POINTS;
@@ -59,6 +59,16 @@ fn tolerance_squared(fresh: Vec3) -> f32 {
 }
 
 impl ManifoldPoint {
+    /// The contact point in world space (m) for bodies A and B at `pose_a` and `pose_b`: the midpoint of the
+    /// point's anchor on A and its anchor on B (which lie `separation` apart along the normal), as debug
+    /// drawing and recordings show it.
+    #[inline]
+    #[must_use]
+    pub fn world_point(&self, pose_a: Pose, pose_b: Pose) -> Vec3 {
+        (pose_a.transform_point(self.local_anchor_a) + pose_b.transform_point(self.local_anchor_b))
+            * 0.5
+    }
+
     /// Sets [`ManifoldPoint::solver_lever_arms`] from the fresh lever arms (`fresh[0]` from A's centre of mass,
     /// `fresh[1]` from B's, world axes, m) and last step's points of the same manifold: the kept lever arms of
     /// the old point with this point's feature id if both are within tolerance ([`LEVER_ARM_TOLERANCE`]) of
@@ -258,6 +268,23 @@ mod tests {
             feature_id,
             ..ManifoldPoint::default()
         }
+    }
+
+    #[test]
+    fn the_world_point_is_the_midpoint_of_the_two_anchors() {
+        let point = ManifoldPoint {
+            local_anchor_a: Vec3::new(0.0, -0.5, 0.0),
+            local_anchor_b: Vec3::new(0.0, 0.5, 0.0),
+            ..ManifoldPoint::default()
+        };
+        // A's anchor at (1, 0.5, 0), B's (rotated a half turn about z) at (1, 0.3, 0): 0.2 m of overlap.
+        let pose_a = Pose::from_position(Vec3::new(1.0, 1.0, 0.0));
+        let pose_b = Pose::new(
+            Vec3::new(1.0, 0.8, 0.0),
+            Quat::from_rotation_z(std::f32::consts::PI),
+        );
+        let p = point.world_point(pose_a, pose_b);
+        assert!((p - Vec3::new(1.0, 0.4, 0.0)).length() < 1e-6, "{p}");
     }
 
     #[test]

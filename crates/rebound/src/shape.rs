@@ -182,6 +182,27 @@ impl ColliderShape {
         }
     }
 
+    /// The surface of a [`ColliderShape::ConvexHull`] as parry3d builds it: the points on the hull and
+    /// triangles indexing them, counter-clockwise seen from outside (a face with more than three corners
+    /// comes as several triangles) — what a renderer draws. `None` for the other kinds and for points that
+    /// make no hull ([`ColliderShape::to_parry`] says why).
+    ///
+    /// ```
+    /// use rebound::{ColliderShape, Vec3};
+    /// let corners = (0..8).map(|i| Vec3::new((i & 1) as f32, (i >> 1 & 1) as f32, (i >> 2) as f32));
+    /// let cube = ColliderShape::ConvexHull { points: corners.collect() };
+    /// let (vertices, triangles) = cube.convex_hull_mesh().unwrap();
+    /// assert_eq!((vertices.len(), triangles.len()), (8, 12));
+    /// ```
+    #[must_use]
+    pub fn convex_hull_mesh(&self) -> Option<(Vec<Vec3>, Vec<[u32; 3]>)> {
+        let Self::ConvexHull { points } = self else {
+            return None;
+        };
+        let shape = convex_hull(points).ok()?;
+        Some(shape.as_convex_polyhedron()?.to_trimesh())
+    }
+
     /// Checks the description without keeping the parry shape.
     ///
     /// # Errors

@@ -1,0 +1,214 @@
+//! Writing the bytes of `docs/recording.md`: the file header with the manifest, and a frame with its length
+//! prefix. Pure functions from the plain-data types to bytes; the [`crate::Recorder`] decides what goes in.
+
+use crate::NONE;
+use crate::error::RecordingError;
+use crate::format::{
+    BODY_KIND_SHIFT, BODY_PRESENT, BODY_SLEEPING, JOINT_BROKEN, JOINT_PRESENT, MAGIC, VERSION,
+    pad4, payload_len,
+};
+use crate::frame::{Frame, RecordedEvent};
+use crate::manifest::Manifest;
+use rebound::{Quat, Vec3};
+
+/// Appends `value` as JSON padded with spaces to a multiple of 4 bytes; returns the padded length.
+fn put_json(
+    out: &mut Vec<u8>,
+    value: &impl serde::Serialize,
+    what: &'static str,
+    offset: u64,
+) -> Result<usize, RecordingError> {
+    let start = out.len();
+    serde_json::to_writer(&mut *out, value).map_err(|e| RecordingError::Json {
+        what,
+        offset,
+        message: e.to_string(),
+    })?;
+    let len = pad4(out.len() - start);
+    out.resize(start + len, b' ');
+    Ok(len)
+}
+
+/// A count as the `u32` the format stores.
+fn count(what: &'static str, n: usize) -> Result<u32, RecordingError> {
+    u32::try_from(n).map_err(|_| RecordingError::TooMany {
+        what,
+        count: n as u64,
+    })
+}
+
+fn put_u32(out: &mut Vec<u8>, v: u32) {
+    out.extend_from_slice(&v.to_le_bytes());
+}
+
+fn put_f32(out: &mut Vec<u8>, v: f32) {
+    out.extend_from_slice(&v.to_le_bytes());
+}
+
+/// `N` little-endian 32-bit words as bytes, so that an entry is appended in one piece (one capacity check
+/// per entry rather than per number: the body and contact blocks are most of a frame).
+fn words<const N: usize, const B: usize>(values: [u32; N]) -> [u8; B] {
+    debug_assert_eq!(B, 4 * N);
+    let mut bytes = [0; B];
+    for (chunk, v) in bytes.chunks_exact_mut(4).zip(values) {
+        chunk.copy_from_slice(&v.to_le_bytes());
+    }
+    bytes
+}
+
+fn put_vec3(out: &mut Vec<u8>, v: Vec3) {
+    out.extend_from_slice(&words::<3, 12>(v.to_array().map(f32::to_bits)));
+}
+
+fn put_quat(out: &mut Vec<u8>, q: Quat) {
+    out.extend_from_slice(&words::<4, 16>(q.to_array().map(f32::to_bits)));
+}
+
+/// Writes the 16-byte file header and the padded manifest into `out` (cleared first).
+///
+/// # Errors
+/// [`RecordingError::Json`] if the manifest cannot be serialised, [`RecordingError::TooMany`] if it is
+/// longer than 4 GiB.
+pub(crate) fn encode_header(manifest: &Manifest, out: &mut Vec<u8>) -> Result<(), RecordingError> {
+    out.clear();
+    out.extend_from_slice(&MAGIC);
+    put_u32(out, VERSION);
+    put_u32(out, 0);
+    let len = put_json(out, manifest, "manifest", 16)?;
+    let len = count("manifest bytes", len)?;
+    out[12..16].copy_from_slice(&len.to_le_bytes());
+    Ok(())
+}
+
+/// Writes `frame` with its length prefix into `out` (cleared first); `offset` is where the frame will
+/// start in the file, for error messages.
+///
+/// # Errors
+/// [`RecordingError::TooMany`] for counts or a payload beyond `u32`; [`RecordingError::Json`] if the
+/// changes cannot be serialised.
+pub(crate) fn encode_frame(
+    frame: &Frame,
+    offset: u64,
+    out: &mut Vec<u8>,
+) -> Result<(), RecordingError> {
+    out.clear();
+    let nb = frame.bodies.len();
+    let nc = frame.contacts.len();
+    let nj = frame.joints.len();
+    let ne = frame.events.len();
+    let estimate = payload_len(0, nb, nc, nj, ne).unwrap_or(0);
+    out.reserve(estimate + 4);
+    put_u32(out, 0); // payload length, filled in below
+    out.extend_from_slice(&frame.step.to_le_bytes());
+    out.extend_from_slice(&frame.time.to_le_bytes());
+    put_u32(out, count("bodies", nb)?);
+    put_u32(out, count("contacts", nc)?);
+    put_u32(out, count("joints", nj)?);
+    put_u32(out, count("events", ne)?);
+    put_u32(out, 0); // changes length, filled in below
+    put_u32(out, 0); // reserved
+    let d = &frame.diagnostics;
+    put_f32(out, d.kinetic_energy);
+    put_f32(out, d.potential_energy);
+    put_f32(out, d.spring_energy);
+    put_vec3(out, d.linear_momentum);
+    put_vec3(out, d.angular_momentum);
+    put_f32(out, d.worst_joint_error);
+    put_f32(out, d.deepest_penetration);
+    if let Some(changes) = frame.changes.as_ref().filter(|c| !c.is_empty()) {
+        let len = put_json(out, changes, "changes", offset + 4 + 84)?;
+        let len = count("changes bytes", len)?;
+        out[4 + 32..4 + 36].copy_from_slice(&len.to_le_bytes());
+    }
+    for b in &frame.bodies {
+        put_vec3(out, b.position);
+    }
+    for b in &frame.bodies {
+        put_quat(out, b.rotation);
+    }
+    for b in &frame.bodies {
+        put_vec3(out, b.linear_velocity);
+    }
+    for b in &frame.bodies {
+        put_vec3(out, b.angular_velocity);
+    }
+    for b in &frame.bodies {
+        let mut flags = b.kind.code() << BODY_KIND_SHIFT;
+        if b.present {
+            flags |= BODY_PRESENT;
+        }
+        if b.sleeping {
+            flags |= BODY_SLEEPING;
+        }
+        out.push(flags);
+    }
+    out.resize(out.len() + (pad4(nb) - nb), 0);
+    for c in &frame.contacts {
+        let [px, py, pz] = c.point.to_array().map(f32::to_bits);
+        let [nx, ny, nz] = c.normal.to_array().map(f32::to_bits);
+        out.extend_from_slice(&words::<10, 40>([
+            c.body_a,
+            c.body_b,
+            px,
+            py,
+            pz,
+            nx,
+            ny,
+            nz,
+            c.normal_impulse.to_bits(),
+            c.separation.to_bits(),
+        ]));
+    }
+    for j in &frame.joints {
+        let [ax, ay, az] = j.anchor_a.to_array().map(f32::to_bits);
+        let [bx, by, bz] = j.anchor_b.to_array().map(f32::to_bits);
+        let mut flags = 0;
+        if j.present {
+            flags |= JOINT_PRESENT;
+        }
+        if j.broken {
+            flags |= JOINT_BROKEN;
+        }
+        out.extend_from_slice(&words::<10, 40>([
+            ax,
+            ay,
+            az,
+            bx,
+            by,
+            bz,
+            j.error.to_bits(),
+            j.reaction_force.to_bits(),
+            j.reaction_torque.to_bits(),
+            flags,
+        ]));
+    }
+    for e in &frame.events {
+        let (kind, a, b, value) = event_fields(e);
+        out.extend_from_slice(&words::<4, 16>([
+            kind,
+            a.unwrap_or(NONE),
+            b.unwrap_or(NONE),
+            value.to_bits(),
+        ]));
+    }
+    let len = count("frame payload bytes", out.len() - 4)?;
+    out[0..4].copy_from_slice(&len.to_le_bytes());
+    Ok(())
+}
+
+/// An event's kind code, its two index fields and its value (`docs/recording.md`, EVENT).
+pub(crate) fn event_fields(event: &RecordedEvent) -> (u32, Option<u32>, Option<u32>, f32) {
+    match *event {
+        RecordedEvent::ContactBegan {
+            body_a,
+            body_b,
+            approach_speed,
+        } => (1, body_a, body_b, approach_speed),
+        RecordedEvent::ContactEnded { body_a, body_b } => (2, body_a, body_b, 0.0),
+        RecordedEvent::JointBroken { joint } => (3, joint, None, 0.0),
+        RecordedEvent::BodyFellAsleep { body } => (4, body, None, 0.0),
+        RecordedEvent::BodyWoke { body } => (5, body, None, 0.0),
+        RecordedEvent::SensorEntered { sensor, collider } => (6, sensor, collider, 0.0),
+        RecordedEvent::SensorExited { sensor, collider } => (7, sensor, collider, 0.0),
+    }
+}
