@@ -12,6 +12,7 @@
 
 mod body;
 mod collider;
+mod debug_render;
 mod error;
 mod events;
 mod forces;
@@ -27,9 +28,12 @@ mod writeback;
 
 /// The engine this plugin drives, re-exported so users name the same version.
 pub use rebound;
+/// The debug-draw description the [`PhysicsDebugRender`] resource holds.
+pub use rebound_debug;
 
 pub use body::{Body, KinematicTarget, MassOverride, Sleeping, Velocity};
 pub use collider::Collider;
+pub use debug_render::PhysicsDebugRender;
 pub use error::PhysicsError;
 pub use events::PhysicsEvent;
 pub use forces::{ExternalForce, ExternalImpulse};
@@ -47,9 +51,9 @@ pub use snapshot::PhysicsState;
 pub mod prelude {
     pub use crate::{
         Body, Collider, ExternalForce, ExternalImpulse, KinematicTarget, MassOverride, Physics,
-        PhysicsError, PhysicsEvent, PhysicsJoint, PhysicsSettings, PhysicsState, PhysicsSystems,
-        ReboundPlugin, Sleeping, SpatialQuery, SpatialQueryFilter, TransformInterpolation,
-        Velocity,
+        PhysicsDebugRender, PhysicsError, PhysicsEvent, PhysicsJoint, PhysicsSettings,
+        PhysicsState, PhysicsSystems, ReboundPlugin, Sleeping, SpatialQuery, SpatialQueryFilter,
+        TransformInterpolation, Velocity,
     };
     pub use rebound::prelude::{
         BallJoint, BodyType, ColliderDesc, ColliderShape, CollisionGroups, CombineRule, FixedJoint,

@@ -3,13 +3,14 @@
 //! [`PhysicsSystems::Step`] → [`PhysicsSystems::Writeback`]; transform interpolation runs once per frame after
 //! the fixed main loop.
 
+use crate::debug_render::build_debug_render;
 use crate::interpolation::interpolate_transforms;
 use crate::prepare::{
     apply_forces, apply_mass_overrides, apply_settings, insert_bodies, insert_colliders,
     insert_joints, remove_despawned, sync_body_edits,
 };
 use crate::writeback::{step_world, writeback};
-use crate::{Physics, PhysicsError, PhysicsEvent, PhysicsSettings};
+use crate::{Physics, PhysicsDebugRender, PhysicsError, PhysicsEvent, PhysicsSettings};
 use bevy_app::{App, FixedPostUpdate, Plugin, RunFixedMainLoop, RunFixedMainLoopSystems};
 use bevy_ecs::schedule::{InternedScheduleLabel, IntoScheduleConfigs, ScheduleLabel, SystemSet};
 use rebound::prelude::{PhysicsWorld, WorldSettings};
@@ -23,7 +24,8 @@ pub enum PhysicsSystems {
     Prepare,
     /// The world takes one step of the schedule's `Time` delta.
     Step,
-    /// Poses, velocities and sleep states are written to the components; events are sent.
+    /// Poses, velocities and sleep states are written to the components; events are sent; the debug lines
+    /// ([`crate::PhysicsDebugRender`]) are rebuilt.
     Writeback,
 }
 
@@ -87,6 +89,7 @@ impl Plugin for ReboundPlugin {
         };
         app.insert_resource(self.settings)
             .insert_resource(Physics::new(world))
+            .init_resource::<PhysicsDebugRender>()
             .add_message::<PhysicsEvent>()
             .add_message::<PhysicsError>();
         let schedule = self.schedule;
@@ -115,7 +118,12 @@ impl Plugin for ReboundPlugin {
                 .in_set(PhysicsSystems::Prepare),
         );
         app.add_systems(schedule, step_world.in_set(PhysicsSystems::Step));
-        app.add_systems(schedule, writeback.in_set(PhysicsSystems::Writeback));
+        app.add_systems(
+            schedule,
+            (writeback, build_debug_render)
+                .chain()
+                .in_set(PhysicsSystems::Writeback),
+        );
         app.add_systems(
             RunFixedMainLoop,
             interpolate_transforms.in_set(RunFixedMainLoopSystems::AfterFixedMainLoop),

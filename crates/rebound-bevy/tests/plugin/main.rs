@@ -10,6 +10,7 @@ mod support;
 
 mod bad_values_are_errors;
 mod ball_falls_as_facade;
+mod debug_lines_outline_colliders;
 mod despawn_removes_everything;
 mod events_name_entities;
 mod forces_targets_and_mass;
