@@ -1,0 +1,57 @@
+//! [`PhysicsEvent`]: the facade's events (contacts, sensors, sleep, broken joints) with entities in place of
+//! handles, sent as Bevy messages by the writeback systems after each step, in the facade's deterministic
+//! order.
+
+use bevy_ecs::entity::Entity;
+use bevy_ecs::message::Message;
+
+/// Something that happened during a physics step, naming entities. Read with
+/// `MessageReader<PhysicsEvent>`. One type for every kind keeps the facade's order across kinds.
+#[derive(Message, Debug, Clone, Copy, PartialEq)]
+pub enum PhysicsEvent {
+    /// The bodies of two entities started touching.
+    ContactBegan {
+        /// The body entity of the pair's body A.
+        entity_a: Entity,
+        /// The body entity of body B.
+        entity_b: Entity,
+        /// How fast they approached along the normal when they met (m/s, ≥ 0).
+        approach_speed: f32,
+    },
+    /// The bodies of two entities stopped touching (or one was despawned).
+    ContactEnded {
+        /// The body entity of body A.
+        entity_a: Entity,
+        /// The body entity of body B.
+        entity_b: Entity,
+    },
+    /// A collider started overlapping a sensor.
+    SensorEntered {
+        /// The entity of the sensor's collider.
+        sensor: Entity,
+        /// The entity of the collider that entered.
+        collider: Entity,
+    },
+    /// A collider stopped overlapping a sensor.
+    SensorExited {
+        /// The entity of the sensor's collider.
+        sensor: Entity,
+        /// The entity of the collider that left.
+        collider: Entity,
+    },
+    /// A body fell asleep.
+    BodyFellAsleep {
+        /// The body entity.
+        entity: Entity,
+    },
+    /// A sleeping body woke up.
+    BodyWoke {
+        /// The body entity.
+        entity: Entity,
+    },
+    /// A joint exceeded its break force or torque and is now disabled.
+    JointBroken {
+        /// The entity holding the [`crate::PhysicsJoint`].
+        joint: Entity,
+    },
+}
