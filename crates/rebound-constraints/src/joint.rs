@@ -131,12 +131,18 @@ pub struct Joint {
     local_basis_b: Quat,
     #[cfg_attr(
         feature = "serde",
-        serde(with = "crate::bounds::unbounded", default = "crate::bounds::unbounded::infinity")
+        serde(
+            with = "crate::bounds::unbounded",
+            default = "crate::bounds::unbounded::infinity"
+        )
     )]
     break_force: f32,
     #[cfg_attr(
         feature = "serde",
-        serde(with = "crate::bounds::unbounded", default = "crate::bounds::unbounded::infinity")
+        serde(
+            with = "crate::bounds::unbounded",
+            default = "crate::bounds::unbounded::infinity"
+        )
     )]
     break_torque: f32,
 }
