@@ -721,6 +721,36 @@ fn suite_support_has_no_import_cycle() {
     assert_acyclic("tests/support/lib.rs");
 }
 
+#[test]
+fn debug_has_no_import_cycle() {
+    assert_acyclic("crates/rebound-debug/src/lib.rs");
+}
+
+#[test]
+fn record_has_no_import_cycle() {
+    assert_acyclic("crates/rebound-record/src/lib.rs");
+}
+
+#[test]
+fn render_has_no_import_cycle() {
+    assert_acyclic("crates/rebound-render/src/lib.rs");
+}
+
+#[test]
+fn scene_has_no_import_cycle() {
+    assert_acyclic("crates/rebound-scene/src/lib.rs");
+}
+
+#[test]
+fn cli_has_no_import_cycle() {
+    assert_acyclic("crates/rebound-cli/src/main.rs");
+}
+
+#[test]
+fn bevy_plugin_has_no_import_cycle() {
+    assert_acyclic("crates/rebound-bevy/src/lib.rs");
+}
+
 /// A crate written to a temporary folder: `files` are (path under `src/`, source).
 fn temporary_crate(name: &str, files: &[(&str, &str)]) -> PathBuf {
     let dir = std::env::temp_dir().join(format!(

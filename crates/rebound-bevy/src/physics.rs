@@ -5,7 +5,6 @@
 //! so the order of calls into the world, is the same from run to run: the plugin is as deterministic as the
 //! facade.
 
-use crate::PhysicsState;
 use bevy_ecs::entity::Entity;
 use bevy_ecs::resource::Resource;
 use rebound::prelude::{
@@ -146,23 +145,6 @@ impl Physics {
     #[must_use]
     pub fn state_digest(&self) -> u64 {
         self.world.state_digest()
-    }
-
-    /// Captures the physics state and the entity tables, for a later [`Physics::restore`].
-    #[must_use]
-    pub fn snapshot(&self) -> PhysicsState {
-        PhysicsState::capture(self)
-    }
-
-    /// Rolls the physics back to `state`. The next physics step first writes the restored poses,
-    /// velocities and sleep states to the body entities' components (so they are not mistaken for edits),
-    /// then steps on. Entities spawned after the snapshot keep their components but lose their bodies
-    /// until their `Body` changes; despawn them on rollback.
-    ///
-    /// # Errors
-    /// [`rebound::Error::BadSnapshot`] for a snapshot the world refuses; nothing changes.
-    pub fn restore(&mut self, state: &PhysicsState) -> Result<(), rebound::Error> {
-        state.restore_into(self)
     }
 
     /// Drops what the tables know of a body entity (its colliders' and joints' entries too); the world's

@@ -69,3 +69,23 @@ impl PhysicsState {
         Ok(())
     }
 }
+
+/// Rollback lives beside the state it takes and gives back, so `physics` needs nothing from this module.
+impl Physics {
+    /// Captures the physics state and the entity tables, for a later [`Physics::restore`].
+    #[must_use]
+    pub fn snapshot(&self) -> PhysicsState {
+        PhysicsState::capture(self)
+    }
+
+    /// Rolls the physics back to `state`. The next physics step first writes the restored poses,
+    /// velocities and sleep states to the body entities' components (so they are not mistaken for edits),
+    /// then steps on. Entities spawned after the snapshot keep their components but lose their bodies
+    /// until their `Body` changes; despawn them on rollback.
+    ///
+    /// # Errors
+    /// [`rebound::Error::BadSnapshot`] for a snapshot the world refuses; nothing changes.
+    pub fn restore(&mut self, state: &PhysicsState) -> Result<(), rebound::Error> {
+        state.restore_into(self)
+    }
+}

@@ -15,7 +15,7 @@ use rebound_record::{MAGIC, VERSION};
 use tiny_http::{Header, Method, Request, Response, Server};
 
 use crate::cli::ServeArgs;
-use crate::error::CliError;
+use crate::error::{CliError, ViewError};
 
 /// The file the viewer needs from `npm ci`, checked before serving so a missing install is named up front.
 const THREE_MODULE: &str = "node_modules/three/build/three.module.js";
@@ -46,67 +46,6 @@ pub fn view(args: &ServeArgs) -> Result<(), CliError> {
     drop(out);
     server.serve();
     Ok(())
-}
-
-/// Why `rebound view` cannot start.
-#[derive(Debug)]
-pub enum ViewError {
-    /// The viewer directory lacks a file it needs (`index.html`, or three.js before `npm ci`).
-    ViewerIncomplete {
-        /// The viewer directory searched.
-        dir: PathBuf,
-        /// The missing file, relative to `dir`.
-        missing: &'static str,
-    },
-    /// The recording cannot be opened.
-    Recording {
-        /// The path given.
-        path: PathBuf,
-        /// Why it cannot be opened.
-        source: io::Error,
-    },
-    /// The file does not start as a version-1 recording does (magic bytes and format version).
-    NotARecording {
-        /// The path given.
-        path: PathBuf,
-    },
-    /// No loopback port could be bound.
-    Bind {
-        /// The port asked for (0 = any free port).
-        port: u16,
-        /// The server's message.
-        reason: String,
-    },
-}
-
-impl fmt::Display for ViewError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Self::ViewerIncomplete { dir, missing } => write!(
-                f,
-                "the viewer directory {} has no {missing} (run `npm ci` in viewer/, or pass --viewer-dir)",
-                dir.display()
-            ),
-            Self::Recording { path, source } => {
-                write!(f, "cannot open the recording {}: {source}", path.display())
-            }
-            Self::NotARecording { path } => write!(
-                f,
-                "{} is not a Rebound recording (version {VERSION}): its first 12 bytes are not the format's header",
-                path.display()
-            ),
-            Self::Bind { port, reason } => write!(f, "cannot listen on 127.0.0.1:{port}: {reason}"),
-        }
-    }
-}
-
-impl std::error::Error for ViewError {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        match self {
-            Self::Recording { source, .. } => Some(source),
-            Self::ViewerIncomplete { .. } | Self::NotARecording { .. } | Self::Bind { .. } => None,
-        }
-    }
 }
 
 /// The viewer directory used when none is given: `REBOUND_VIEWER_DIR`, else `viewer/` of this source tree.

@@ -13,6 +13,27 @@ use crate::format::{
 use crate::frame::{BodySample, ContactSample, Diagnostics, Frame, JointSample, RecordedEvent};
 use crate::manifest::{BodyKind, Changes};
 use rebound::{Quat, Vec3};
+use serde::de::DeserializeOwned;
+
+/// Parses `bytes` (UTF-8 JSON, trailing spaces allowed) that start at file offset `offset`.
+pub(crate) fn parse_json<T: DeserializeOwned>(
+    bytes: &[u8],
+    what: &'static str,
+    offset: u64,
+) -> Result<T, RecordingError> {
+    let json = |message: String| RecordingError::Json {
+        what,
+        offset,
+        message,
+    };
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        json(format!(
+            "not UTF-8 ({e}), at byte {}",
+            offset + e.valid_up_to() as u64
+        ))
+    })?;
+    serde_json::from_str(text).map_err(|e| json(e.to_string()))
+}
 
 /// Bounds-checked little-endian reads from a payload; `base` is the payload's offset in the file.
 struct Cursor<'a> {
@@ -184,7 +205,7 @@ pub(crate) fn decode_frame(
     let changes = if changes_len > 0 {
         let at = c.offset();
         let json = c.bytes(changes_len)?;
-        let changes: Changes = crate::reader::parse_json(json, "changes", at)?;
+        let changes: Changes = parse_json(json, "changes", at)?;
         let mut updated = catalog.clone();
         updated.apply(&changes, at)?;
         next_catalog = Some(updated);

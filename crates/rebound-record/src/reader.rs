@@ -2,33 +2,12 @@
 //! [`Recording`] holds a whole file. Both check everything `docs/recording.md` defines and never panic.
 
 use crate::catalog::Catalog;
-use crate::decode::decode_frame;
+use crate::decode::{decode_frame, parse_json};
 use crate::error::RecordingError;
 use crate::format::{FILE_HEADER_LEN, FORMAT_NAME, MAGIC, VERSION, pad4};
 use crate::frame::Frame;
 use crate::manifest::Manifest;
-use serde::de::DeserializeOwned;
 use std::io::Read;
-
-/// Parses `bytes` (UTF-8 JSON, trailing spaces allowed) that start at file offset `offset`.
-pub(crate) fn parse_json<T: DeserializeOwned>(
-    bytes: &[u8],
-    what: &'static str,
-    offset: u64,
-) -> Result<T, RecordingError> {
-    let json = |message: String| RecordingError::Json {
-        what,
-        offset,
-        message,
-    };
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        json(format!(
-            "not UTF-8 ({e}), at byte {}",
-            offset + e.valid_up_to() as u64
-        ))
-    })?;
-    serde_json::from_str(text).map_err(|e| json(e.to_string()))
-}
 
 /// Reads up to `n` bytes into `buf` (cleared first); returns how many there were.
 fn read_up_to(
