@@ -1,10 +1,10 @@
 //! Rope chains (course item 4, "chains of many links that do not stretch"): a 100-link chain hanging from a
 //! fixed point with a 10× heavier end mass keeps its length — less than 1 % in total after 10 s, the bound of
 //! the issue, and in fact within 0.1 % per link; the same chain released horizontally stays in one piece. By
-//! default the chain is one path solved directly (`rebound_constraints::direct`), which needs no tethers (it
-//! gets none). Solved joint by joint (direct chains off), the long-range tethers (`rebound_constraints::tether`)
-//! are what holds it, to the same bounds: the joint-by-joint run without them is printed for comparison (the
-//! soft step alone lets it stretch by the load over a link's stiffness).
+//! default the chain is one path solved directly (`rebound_constraints::path`), which needs no tethers (it
+//! gets none). Solved joint by joint (direct chains off), the long-range tethers
+//! (`rebound_constraints::path::tether`) are what holds it, to the same bounds: the joint-by-joint run without
+//! them is printed for comparison (the soft step alone lets it stretch by the load over a link's stiffness).
 
 #![allow(
     clippy::unwrap_used,
