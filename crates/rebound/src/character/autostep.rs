@@ -9,14 +9,15 @@ use rebound_math::Vec3;
 /// that drops away more is an edge, not the top of a step.
 const LEDGE_DROP: f32 = 0.01;
 
-/// The position after climbing over `obstacle` with the horizontal part of `remaining` (m), or `None` when
-/// autostep is off or the obstacle is not a step (too high, too thin, a dynamic body when those are
-/// excluded, a top that is not walkable).
+/// The position after climbing over `obstacle` with the horizontal part of `remaining` (m), from the ground
+/// at `ground_point`, or `None` when autostep is off or the obstacle is not a step (its top higher than
+/// `max_height` above the ground, too thin, a dynamic body when those are excluded, not walkable).
 pub(crate) fn try_step(
     probe: &Probe<'_>,
     position: Vec3,
     remaining: Vec3,
     obstacle: &SweepHit,
+    ground_point: Vec3,
 ) -> Option<Vec3> {
     let step = probe.settings.autostep?;
     let up = probe.settings.up;
@@ -50,13 +51,12 @@ pub(crate) fn try_step(
         return None;
     }
     // The top must be walkable `min_width` beyond where the shape lands, not lower than the landing.
-    let (_, top) = probe.face_below(
+    let (top_point, top) = probe.face_below(
         landing.point + direction * step.min_width,
         rise + skin,
         skin + LEDGE_DROP,
         None,
     )?;
-    probe
-        .is_walkable(top)
-        .then_some(forward - up * landing.distance)
+    let height = (top_point - ground_point).dot(up);
+    (probe.is_walkable(top) && height <= step.max_height).then_some(forward - up * landing.distance)
 }

@@ -6,7 +6,8 @@
 //!
 //! 1. [`ground`]: is the shape on walkable ground at the start (steps and snapping need it);
 //! 2. [`slide`]: cast along the desired translation, stop `skin` short, turn the rest along the surface —
-//!    up walkable slopes, along walls, down steep slopes — climbing steps on the way ([`autostep`]);
+//!    up walkable slopes, along walls, down steep slopes — climbing steps on the way ([`autostep`]); then
+//!    [`skin`]: push the shape back out to `skin` from anything it ended too close to;
 //! 3. [`snap`]: pull a grounded, not rising character down onto the ground within `snap_to_ground`;
 //! 4. [`ground`] again: what it stands on now (reported);
 //! 5. [`platform`]: add the motion of the body it stands on.
@@ -15,8 +16,8 @@
 //! world. The geometry is in `docs/physics.md`, "Character controller".
 //!
 //! Known limitations: the shape does not rotate (an upright capsule stays upright; a platform's spin is not
-//! passed on), and a shape that starts a move overlapping a collider is not pushed out of it — casts ignore
-//! what the motion leaves, so it can walk out.
+//! passed on), and a shape overlapping a collider deeply is pushed out by at most four `skin`-sized steps per
+//! move.
 //!
 //! ```
 //! use rebound::prelude::*;
@@ -45,6 +46,7 @@ mod ground;
 mod platform;
 mod push;
 mod settings;
+mod skin;
 mod slide;
 mod snap;
 mod sweep;
@@ -211,10 +213,17 @@ impl CharacterController {
             settings,
         };
         let start = pose.position;
-        let grounded_at_start = ground::detect(&probe, start).is_some();
+        let ground_at_start = ground::detect(&probe, start);
+        let grounded_at_start = ground_at_start.is_some();
         let mut collisions = Vec::new();
-        let slid = slide::slide(&probe, start, desired, grounded_at_start, &mut collisions);
-        let mut position = slid.position;
+        let slid = slide::slide(
+            &probe,
+            start,
+            desired,
+            ground_at_start.map(|g| g.point),
+            &mut collisions,
+        );
+        let mut position = skin::restore(&probe, slid.position);
         let mut ground = ground::detect(&probe, position);
         let mut snapped = false;
         if let Some(distance) = settings.snap_to_ground {

@@ -6,11 +6,14 @@
 //!   becomes whatever keeps it on the plane, `h + up·k` with `k = −(h·n)/(n·up)`: the character walks up
 //!   and down slopes at the commanded horizontal speed, and pressing down (gravity) into the ground stops;
 //! - **steep** (`0 ≤ n·up < cos(max_slope_angle)`, walls included): the horizontal motion into the surface
-//!   is removed with the horizontal normal `n_h`, so it can never climb, and a downward motion is projected
-//!   on the plane, so it slides down; a step in the way may be climbed first ([`super::autostep`]);
+//!   is removed with the horizontal normal `n_h`, so it can never climb, and what still goes into the plane
+//!   (a downward motion) is projected on it, so it slides down; a step in the way may be climbed first
+//!   ([`super::autostep`]);
 //! - **overhanging** (`n·up < 0`, ceilings): the motion into the plane is removed.
 //!
-//! A motion turned along the second of two planes that would go back into the first follows their crease.
+//! Each rule leaves a motion already along the plane as it is, so meeting the same face twice changes
+//! nothing. A motion turned along the second of two planes that would go back into the first follows their
+//! crease.
 
 use super::CharacterCollision;
 use super::autostep;
@@ -19,6 +22,9 @@ use rebound_math::Vec3;
 
 /// Below this length (m) what is left of the motion is dropped.
 const MIN_MOTION: f32 = 1.0e-6;
+
+/// Below this sine of the angle between two planes' normals they are treated as one plane.
+const MIN_CREASE_SIN: f32 = 0.045;
 
 /// Where the slide ended and what it met.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -31,16 +37,18 @@ pub(crate) struct Slide {
     pub(crate) stepped: bool,
 }
 
-/// Slides the shape from `start` along `desired` (m), logging each hit in `collisions`. `grounded`: whether
-/// it stands on walkable ground at the start (steps are climbed only from the ground).
+/// Slides the shape from `start` along `desired` (m), logging each hit in `collisions`. `ground`: the point
+/// of the walkable ground it stands on at the start, if any (steps are climbed only from the ground, and
+/// measured from it).
 pub(crate) fn slide(
     probe: &Probe<'_>,
     start: Vec3,
     desired: Vec3,
-    grounded: bool,
+    ground: Option<Vec3>,
     collisions: &mut Vec<CharacterCollision>,
 ) -> Slide {
     let up = probe.settings.up;
+    let mut ground = ground;
     let mut out = Slide {
         position: start,
         touched_ground: false,
@@ -69,9 +77,15 @@ pub(crate) fn slide(
             translation_remaining: remaining,
         });
         let walkable = probe.is_walkable(hit.normal);
-        out.touched_ground |= walkable;
-        if !walkable && (grounded || out.touched_ground) && remaining.dot(up) <= MIN_MOTION {
-            if let Some(stepped) = autostep::try_step(probe, out.position, remaining, &hit) {
+        if walkable {
+            out.touched_ground = true;
+            ground = Some(hit.point);
+        }
+        if let Some(ground_point) = ground.filter(|_| !walkable && remaining.dot(up) <= MIN_MOTION)
+        {
+            if let Some(stepped) =
+                autostep::try_step(probe, out.position, remaining, &hit, ground_point)
+            {
                 out.position = stepped;
                 out.stepped = true;
                 out.touched_ground = true;
@@ -101,21 +115,27 @@ fn turn_along(probe: &Probe<'_>, remaining: Vec3, hit: &SweepHit, walkable: bool
     if n_up < 0.0 {
         return remaining - n * remaining.dot(n).min(0.0);
     }
-    let vertical = up * remaining.dot(up);
     let along_wall = match probe.horizontal(n).try_normalize() {
         Some(n_h) => horizontal - n_h * horizontal.dot(n_h).min(0.0),
         None => horizontal,
     };
-    along_wall + (vertical - n * vertical.dot(n).min(0.0))
+    let kept = along_wall + up * remaining.dot(up);
+    // What still goes into the plane goes down it: `kept·n < 0` only through a downward part, and removing
+    // `n·(kept·n)` takes back at most that much height.
+    kept - n * kept.dot(n).min(0.0)
 }
 
-/// `motion` turned along the crease of planes `first` and `second` when it would go back into `first`.
+/// `motion` turned along the crease of planes `first` and `second` when it would go back into `first`. Two
+/// planes less than about 2.6° apart (the same face met twice, with the normals a cast gives) have no
+/// useful crease: the motion then only loses its part into `first`.
 fn follow_crease(motion: Vec3, first: Vec3, second: Vec3) -> Vec3 {
     if motion.dot(first) >= 0.0 {
         return motion;
     }
-    match second.cross(first).try_normalize() {
-        Some(crease) => crease * motion.dot(crease),
-        None => motion - first * motion.dot(first),
+    let cross = second.cross(first);
+    if cross.length_squared() < MIN_CREASE_SIN * MIN_CREASE_SIN {
+        return motion - first * motion.dot(first);
     }
+    let crease = cross.normalize();
+    crease * motion.dot(crease)
 }

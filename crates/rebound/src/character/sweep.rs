@@ -14,8 +14,8 @@ use rebound_world::BodyHandle;
 
 /// Below this `direction · normal`, a surface touched at the start of a cast is one the motion goes into;
 /// at or above it the motion leaves the surface or runs along it (walking on flat ground), and the cast
-/// looks past it.
-const LEAVING: f32 = -1.0e-5;
+/// looks past it. The margin covers the error of a cast's normal (about 10⁻⁴ rad).
+const LEAVING: f32 = -1.0e-4;
 
 /// Where a cast shape came to rest, `skin` short of a collider.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -52,8 +52,43 @@ impl Probe<'_> {
         max_distance: f32,
         skip_body: Option<BodyHandle>,
     ) -> Option<SweepHit> {
+        let mut best: Option<SweepHit> = None;
+        self.each_hit(from, direction, max_distance, skip_body, |hit| {
+            // Hits come in handle order: a strictly closer one replaces, a tie keeps the lower handle.
+            if best.is_none_or(|b| hit.distance < b.distance) {
+                best = Some(hit);
+            }
+        });
+        best
+    }
+
+    /// Every collider [`Probe::sweep`] could return, nearest first (ties by handle).
+    pub(crate) fn sweep_all(
+        &self,
+        from: Vec3,
+        direction: Vec3,
+        max_distance: f32,
+    ) -> Vec<SweepHit> {
+        let mut hits = Vec::new();
+        self.each_hit(from, direction, max_distance, None, |hit| hits.push(hit));
+        hits.sort_by(|a, b| {
+            a.distance
+                .total_cmp(&b.distance)
+                .then(a.collider.cmp(&b.collider))
+        });
+        hits
+    }
+
+    fn each_hit(
+        &self,
+        from: Vec3,
+        direction: Vec3,
+        max_distance: f32,
+        skip_body: Option<BodyHandle>,
+        mut found: impl FnMut(SweepHit),
+    ) {
         if !(max_distance > 0.0 && max_distance.is_finite()) {
-            return None;
+            return;
         }
         let skin = self.settings.skin;
         let start = to_parry_pose(Pose::new(from, self.rotation));
@@ -70,7 +105,6 @@ impl Probe<'_> {
             stop_at_penetration: false,
             compute_impact_geometry_on_penetration: true,
         };
-        let mut best: Option<SweepHit> = None;
         for (handle, collider, body) in self
             .scene
             .candidates(&self.filter, |aabb| aabb.intersects(&swept))
@@ -90,27 +124,38 @@ impl Probe<'_> {
             ) else {
                 continue;
             };
-            let Some(normal) = (collider_pose.rotation * hit.normal2).try_normalize() else {
+            let distance = hit.time_of_impact.clamp(0.0, max_distance);
+            // The cast's own normal comes from GJK's directional distance and is off by up to ~0.01 rad
+            // on flat faces; the closest points at the stopping pose give it to float precision.
+            let at_hit = to_parry_pose(Pose::new(from + direction * distance, self.rotation));
+            let (point, normal) = match parry3d::query::contact(
+                &at_hit,
+                self.shape,
+                &collider_pose,
+                collider.shape.as_ref(),
+                2.0 * skin,
+            ) {
+                Ok(Some(contact)) => (contact.point2, contact.normal2),
+                _ => (
+                    collider_pose.transform_point(hit.witness2),
+                    collider_pose.rotation * hit.normal2,
+                ),
+            };
+            let Some(normal) = normal.try_normalize() else {
                 continue;
             };
-            let candidate = SweepHit {
+            let hit = SweepHit {
                 collider: handle,
                 body: collider.body(),
-                distance: hit.time_of_impact.clamp(0.0, max_distance),
-                point: collider_pose.transform_point(hit.witness2),
+                distance,
+                point,
                 normal,
             };
-            if !(candidate.distance.is_finite() && candidate.point.is_finite())
-                || direction.dot(normal) >= LEAVING
+            if hit.distance.is_finite() && hit.point.is_finite() && direction.dot(normal) < LEAVING
             {
-                continue;
-            }
-            // Candidates come in handle order: a strictly closer hit replaces, a tie keeps the lower handle.
-            if best.is_none_or(|b| candidate.distance < b.distance) {
-                best = Some(candidate);
+                found(hit);
             }
         }
-        best
     }
 
     /// The normal of `collider`'s face under `point` when a ray straight down from `height` (m) above it
@@ -135,6 +180,36 @@ impl Probe<'_> {
         // A ray starting inside the collider hits it at distance 0 with no normal.
         let normal = hit.normal.try_normalize()?;
         (hit.distance > 0.0 && normal.dot(up) > 0.0).then_some((hit.point, normal))
+    }
+
+    /// The deepest collider the shape at `position` is closer to than `distance` (m): its gap (m, negative
+    /// when overlapping) and outward unit normal.
+    pub(crate) fn closest_within(&self, position: Vec3, distance: f32) -> Option<(f32, Vec3)> {
+        let pose = to_parry_pose(Pose::new(position, self.rotation));
+        let aabb = self.shape.compute_aabb(&pose).loosened(distance);
+        let mut deepest: Option<(f32, Vec3)> = None;
+        for (_, collider, body) in self
+            .scene
+            .candidates(&self.filter, |other| other.intersects(&aabb))
+        {
+            let collider_pose = to_parry_pose(collider.world_pose(body.pose()));
+            let Ok(Some(contact)) = parry3d::query::contact(
+                &pose,
+                self.shape,
+                &collider_pose,
+                collider.shape.as_ref(),
+                distance,
+            ) else {
+                continue;
+            };
+            let Some(normal) = contact.normal2.try_normalize() else {
+                continue;
+            };
+            if contact.dist < distance && deepest.is_none_or(|(gap, _)| contact.dist < gap) {
+                deepest = Some((contact.dist, normal));
+            }
+        }
+        deepest
     }
 
     /// Whether a surface with unit normal `normal` can be walked on (not steeper than the slope limit).
