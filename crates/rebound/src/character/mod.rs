@@ -226,15 +226,15 @@ impl CharacterController {
         let mut position = skin::restore(&probe, slid.position);
         let mut ground = ground::detect(&probe, position);
         let mut snapped = false;
-        if let Some(distance) = settings.snap_to_ground {
-            let was_grounded = grounded_at_start || slid.touched_ground;
-            if was_grounded && desired.dot(settings.up) <= 0.0 {
-                if let Some((snapped_to, under)) = snap::snap(&probe, position, distance) {
-                    snapped = snapped_to != position;
-                    position = snapped_to;
-                    ground = Some(under);
-                }
-            }
+        let was_grounded = grounded_at_start || slid.touched_ground;
+        let snap = settings
+            .snap_to_ground
+            .filter(|_| was_grounded && desired.dot(settings.up) <= 0.0)
+            .and_then(|distance| snap::snap(&probe, position, distance));
+        if let Some((snapped_to, under)) = snap {
+            snapped = snapped_to != position;
+            position = snapped_to;
+            ground = Some(under);
         }
         let carried = match &ground {
             Some(under) if settings.carry_with_ground => {

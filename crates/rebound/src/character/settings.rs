@@ -198,13 +198,13 @@ impl CharacterSettings {
             positive("snap_to_ground", distance)?;
         }
         if let Some(push) = self.push {
-            if !(push.max_mass >= 0.0) {
+            if push.max_mass.is_nan() || push.max_mass < 0.0 {
                 return Err(CharacterError::Negative {
                     field: "push.max_mass",
                     value: push.max_mass,
                 });
             }
-            if !(push.max_impulse >= 0.0) {
+            if push.max_impulse.is_nan() || push.max_impulse < 0.0 {
                 return Err(CharacterError::Negative {
                     field: "push.max_impulse",
                     value: push.max_impulse,

@@ -81,16 +81,14 @@ pub(crate) fn slide(
             out.touched_ground = true;
             ground = Some(hit.point);
         }
-        if let Some(ground_point) = ground.filter(|_| !walkable && remaining.dot(up) <= MIN_MOTION)
-        {
-            if let Some(stepped) =
-                autostep::try_step(probe, out.position, remaining, &hit, ground_point)
-            {
-                out.position = stepped;
-                out.stepped = true;
-                out.touched_ground = true;
-                break;
-            }
+        let step_from = ground.filter(|_| !walkable && remaining.dot(up) <= MIN_MOTION);
+        if let Some(stepped) = step_from.and_then(|ground_point| {
+            autostep::try_step(probe, out.position, remaining, &hit, ground_point)
+        }) {
+            out.position = stepped;
+            out.stepped = true;
+            out.touched_ground = true;
+            break;
         }
         let mut turned = turn_along(probe, remaining, &hit, walkable);
         if let Some(first) = previous_normal {
