@@ -75,7 +75,11 @@ fn capsule(radius: f32) -> ColliderShape {
 
 fn overlaps(world: &PhysicsWorld, position: Vec3, radius: f32) -> bool {
     !world
-        .intersect_shape(&capsule(radius), Pose::from_position(position), &QueryFilter::new())
+        .intersect_shape(
+            &capsule(radius),
+            Pose::from_position(position),
+            &QueryFilter::new(),
+        )
         .unwrap()
         .is_empty()
 }
