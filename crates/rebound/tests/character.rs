@@ -906,3 +906,122 @@ fn refuses_bad_move_arguments() {
         Err(Error::StaleCollider(_))
     ));
 }
+
+#[test]
+fn any_convex_shape_stops_a_skin_short_of_a_wall() {
+    let mut world = new_world();
+    let wall = world
+        .insert_body(BodyDesc::fixed().with_position(Vec3::new(3.0, 0.0, 0.0)))
+        .unwrap();
+    world
+        .insert_collider(ColliderDesc::cuboid(Vec3::new(0.5, 5.0, 5.0)), wall)
+        .unwrap();
+    let controller = CharacterController::default();
+    // Each shape's half-width along x.
+    let shapes = [
+        (ColliderShape::Ball { radius: 0.4 }, 0.4),
+        (
+            ColliderShape::Cuboid {
+                half_extents: Vec3::new(0.25, 0.5, 0.25),
+            },
+            0.25,
+        ),
+        (
+            ColliderShape::Cylinder {
+                radius: 0.35,
+                half_height: 0.6,
+            },
+            0.35,
+        ),
+        (
+            ColliderShape::ConvexHull {
+                points: vec![
+                    Vec3::new(-0.3, -0.3, -0.3),
+                    Vec3::new(0.3, -0.3, -0.3),
+                    Vec3::new(0.0, -0.3, 0.3),
+                    Vec3::new(0.0, 0.4, 0.0),
+                ],
+            },
+            0.3,
+        ),
+    ];
+    for (shape, half_width) in shapes {
+        let moved = controller
+            .move_shape(
+                &world,
+                &shape,
+                Pose::IDENTITY,
+                Vec3::new(5.0, 0.0, 0.0),
+                DT,
+                &QueryFilter::new(),
+            )
+            .unwrap();
+        let expected = 2.5 - half_width - SKIN;
+        assert!(
+            (moved.translation.x - expected).abs() < 1e-3,
+            "{}: moved {}, expected {expected}",
+            shape.kind_name(),
+            moved.translation.x
+        );
+        assert_eq!(moved.collisions.len(), 1, "{}", shape.kind_name());
+    }
+}
+
+#[test]
+fn walks_and_climbs_on_triangle_meshes_and_height_fields() {
+    // A triangle-mesh floor (y = 0) and a 30° triangle-mesh ramp rising from x = 2 along +x.
+    let angle = 30f32.to_radians();
+    let rise = 4.0 * angle.tan();
+    let mut world = new_world();
+    let body = world.insert_body(BodyDesc::fixed()).unwrap();
+    let vertices = vec![
+        Vec3::new(-10.0, 0.0, -5.0),
+        Vec3::new(2.0, 0.0, -5.0),
+        Vec3::new(2.0, 0.0, 5.0),
+        Vec3::new(-10.0, 0.0, 5.0),
+        Vec3::new(6.0, rise, -5.0),
+        Vec3::new(6.0, rise, 5.0),
+    ];
+    let indices = vec![[0, 2, 1], [0, 3, 2], [1, 2, 5], [1, 5, 4]];
+    world
+        .insert_collider(ColliderDesc::trimesh(vertices, indices), body)
+        .unwrap();
+    let start = Vec3::new(0.0, HALF_HEIGHT + RADIUS + SKIN, 0.0);
+    let mut walker = Walker::new(slope_limit(45.0), start);
+    for frame in 0..90 {
+        let before = walker.position;
+        let moved = walker.walk(&world, Vec3::new(2.0, 0.0, 0.0), true);
+        assert!(
+            moved.is_grounded(),
+            "frame {frame}: not grounded at {}",
+            walker.position
+        );
+        let dx = walker.position.x - before.x;
+        assert!((dx - 2.0 * DT).abs() < 1e-3, "frame {frame}: dx {dx}");
+    }
+    // 3 m at 2 m/s: from x = 0 to 3, the last metre up the ramp (its crease rounds the capsule over).
+    let n = Quat::from_rotation_z(angle) * Vec3::Y;
+    let gap = gap_to_plane(walker.position, n, Vec3::new(2.0, 0.0, 0.0));
+    assert!((0.0..SKIN + 1e-3).contains(&gap), "gap to the ramp {gap}");
+
+    // A flat height field 20 m × 20 m at y = 0.
+    let mut world = new_world();
+    let body = world.insert_body(BodyDesc::fixed()).unwrap();
+    world
+        .insert_collider(
+            ColliderDesc::heightfield(5, 5, vec![0.0; 25], Vec3::new(20.0, 1.0, 20.0)),
+            body,
+        )
+        .unwrap();
+    let mut walker = Walker::new(CharacterSettings::default(), start);
+    for frame in 0..60 {
+        let moved = walker.walk(&world, Vec3::new(1.0, 0.0, 2.0), true);
+        assert!(
+            moved.is_grounded(),
+            "frame {frame}: not grounded on the height field"
+        );
+    }
+    let bottom = walker.position.y - HALF_HEIGHT - RADIUS;
+    assert!((bottom - SKIN).abs() < 1e-3, "bottom at {bottom}");
+    assert!((walker.position - start - Vec3::new(1.0, 0.0, 2.0)).length() < 1e-2);
+}

@@ -1,4 +1,5 @@
-//! Laws of the character controller over random scenes of boxes in any orientation: the corrected
+//! Laws of the character controller over random scenes of boxes in any orientation, for a capsule, a ball, a
+//! box and a cylinder: the corrected
 //! translation never leaves the shape overlapping a collider by more than 1 mm, is never longer than the
 //! desired one over `cos(max_slope_angle)` (walkable slopes keep the horizontal motion and add the climb;
 //! the skin may add up to `skin`) when autostep and snapping are off, and repeats bit for bit.
@@ -66,17 +67,30 @@ fn scene(obstacles: &[Obstacle]) -> PhysicsWorld {
     world
 }
 
-fn capsule(radius: f32) -> ColliderShape {
-    ColliderShape::Capsule {
-        radius,
-        half_height: HALF_HEIGHT,
+/// The character's shape, `grown` (m) thicker on every side (negative: thinner): a capsule, a ball, a box or
+/// a cylinder, about as wide.
+fn character(kind: u8, grown: f32) -> ColliderShape {
+    let radius = RADIUS + grown;
+    match kind % 4 {
+        0 => ColliderShape::Capsule {
+            radius,
+            half_height: HALF_HEIGHT,
+        },
+        1 => ColliderShape::Ball { radius },
+        2 => ColliderShape::Cuboid {
+            half_extents: Vec3::new(radius, RADIUS + HALF_HEIGHT + grown, radius),
+        },
+        _ => ColliderShape::Cylinder {
+            radius,
+            half_height: RADIUS + HALF_HEIGHT + grown,
+        },
     }
 }
 
-fn overlaps(world: &PhysicsWorld, position: Vec3, radius: f32) -> bool {
+fn overlaps(world: &PhysicsWorld, kind: u8, position: Vec3, grown: f32) -> bool {
     !world
         .intersect_shape(
-            &capsule(radius),
+            &character(kind, grown),
             Pose::from_position(position),
             &QueryFilter::new(),
         )
@@ -105,19 +119,20 @@ proptest! {
         start in (-3.0f32..3.0, 0.82f32..2.5, -3.0f32..3.0),
         desired in (-2.0f32..2.0, -2.0f32..2.0, -2.0f32..2.0),
         full in any::<bool>(),
+        kind in any::<u8>(),
     ) {
         let world = scene(&obstacles);
         let start = Vec3::new(start.0, start.1, start.2);
         let desired = Vec3::new(desired.0, desired.1, desired.2);
         let settings = settings(full);
         // Start clear of everything by the skin.
-        prop_assume!(!overlaps(&world, start, RADIUS + settings.skin));
+        prop_assume!(!overlaps(&world, kind, start, settings.skin));
         let controller = CharacterController::new(settings).unwrap();
         let call = || {
             controller
                 .move_shape(
                     &world,
-                    &capsule(RADIUS),
+                    &character(kind, 0.0),
                     Pose::from_position(start),
                     desired,
                     1.0 / 60.0,
@@ -128,7 +143,7 @@ proptest! {
         let moved = call();
         let end = start + moved.translation;
         prop_assert!(
-            !overlaps(&world, end, RADIUS - TOLERANCE),
+            !overlaps(&world, kind, end, -TOLERANCE),
             "ends overlapping at {end} after {}", moved.translation
         );
         if !full {

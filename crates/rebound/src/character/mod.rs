@@ -18,27 +18,6 @@
 //! Known limitations: the shape does not rotate (an upright capsule stays upright; a platform's spin is not
 //! passed on), and a shape overlapping a collider deeply is pushed out by at most four `skin`-sized steps per
 //! move.
-//!
-//! ```
-//! use rebound::prelude::*;
-//!
-//! let mut world = PhysicsWorld::new(WorldSettings::default())?;
-//! let ground = world.insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -0.5, 0.0)))?;
-//! world.insert_collider(ColliderDesc::cuboid(Vec3::new(10.0, 0.5, 10.0)), ground)?;
-//! let wall = world.insert_body(BodyDesc::fixed().with_position(Vec3::new(2.0, 1.0, 0.0)))?;
-//! world.insert_collider(ColliderDesc::cuboid(Vec3::new(0.5, 1.0, 5.0)), wall)?;
-//!
-//! let controller = CharacterController::default();
-//! let capsule = ColliderShape::Capsule { radius: 0.3, half_height: 0.5 };
-//! let pose = Pose::from_position(Vec3::new(0.0, 0.81, 0.0));
-//! // Three metres towards the wall, whose face is at x = 1.5: the capsule stops `skin` short of it.
-//! let moved = controller.move_shape(&world, &capsule, pose, Vec3::new(3.0, 0.0, 0.0), 1.0 / 60.0,
-//!     &QueryFilter::new())?;
-//! let x = pose.position.x + moved.translation.x;
-//! assert!((x - (1.5 - 0.3 - 0.01)).abs() < 1e-3, "{x}");
-//! assert!(moved.is_grounded());
-//! # Ok::<(), rebound::Error>(())
-//! ```
 
 mod autostep;
 mod collision;
@@ -65,8 +44,36 @@ use rebound_math::validity::{check_finite_vec3, check_positive};
 use rebound_math::{MathError, Pose, Vec3};
 use sweep::Probe;
 
-/// Moves character shapes through a [`PhysicsWorld`] with validated [`CharacterSettings`]. Holds no state
-/// between moves: the same call on the same world gives the same, bit-identical, result.
+/// Moves character shapes through a [`PhysicsWorld`] with validated [`CharacterSettings`]: slides along
+/// walls, climbs walkable slopes at the commanded horizontal speed and slides down steeper ones, climbs steps
+/// (autostep), snaps down onto the ground, keeps a `skin` off every surface, reports the ground and the
+/// collisions, carries the character with a moving platform, and pushes dynamic bodies
+/// ([`CharacterController::push_bodies`]). Not a step stage: call it between steps, then move the character's
+/// kinematic body by the result. Holds no state between moves: the same call on the same world gives the
+/// same, bit-identical, result. The geometry is in `docs/physics.md`, "Character controller".
+///
+/// # Examples
+///
+/// ```
+/// use rebound::prelude::*;
+///
+/// let mut world = PhysicsWorld::new(WorldSettings::default())?;
+/// let ground = world.insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -0.5, 0.0)))?;
+/// world.insert_collider(ColliderDesc::cuboid(Vec3::new(10.0, 0.5, 10.0)), ground)?;
+/// let wall = world.insert_body(BodyDesc::fixed().with_position(Vec3::new(2.0, 1.0, 0.0)))?;
+/// world.insert_collider(ColliderDesc::cuboid(Vec3::new(0.5, 1.0, 5.0)), wall)?;
+///
+/// let controller = CharacterController::default();
+/// let capsule = ColliderShape::Capsule { radius: 0.3, half_height: 0.5 };
+/// let pose = Pose::from_position(Vec3::new(0.0, 0.81, 0.0));
+/// // Three metres towards the wall, whose face is at x = 1.5: the capsule stops `skin` short of it.
+/// let moved = controller.move_shape(&world, &capsule, pose, Vec3::new(3.0, 0.0, 0.0), 1.0 / 60.0,
+///     &QueryFilter::new())?;
+/// let x = pose.position.x + moved.translation.x;
+/// assert!((x - (1.5 - 0.3 - 0.01)).abs() < 1e-3, "{x}");
+/// assert!(moved.is_grounded());
+/// # Ok::<(), rebound::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CharacterController {
     settings: CharacterSettings,
