@@ -569,6 +569,45 @@ fn keeps_its_offset_on_platforms_moving_at_2_m_per_s() {
     }
 }
 
+#[test]
+fn rides_round_on_a_turning_platform() {
+    let mut world = PhysicsWorld::new(WorldSettings {
+        gravity: Vec3::ZERO,
+        ..WorldSettings::default()
+    })
+    .unwrap();
+    let platform = world
+        .insert_body(BodyDesc::kinematic().with_position(Vec3::new(0.0, -0.25, 0.0)))
+        .unwrap();
+    world
+        .insert_collider(ColliderDesc::cylinder(3.0, 0.25), platform)
+        .unwrap();
+    let omega = 1.0;
+    world
+        .body_mut(platform)
+        .unwrap()
+        .set_angular_velocity(Vec3::Y * omega)
+        .unwrap();
+    let radius = 1.5;
+    let (body, collider) = character_body(&mut world, radius, 0.0);
+    let height = world.body(body).unwrap().position().y;
+    let controller = CharacterController::default();
+    let frames = 120;
+    for frame in 0..frames {
+        let (moved, _) = drive(&mut world, &controller, body, collider, Vec3::ZERO);
+        assert!(moved.is_grounded(), "frame {frame}");
+    }
+    // A point of the platform: turned by ω·t about y, (r, h, 0) → (r cos ωt, h, −r sin ωt).
+    let angle = omega * frames as f32 * DT;
+    let expected = Vec3::new(radius * angle.cos(), height, -radius * angle.sin());
+    let at = world.body(body).unwrap().position();
+    assert!(
+        at.distance(expected) < 1e-3,
+        "at {at}, expected {expected} ({} mm off)",
+        at.distance(expected) * 1e3
+    );
+}
+
 /// The floor and a settled crate of `mass` (kg: a 1 m cube, friction 0.2) with its face at x = 1.5.
 fn world_with_crate(mass: f32) -> (PhysicsWorld, BodyHandle) {
     let mut world = new_world();

@@ -161,3 +161,74 @@ proptest! {
         );
     }
 }
+
+/// Any number, the odd ones (NaN, ±∞, zero, negative, huge) often.
+fn any_number() -> impl Strategy<Value = f32> {
+    prop_oneof![
+        Just(f32::NAN),
+        Just(f32::INFINITY),
+        Just(f32::NEG_INFINITY),
+        Just(0.0),
+        Just(-1.0),
+        Just(1e30),
+        -10.0f32..10.0,
+        any::<f32>(),
+    ]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Whatever the settings and arguments, a call returns (a move or a typed error) and never panics; a
+    /// refused setting names a field.
+    #[test]
+    fn never_panics_on_any_settings_or_arguments(
+        numbers in prop::collection::vec(any_number(), 16),
+        iterations in any::<u32>(),
+        toggles in any::<u8>(),
+    ) {
+        let n = |i: usize| numbers[i];
+        let settings = CharacterSettings {
+            up: Vec3::new(n(0), n(1), n(2)),
+            skin: n(3),
+            max_slope_angle: n(4),
+            autostep: (toggles & 1 != 0).then_some(Autostep {
+                max_height: n(5),
+                min_width: n(6),
+                include_dynamic_bodies: toggles & 2 != 0,
+            }),
+            snap_to_ground: (toggles & 4 != 0).then_some(n(7)),
+            push: (toggles & 8 != 0).then_some(Push { max_mass: n(8), max_impulse: n(9) }),
+            carry_with_ground: toggles & 16 != 0,
+            max_iterations: iterations % 80,
+        };
+        let controller = match CharacterController::new(settings) {
+            Ok(controller) => controller,
+            Err(error) => {
+                prop_assert!(matches!(error, Error::Character(_)));
+                // Fall back on valid settings with the odd arguments below.
+                CharacterController::default()
+            }
+        };
+        let mut world = scene(&[]);
+        let crate_body = world
+            .insert_body(BodyDesc::dynamic().with_position(Vec3::new(1.0, 0.5, 0.0)))
+            .unwrap();
+        world
+            .insert_collider(ColliderDesc::cuboid(Vec3::splat(0.5)), crate_body)
+            .unwrap();
+        let pose = Pose::from_position(Vec3::new(n(10), n(11), n(12)));
+        let desired = Vec3::new(n(13), n(14), n(15));
+        if let Ok(moved) = controller.move_shape(
+            &world,
+            &character(toggles, 0.0),
+            pose,
+            desired,
+            n(3).abs(),
+            &QueryFilter::new(),
+        ) {
+            prop_assert!(moved.translation.is_finite());
+            let _ = controller.push_bodies(&mut world, &moved);
+        }
+    }
+}

@@ -1,15 +1,18 @@
-//! Platform carry: a character standing on a moving body moves with it. The ground's velocity at the contact
-//! point, `v + ω × (p − c)` (m/s), times the move's `dt`, is added to the move, cast like any motion but
-//! through the platform itself (which moves the same way during the next step).
+//! Platform carry: a character standing on a moving body moves with it. The contact point `p` is carried as a
+//! point of the body over the move's `dt`: `p' = c + v·dt + R(ω·dt)·(p − c)`, with the body's centre of mass
+//! `c`, velocity `v`, angular velocity `ω` and `R(ω·dt)` the rotation by `|ω|·dt` about `ω` — the motion
+//! the step gives the body, exact for constant velocities (to first order it is `(v + ω × (p − c))·dt`).
+//! `p' − p` is added to the move, cast like any motion but through the platform itself (which moves the same
+//! way during the next step).
 //!
-//! The velocity is the one the platform had over the last step; a platform that keeps it (or whose kinematic
-//! target moves it the same way again) keeps the character's offset exactly. A change of velocity reaches
-//! the character one move late, and the platform's rotation turns the carried offset but not the shape.
+//! The velocities are the ones the platform had over the last step; a platform that keeps them (or whose
+//! kinematic target moves it the same way again) keeps the character's offset. A change of velocity reaches
+//! the character one move late, and the shape is carried round a turning platform without turning itself.
 
 use super::ground::Ground;
 use super::sweep::Probe;
 use rebound_dynamics::BodyType;
-use rebound_math::Vec3;
+use rebound_math::{Quat, Vec3};
 
 /// The translation (m) that keeps a character at `position` on `ground` over `dt` (s).
 pub(crate) fn carry(probe: &Probe<'_>, position: Vec3, ground: &Ground, dt: f32) -> Vec3 {
@@ -19,7 +22,10 @@ pub(crate) fn carry(probe: &Probe<'_>, position: Vec3, ground: &Ground, dt: f32)
     if body.body_type() == BodyType::Fixed {
         return Vec3::ZERO;
     }
-    let motion = body.velocity_at_point(ground.point) * dt;
+    let centre = body.center_of_mass();
+    let turn = Quat::from_scaled_axis(body.angular_velocity() * dt);
+    let carried_point = centre + body.linear_velocity() * dt + turn * (ground.point - centre);
+    let motion = carried_point - ground.point;
     let length = motion.length();
     let Some(direction) = motion.try_normalize().filter(|_| length.is_finite()) else {
         return Vec3::ZERO;
