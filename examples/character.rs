@@ -9,6 +9,7 @@
 
 mod support;
 
+use rebound::RigidBody;
 use rebound::prelude::*;
 use rebound_suite::demos::{About, DT};
 
@@ -123,7 +124,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     })?;
     let mut output = support::Output::start(&world, &ABOUT)?;
     let position =
-        |world: &PhysicsWorld, body| world.body(body).map_or(Vec3::NAN, |b| b.position());
+        |world: &PhysicsWorld, body| world.body(body).map_or(Vec3::NAN, RigidBody::position);
     let crate_start = position(&world, crate_body);
     let (mut highest_bottom, mut steps, mut pushes, mut airborne) = (0.0f32, 0, 0, 0);
     let mut vertical_speed = 0.0f32;
@@ -141,7 +142,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             Vec3::ZERO
         };
         if t >= 8.0 {
-            let pose = world.body(platform).map_or(Pose::IDENTITY, |b| b.pose());
+            let pose = world.body(platform).map_or(Pose::IDENTITY, RigidBody::pose);
             world.set_kinematic_target(
                 platform,
                 Pose::new(pose.position + Vec3::X * PLATFORM_SPEED * DT, pose.rotation),
@@ -158,7 +159,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         grounded = moved.is_grounded();
         airborne += usize::from(!grounded);
         steps += usize::from(moved.stepped);
-        let pose = world.body(character).map_or(Pose::IDENTITY, |b| b.pose());
+        let pose = world
+            .body(character)
+            .map_or(Pose::IDENTITY, RigidBody::pose);
         world.set_kinematic_target(
             character,
             Pose::new(pose.position + moved.translation, pose.rotation),
