@@ -441,6 +441,33 @@ fn slides_along_a_wall_with_the_tangential_part_of_the_motion() {
 }
 
 #[test]
+fn walks_through_sensors() {
+    let mut world = new_world();
+    floor(&mut world);
+    let trigger = world
+        .insert_body(BodyDesc::fixed().with_position(Vec3::new(2.0, 1.0, 0.0)))
+        .unwrap();
+    world
+        .insert_collider(
+            ColliderDesc::cuboid(Vec3::new(0.5, 1.0, 5.0)).with_sensor(true),
+            trigger,
+        )
+        .unwrap();
+    let moved = CharacterController::default()
+        .move_shape(
+            &world,
+            &capsule(),
+            Pose::from_position(Vec3::new(0.0, HALF_HEIGHT + RADIUS + SKIN, 0.0)),
+            Vec3::new(4.0, 0.0, 0.0),
+            DT,
+            &QueryFilter::new(),
+        )
+        .unwrap();
+    assert!((moved.translation.x - 4.0).abs() < 1e-5);
+    assert!(moved.collisions.is_empty());
+}
+
+#[test]
 fn reports_each_collision_with_where_it_happened() {
     let mut world = new_world();
     floor(&mut world);

@@ -107,6 +107,7 @@ impl CharacterController {
 
     /// Moves `shape`, placed at `pose`, by `desired_translation` (m) through `world`'s colliders that
     /// `filter` lets through, over `dt` (s, used for carrying and pushing). The shape keeps its rotation.
+    /// Sensors are never obstacles, whatever the filter says.
     ///
     /// # Errors
     /// A shape that is not convex or not valid, an invalid pose, a non-finite translation or one longer than
@@ -216,7 +217,7 @@ impl CharacterController {
             scene: world.scene(),
             shape,
             rotation: pose.rotation,
-            filter: *filter,
+            filter: filter.excluding_sensors(),
             settings,
         };
         let start = pose.position;

@@ -1,6 +1,7 @@
-//! The character controller's two probes of the scene: a shape cast that stops `skin` short of what it hits
-//! and ignores surfaces the motion leaves or slides along, and a ray down to find the face under an edge.
-//! Every phase of a move (slide, autostep, snap, ground, carry) asks its questions through [`Probe`].
+//! The character controller's probes of the scene: a shape cast that stops `skin` short of what it hits and
+//! ignores surfaces the motion leaves or slides along, a ray down to find the face under an edge, and the
+//! deepest collider within a distance. Every phase of a move (slide, autostep, skin, snap, ground, carry)
+//! asks its questions through [`Probe`].
 
 use super::CharacterSettings;
 use crate::query::Scene;
@@ -158,9 +159,9 @@ impl Probe<'_> {
         }
     }
 
-    /// The normal of `collider`'s face under `point` when a ray straight down from `height` (m) above it
-    /// meets that face within `height + below` (m); `None` when the ray starts inside the collider or
-    /// misses it. The normal is unit and faces up.
+    /// The point and unit normal of the face under `point` (of `collider`, or of any collider when `None`)
+    /// that a ray straight down from `height` (m) above it meets within `height + below` (m); `None` when the
+    /// ray starts inside that collider, misses it, or meets it from below.
     pub(crate) fn face_below(
         &self,
         point: Vec3,
