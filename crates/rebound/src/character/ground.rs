@@ -14,8 +14,8 @@ use rebound_math::Vec3;
 use rebound_world::BodyHandle;
 
 /// The steepest contact normal whose edge may be stood on (rad from `up`): a contact at the side of the
-/// shape (a step's edge level with a capsule's bottom sphere centre) is not under it. 80°: a 0.3 m capsule walking
-/// onto a step edge at 0.3 m/s or faster (at 60 moves a second) lands within it.
+/// shape (a step's edge level with a capsule's bottom sphere centre) is not under it. 80°: a capsule of
+/// radius 0.3 m walking onto a step edge at 0.3 m/s or faster (at 60 moves a second) lands within it.
 const MAX_EDGE_CONTACT_ANGLE: f32 = 80.0 * core::f32::consts::PI / 180.0;
 
 /// How far past a steep contact, across and above it, the ray looking for the face beyond an edge starts
