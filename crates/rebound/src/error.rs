@@ -150,6 +150,9 @@ pub enum Error {
     /// this error).
     #[error(transparent)]
     Constraint(#[from] rebound_constraints::ConstraintError),
+    /// A character controller setting or move argument was refused.
+    #[error(transparent)]
+    Character(#[from] crate::CharacterError),
     /// A material value lies outside its range.
     #[error("`{field}` must lie in [{min}, {max}], got {value}")]
     OutOfRange {

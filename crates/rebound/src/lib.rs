@@ -4,6 +4,7 @@ mod backend;
 mod ball_ball;
 mod box_box;
 mod broad_phase;
+mod character;
 mod collider;
 mod collider_handle;
 mod collider_set;
@@ -43,6 +44,10 @@ pub use rebound_math::*;
 pub use rebound_world::*;
 
 pub use backend::ParryBackend;
+pub use character::{
+    Autostep, CharacterCollision, CharacterController, CharacterError, CharacterMove,
+    CharacterPush, CharacterSettings, Ground, MAX_SLIDE_ITERATIONS, Push,
+};
 pub use collider::{Collider, ColliderDesc, CollisionGroups};
 pub use collider_handle::ColliderHandle;
 pub use collider_set::ColliderSet;
@@ -56,9 +61,10 @@ pub use snapshot::PhysicsSnapshot;
 /// What most programs need: `use rebound::prelude::*;`.
 pub mod prelude {
     pub use crate::{
-        Collider, ColliderDesc, ColliderHandle, ColliderShape, CollisionGroups, Error, Event,
-        PhysicsSnapshot, PhysicsWorld, PickHit, PointHit, QueryFilter, RayHit, ShapeError,
-        ShapeHit,
+        Autostep, CharacterCollision, CharacterController, CharacterError, CharacterMove,
+        CharacterPush, CharacterSettings, Collider, ColliderDesc, ColliderHandle, ColliderShape,
+        CollisionGroups, Error, Event, Ground, PhysicsSnapshot, PhysicsWorld, PickHit, PointHit,
+        Push, QueryFilter, RayHit, ShapeError, ShapeHit,
     };
     pub use rebound_constraints::{
         BallJoint, ConstraintError, FixedJoint, HingeJoint, Joint, JointKind, Limits, Motor,

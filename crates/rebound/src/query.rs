@@ -164,7 +164,7 @@ fn checked_max_distance(max_distance: f32) -> Result<f32, Error> {
 
 impl Scene<'_> {
     /// Accepted candidates whose box passes `test`, sorted by handle, with their bodies.
-    fn candidates(
+    pub(crate) fn candidates(
         &self,
         filter: &QueryFilter,
         test: impl Fn(&Aabb) -> bool,

@@ -9,7 +9,7 @@ use crate::{
 use rebound_math::{Pose, Vec3};
 
 impl PhysicsWorld {
-    fn scene(&self) -> Scene<'_> {
+    pub(crate) fn scene(&self) -> Scene<'_> {
         let backend = self.world.backend();
         Scene {
             colliders: &backend.colliders,
