@@ -329,11 +329,8 @@ impl PreparedSpring {
         let part = AxisPart::along(pair, &dist);
         match self.spring.model {
             SpringModel::Soft(spring) => {
-                let softness = if spring.depends_on_mass() {
-                    spring.softness(part.effective_mass(), stage.h)
-                } else {
-                    self.softness
-                };
+                let softness =
+                    spring.softness_in_iteration(self.softness, part.effective_mass(), stage.h);
                 let c = dist.length - self.spring.rest_length;
                 part.solve(
                     pair,
