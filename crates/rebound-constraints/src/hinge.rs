@@ -325,7 +325,7 @@ impl PreparedHinge {
 /// direct rows and their errors ([`PreparedHinge::direct_rows`], [`PreparedHinge::direct_errors`]).
 #[inline]
 fn alignment_axes((fa, fb): (Quat, Quat)) -> (Vec3, [Vec3; 2]) {
-    (hinge_axis(fa), [fb * Vec3::Y, fb * Vec3::Z])
+    (hinge_axis(fa), AlignPart::perpendiculars(fb))
 }
 
 /// A's hinge axis (world), the X axis of its joint frame `fa`: the axis of the alignment and of the angle.

@@ -21,7 +21,7 @@ use crate::path::{JointRows, TargetRule};
 use crate::stage::Stage;
 use rebound_dynamics::{Bias, Softness, SolverBody};
 use rebound_math::glam::Vec3A;
-use rebound_math::{Mat2, Vec2, Vec3};
+use rebound_math::{Mat2, Quat, Vec2, Vec3};
 
 /// An axis-alignment block, built each iteration (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -56,6 +56,14 @@ impl AlignPart {
             ),
             effective_mass: inverse2_or_zero(&k),
         }
+    }
+
+    /// B's two perpendiculars `b₁`, `b₂` (world) for the joint frame `frame_b` of B, whose axis is the
+    /// frame's X: the frame's Y and Z (a hinge's, a wheel's).
+    #[inline]
+    #[must_use]
+    pub fn perpendiculars(frame_b: Quat) -> [Vec3; 2] {
+        [frame_b * Vec3::Y, frame_b * Vec3::Z]
     }
 
     /// The alignment error `C` (rad, to first order).
