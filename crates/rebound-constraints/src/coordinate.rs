@@ -70,11 +70,11 @@ impl CoordinateRows {
         stage: &Stage,
     ) {
         if let (Some(spring), Bias::On) = (self.spring, stage.bias) {
-            let softness = if spring.spring().depends_on_mass() {
-                spring.spring().softness(row.effective_mass(), stage.h)
-            } else {
-                self.spring_softness
-            };
+            let softness = spring.spring().softness_in_iteration(
+                self.spring_softness,
+                row.effective_mass(),
+                stage.h,
+            );
             let target = RowTarget::spring(position - spring.target(), softness);
             row.solve_clamped(
                 pair,

@@ -3,7 +3,7 @@
 
 use crate::ball;
 use crate::pair::BodyPair;
-use crate::part::{RotationPart, block_target, rotation_error};
+use crate::part::RotationPart;
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::SolverBody;
@@ -66,10 +66,9 @@ impl PreparedFixed {
         b: &mut SolverBody,
         stage: &Stage,
     ) {
-        let (fa, fb) = pair.frames(a, b);
-        let target = block_target(rotation_error(fa, fb), stage.bias, stage.joint_softness);
+        let frames = pair.frames(a, b);
         self.rotation
-            .solve(pair, a, b, target, &mut state.angular_impulse);
+            .solve_frames(pair, frames, a, b, stage, &mut state.angular_impulse);
         ball::solve(pair, state, a, b, stage);
     }
 }

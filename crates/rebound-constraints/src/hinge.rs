@@ -277,8 +277,24 @@ impl PreparedHinge {
         if self.rows.is_idle(stage.bias) {
             return;
         }
-        let (fa, fb) = pair.frames(a, b);
-        let part = AnglePart::new(pair, fa * Vec3::X);
+        let frames = pair.frames(a, b);
+        self.solve_angle(pair, frames, hinge_axis(frames.0), state, a, b, stage);
+    }
+
+    /// The limit, motor and spring rows on the angle between the joint frames `frames` (world), about A's
+    /// hinge axis `axis` (world).
+    #[inline]
+    fn solve_angle(
+        &self,
+        pair: &BodyPair,
+        (fa, fb): (Quat, Quat),
+        axis: Vec3,
+        state: &mut JointState,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        stage: &Stage,
+    ) {
+        let part = AnglePart::new(pair, axis);
         self.rows
             .solve(&part, pair, twist_angle(fa, fb), state, a, b, stage);
     }
@@ -294,9 +310,7 @@ impl PreparedHinge {
         let (fa, fb) = pair.frames(a, b);
         let (axis, perpendiculars) = alignment_axes((fa, fb));
         if !self.rows.is_idle(stage.bias) {
-            let part = AnglePart::new(pair, axis);
-            self.rows
-                .solve(&part, pair, twist_angle(fa, fb), state, a, b, stage);
+            self.solve_angle(pair, (fa, fb), axis, state, a, b, stage);
         }
         let align = AlignPart::new(pair, axis, perpendiculars);
         let mut lambda = state.angular_impulse.truncate();
@@ -311,7 +325,13 @@ impl PreparedHinge {
 /// direct rows and their errors ([`PreparedHinge::direct_rows`], [`PreparedHinge::direct_errors`]).
 #[inline]
 fn alignment_axes((fa, fb): (Quat, Quat)) -> (Vec3, [Vec3; 2]) {
-    (fa * Vec3::X, [fb * Vec3::Y, fb * Vec3::Z])
+    (hinge_axis(fa), AlignPart::perpendiculars(fb))
+}
+
+/// A's hinge axis (world), the X axis of its joint frame `fa`: the axis of the alignment and of the angle.
+#[inline]
+fn hinge_axis(fa: Quat) -> Vec3 {
+    fa * Vec3::X
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@ use crate::coordinate::CoordinateRows;
 use crate::limits::Limits;
 use crate::motor::Motor;
 use crate::pair::BodyPair;
-use crate::part::{AxisPart, RotationPart, Row, RowTarget, block_target, rotation_error};
+use crate::part::{AxisPart, RotationPart, Row, RowTarget};
 use crate::soft_spring::JointSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
@@ -237,13 +237,9 @@ impl PreparedPrismatic {
         let slide = g.row(pair, 0);
         self.rows
             .solve(&slide, pair, g.axes[0].dot(g.d), state, a, b, stage);
-        let target = block_target(
-            rotation_error(g.frame_a, g.frame_b),
-            stage.bias,
-            stage.joint_softness,
-        );
+        let frames = (g.frame_a, g.frame_b);
         self.rotation
-            .solve(pair, a, b, target, &mut state.angular_impulse);
+            .solve_frames(pair, frames, a, b, stage, &mut state.angular_impulse);
         g.solve_across(pair, [1, 2], state, a, b, stage);
     }
 }

@@ -3,8 +3,8 @@
 
 use crate::error::ConstraintError;
 use crate::pair::BodyPair;
-use crate::part::{AxisPart, RowTarget};
-use crate::path::{JointRows, MAX_ROWS, TargetRule};
+use crate::part::{AxisPart, Bound, DistanceRow};
+use crate::path::{JointRows, MAX_ROWS};
 use crate::spring::initial_axis;
 use crate::stage::Stage;
 use crate::state::JointState;
@@ -82,12 +82,7 @@ impl PreparedRod {
         b: &mut SolverBody,
     ) {
         let dist = pair.distance(a, b, self.fallback_axis);
-        AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b).apply(
-            pair,
-            a,
-            b,
-            state.axial_impulse,
-        );
+        AxisPart::along(pair, &dist).apply(pair, a, b, state.axial_impulse);
     }
 
     /// The accumulated impulse of the rod's direct row ([`PreparedRod::direct_row`]), as its row order.
@@ -112,19 +107,21 @@ impl PreparedRod {
         stage: &Stage,
         out: &mut JointRows,
     ) {
-        let dist = pair.distance(a, b, self.fallback_axis);
-        self.fallback_axis = dist.axis;
-        let (c, rule) = (dist.length - self.length, TargetRule::Equality);
-        // RowTarget::equality(C, bias, joint softness)
-        let target = rule.target(c, stage);
-        AxisPart::push_row(
+        self.measure(pair, (a, b)).push(pair, stage, out);
+    }
+
+    /// The rod's row at the current pose (`|d| = length`), its direction kept as the next fallback.
+    #[inline(always)]
+    fn measure(&mut self, pair: &BodyPair, bodies: (&SolverBody, &SolverBody)) -> DistanceRow {
+        let row = DistanceRow::measure(
             pair,
-            &dist,
-            target,
-            (f32::NEG_INFINITY, f32::INFINITY),
-            (c, rule),
-            out,
+            bodies,
+            self.fallback_axis,
+            self.length,
+            Bound::Exactly,
         );
+        self.fallback_axis = row.axis();
+        row
     }
 
     pub(crate) fn solve(
@@ -135,19 +132,7 @@ impl PreparedRod {
         b: &mut SolverBody,
         stage: &Stage,
     ) {
-        let dist = pair.distance(a, b, self.fallback_axis);
-        self.fallback_axis = dist.axis;
-        let part = AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b);
-        let target =
-            RowTarget::equality(dist.length - self.length, stage.bias, stage.joint_softness);
-        part.solve(
-            pair,
-            a,
-            b,
-            target,
-            &mut state.axial_impulse,
-            f32::NEG_INFINITY,
-            f32::INFINITY,
-        );
+        let row = self.measure(pair, (&*a, &*b));
+        row.solve(pair, a, b, stage, &mut state.axial_impulse);
     }
 }

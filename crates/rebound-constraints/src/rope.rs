@@ -5,8 +5,8 @@
 use crate::error::ConstraintError;
 use crate::error::check_in_range;
 use crate::pair::BodyPair;
-use crate::part::{AxisPart, RowTarget};
-use crate::path::{JointRows, MAX_ROWS, TargetRule};
+use crate::part::{AxisPart, Bound, DistanceRow, RowTarget};
+use crate::path::{JointRows, MAX_ROWS};
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
@@ -101,7 +101,7 @@ impl Rope {
 
     pub(crate) fn prepare(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> PreparedRope {
         let dist = pair.distance(a, b, Vec3::X);
-        let part = AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b);
+        let part = AxisPart::along(pair, &dist);
         PreparedRope {
             rope: *self,
             // `initial_axis(pair, a, b)` is this distance's axis: the same call, made once.
@@ -139,12 +139,7 @@ impl PreparedRope {
             return;
         }
         let dist = pair.distance(a, b, self.fallback_axis);
-        AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b).apply(
-            pair,
-            a,
-            b,
-            state.upper_impulse,
-        );
+        AxisPart::along(pair, &dist).apply(pair, a, b, state.upper_impulse);
     }
 
     pub(crate) fn solve(
@@ -155,25 +150,13 @@ impl PreparedRope {
         b: &mut SolverBody,
         stage: &Stage,
     ) {
-        let dist = pair.distance(a, b, self.fallback_axis);
-        self.fallback_axis = dist.axis;
-        let part = AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b);
-        let c = dist.length - self.rope.max_length;
-        let target = RowTarget::upper_limit(c, stage.bias, stage.joint_softness, stage.inv_h);
-        part.solve(
-            pair,
-            a,
-            b,
-            target,
-            &mut state.upper_impulse,
-            f32::NEG_INFINITY,
-            0.0,
-        );
+        let row = self.measure(pair, (&*a, &*b));
+        row.solve(pair, a, b, stage, &mut state.upper_impulse);
         self.taut |= state.upper_impulse < 0.0;
     }
 
     /// The rope's row for the direct solve of a chain ([`crate::path`]) at the current pose, pushed into
-    /// `out`: as [`PreparedRope::solve`] builds it, bounded to `λ ≤ 0`, with its position error
+    /// `out`: the row [`PreparedRope::solve`] solves, bounded to `λ ≤ 0`, with its position error
     /// `C = |d| − max_length` for the passes that reuse it.
     pub(crate) fn direct_row(
         &mut self,
@@ -183,19 +166,21 @@ impl PreparedRope {
         stage: &Stage,
         out: &mut JointRows,
     ) {
-        let dist = pair.distance(a, b, self.fallback_axis);
-        self.fallback_axis = dist.axis;
-        let (c, rule) = (dist.length - self.rope.max_length, TargetRule::UpperLimit);
-        // RowTarget::upper_limit(C, bias, joint softness, inv_h)
-        let target = rule.target(c, stage);
-        AxisPart::push_row(
+        self.measure(pair, (a, b)).push(pair, stage, out);
+    }
+
+    /// The rope's row at the current pose (`|d| ≤ max_length`), its direction kept as the next fallback.
+    #[inline(always)]
+    fn measure(&mut self, pair: &BodyPair, bodies: (&SolverBody, &SolverBody)) -> DistanceRow {
+        let row = DistanceRow::measure(
             pair,
-            &dist,
-            target,
-            (f32::NEG_INFINITY, 0.0),
-            (c, rule),
-            out,
+            bodies,
+            self.fallback_axis,
+            self.rope.max_length,
+            Bound::AtMost,
         );
+        self.fallback_axis = row.axis();
+        row
     }
 
     /// The accumulated impulse of the rope's direct row ([`PreparedRope::direct_row`]), as its row order.
@@ -237,7 +222,7 @@ impl PreparedRope {
             return;
         }
         let dist = pair.distance(a, b, self.fallback_axis);
-        let part = AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b);
+        let part = AxisPart::along(pair, &dist);
         let target = RowTarget::speed(-self.rope.restitution * self.separating_speed);
         part.solve(
             pair,

@@ -93,6 +93,24 @@ impl SoftSpring {
         matches!(self, Self::Stiffness { .. })
     }
 
+    /// The coefficients in one iteration of a row of effective mass `effective_mass` (kg or kg·m²) in
+    /// substep `h` (s): `prepared` (this spring's [`SoftSpring::softness`] for mass 0, made once at prepare)
+    /// unless they depend on the mass ([`SoftSpring::depends_on_mass`]), else computed now.
+    #[inline]
+    #[must_use]
+    pub(crate) fn softness_in_iteration(
+        &self,
+        prepared: Softness,
+        effective_mass: f32,
+        h: f32,
+    ) -> Softness {
+        if self.depends_on_mass() {
+            self.softness(effective_mass, h)
+        } else {
+            prepared
+        }
+    }
+
     /// The soft-constraint coefficients for a row of effective mass `effective_mass` (kg or kg·m²) and
     /// substep `h` (s). An infinite stiffness gives the rigid limit `bias_rate = 1/h`.
     #[inline]

@@ -293,7 +293,7 @@ impl PreparedSpring {
             return;
         }
         let dist = pair.distance(a, b, self.fallback_axis);
-        let part = AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b);
+        let part = AxisPart::along(pair, &dist);
         if let Some(f) = self.force(&part, dist.length, a, b) {
             part.apply(pair, a, b, f * h);
         }
@@ -308,7 +308,7 @@ impl PreparedSpring {
     ) {
         if self.is_soft() && state.axial_impulse != 0.0 {
             let dist = pair.distance(a, b, self.fallback_axis);
-            let part = AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b);
+            let part = AxisPart::along(pair, &dist);
             part.apply(pair, a, b, state.axial_impulse);
         }
     }
@@ -326,14 +326,11 @@ impl PreparedSpring {
         }
         let dist = pair.distance(a, b, self.fallback_axis);
         self.fallback_axis = dist.axis;
-        let part = AxisPart::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b);
+        let part = AxisPart::along(pair, &dist);
         match self.spring.model {
             SpringModel::Soft(spring) => {
-                let softness = if spring.depends_on_mass() {
-                    spring.softness(part.effective_mass(), stage.h)
-                } else {
-                    self.softness
-                };
+                let softness =
+                    spring.softness_in_iteration(self.softness, part.effective_mass(), stage.h);
                 let c = dist.length - self.spring.rest_length;
                 part.solve(
                     pair,

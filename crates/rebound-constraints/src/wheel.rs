@@ -13,7 +13,6 @@ use crate::soft_spring::{JointSpring, SoftSpring};
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
-use rebound_math::Vec3;
 
 /// A wheel joint.
 ///
@@ -170,7 +169,7 @@ impl PreparedWheel {
         AlignPart::apply_about(
             pair,
             axle,
-            [g.frame_b * Vec3::Y, g.frame_b * Vec3::Z],
+            AlignPart::perpendiculars(g.frame_b),
             a,
             b,
             state.angular_impulse.truncate(),
@@ -203,7 +202,7 @@ impl PreparedWheel {
                 max,
             );
         }
-        let align = AlignPart::new(pair, axle, [g.frame_b * Vec3::Y, g.frame_b * Vec3::Z]);
+        let align = AlignPart::new(pair, axle, AlignPart::perpendiculars(g.frame_b));
         let mut lambda = state.angular_impulse.truncate();
         align.solve(a, b, stage.bias, stage.joint_softness, &mut lambda);
         state.angular_impulse = lambda.extend(0.0);

@@ -11,16 +11,17 @@
 //! angular impulse Jᵀλ = u₁λ₁ + u₂λ₂ = (λ₁b₁ + λ₂b₂) × a
 //! ```
 //!
-//! The Gauss–Seidel solve uses the block; the direct solve of a path ([`crate::path`]) uses the same `uᵢ` and
-//! errors as two rows ([`AlignPart::push_rows`]).
+//! The directions `uᵢ` are stated once (`directions`), and the errors (`error`): the Gauss–Seidel solve makes
+//! the block from them, and the direct solve of a path ([`crate::path`]) takes them as two angular rows
+//! ([`AlignPart::push_rows`], each an [`AnglePart::row`]).
 
-use super::{inverse2_or_zero, solve_block2};
+use super::{AnglePart, block_target2, inverse2_or_zero, solve_block2};
 use crate::pair::BodyPair;
-use crate::path::{JointRows, Row, TargetRule};
+use crate::path::{JointRows, TargetRule};
 use crate::stage::Stage;
 use rebound_dynamics::{Bias, Softness, SolverBody};
 use rebound_math::glam::Vec3A;
-use rebound_math::{Mat2, Vec2, Vec3};
+use rebound_math::{Mat2, Quat, Vec2, Vec3};
 
 /// An axis-alignment block, built each iteration (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -39,8 +40,7 @@ impl AlignPart {
     #[must_use]
     pub fn new(pair: &BodyPair, axis_a: Vec3, perpendicular_b: [Vec3; 2]) -> Self {
         let u = directions(axis_a, perpendicular_b);
-        let w_a = [pair.inv_inertia_a * u[0], pair.inv_inertia_a * u[1]];
-        let w_b = [pair.inv_inertia_b * u[0], pair.inv_inertia_b * u[1]];
+        let (w_a, w_b) = turned(pair, u);
         let k01 = u[0].dot(w_a[1] + w_b[1]);
         let k = Mat2::from_cols(
             Vec2::new(u[0].dot(w_a[0] + w_b[0]), k01),
@@ -56,6 +56,14 @@ impl AlignPart {
             ),
             effective_mass: inverse2_or_zero(&k),
         }
+    }
+
+    /// B's two perpendiculars `b₁`, `b₂` (world) for the joint frame `frame_b` of B, whose axis is the
+    /// frame's X: the frame's Y and Z (a hinge's, a wheel's).
+    #[inline]
+    #[must_use]
+    pub fn perpendiculars(frame_b: Quat) -> [Vec3; 2] {
+        [frame_b * Vec3::Y, frame_b * Vec3::Z]
     }
 
     /// The alignment error `C` (rad, to first order).
@@ -97,9 +105,7 @@ impl AlignPart {
         if impulse == Vec2::ZERO {
             return;
         }
-        let u = directions(axis_a, perpendicular_b);
-        let w_a = [pair.inv_inertia_a * u[0], pair.inv_inertia_a * u[1]];
-        let w_b = [pair.inv_inertia_b * u[0], pair.inv_inertia_b * u[1]];
+        let (w_a, w_b) = turned(pair, directions(axis_a, perpendicular_b));
         a.angular_velocity -= w_a[0] * impulse.x + w_a[1] * impulse.y;
         b.angular_velocity += w_b[0] * impulse.x + w_b[1] * impulse.y;
     }
@@ -115,10 +121,7 @@ impl AlignPart {
         joint_softness: Softness,
         accumulated: &mut Vec2,
     ) -> Vec2 {
-        let target = match bias {
-            Bias::On => (joint_softness.bias_rate * self.error, joint_softness),
-            Bias::Off => (Vec2::ZERO, Softness::RIGID),
-        };
+        let target = block_target2(self.error, bias, joint_softness);
         let applied = solve_block2(
             &self.effective_mass,
             self.velocity(a, b),
@@ -153,7 +156,7 @@ impl AlignPart {
             let c = error(axis_a, perpendicular);
             let rule = TargetRule::Equality;
             let target = rule.target(c, stage);
-            out.push(Row::angular(u, target), c, rule);
+            out.push(AnglePart::row(u, target), c, rule);
         }
     }
 
@@ -172,6 +175,16 @@ fn directions(axis_a: Vec3, perpendicular_b: [Vec3; 2]) -> [Vec3; 2] {
         perpendicular_b[0].cross(axis_a),
         perpendicular_b[1].cross(axis_a),
     ]
+}
+
+/// `(I_a⁻¹·uᵢ, I_b⁻¹·uᵢ)` of the directions `u` ([`directions`]): what an impulse along them turns each
+/// body by.
+#[inline]
+fn turned(pair: &BodyPair, u: [Vec3; 2]) -> ([Vec3; 2], [Vec3; 2]) {
+    (
+        [pair.inv_inertia_a * u[0], pair.inv_inertia_a * u[1]],
+        [pair.inv_inertia_b * u[0], pair.inv_inertia_b * u[1]],
+    )
 }
 
 /// The alignment error `C = a·b` of one perpendicular `b` of B with A's axis `a` (rad, to first order).

@@ -7,9 +7,13 @@
 //! K = a·I_a⁻¹·a + a·I_b⁻¹·a                                          (1/(kg·m²))
 //! impulse λ about a (N·m·s): ω_a −= λ·I_a⁻¹·a,  ω_b += λ·I_b⁻¹·a
 //! ```
+//!
+//! The Gauss–Seidel part is made from the axis `a`; the direct solve of a path ([`crate::path`]) takes the
+//! same `J` as a row ([`AnglePart::row`]: the hinge's alignment rows, about each of their directions).
 
 use super::{RowTarget, inverse_or_zero, solve_row};
 use crate::pair::BodyPair;
+use crate::path::{Row, Side};
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 use rebound_math::glam::Vec3A;
@@ -94,5 +98,16 @@ impl AnglePart {
     #[must_use]
     pub fn twist(axis: Vec3A, impulse: f32) -> Vec3A {
         axis * impulse
+    }
+
+    /// The row about the unit `axis` (world) for the direct solve of a path: `Ċ = a·(ω_b − ω_a)`, the part's
+    /// `J = [ 0  −aᵀ  0  aᵀ ]` as A's and B's sides, with the target `target`, unbounded.
+    #[inline]
+    pub(crate) fn row(axis: Vec3, target: RowTarget) -> Row {
+        let side = |angular| Side {
+            linear: Vec3::ZERO,
+            angular,
+        };
+        Row::new([side(-axis), side(axis)], target)
     }
 }

@@ -13,12 +13,13 @@
 //! that both bodies are pushed at the same point (the exact Jacobian of `C = n_a·d` with `n_a` turning with A,
 //! and no spurious torque: angular momentum is conserved).
 //!
-//! The Gauss–Seidel solve uses the part; the direct solve of a path ([`crate::path`]) uses the same `J` as
-//! one row ([`AxisPart::push_row`], a rope's and a rod's).
+//! `J` is stated once (`jacobian`): the Gauss–Seidel solve makes the part from it, and the direct solve of
+//! a path ([`crate::path`]) takes it as one row ([`AxisPart::push_row`], a rope's and a rod's;
+//! [`AxisPart::row`] for the path's own rows).
 
 use super::{RowTarget, inverse_or_zero, solve_row};
 use crate::pair::{BodyPair, Distance};
-use crate::path::{JointRows, Row, TargetRule};
+use crate::path::{JointRows, Row, Side, TargetRule};
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 
@@ -38,8 +39,8 @@ impl AxisPart {
     #[inline]
     #[must_use]
     pub fn new(pair: &BodyPair, axis: Vec3, r_a: Vec3, r_b: Vec3) -> Self {
-        let rn_a = r_a.cross(axis);
-        let rn_b = r_b.cross(axis);
+        let [ja, jb] = jacobian(axis, r_a, r_b);
+        let (rn_a, rn_b) = (-ja.angular, jb.angular);
         let w_a = pair.inv_inertia_a * rn_a;
         let w_b = pair.inv_inertia_b * rn_b;
         let k = pair.inv_mass_a + pair.inv_mass_b + rn_a.dot(w_a) + rn_b.dot(w_b);
@@ -51,6 +52,14 @@ impl AxisPart {
             w_b,
             effective_mass: inverse_or_zero(k),
         }
+    }
+
+    /// The row along `dist`'s axis between its anchors: [`AxisPart::new`] for a distance row (a spring's, a
+    /// rope's, a rod's, a tether's).
+    #[inline]
+    #[must_use]
+    pub fn along(pair: &BodyPair, dist: &Distance) -> Self {
+        Self::new(pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b)
     }
 
     /// The unit axis.
@@ -115,11 +124,29 @@ impl AxisPart {
         applied
     }
 
+    /// The row along the unit `axis` with lever arms `r_a`, `r_b` (m) for the direct solve of a path, with
+    /// the part's `J` and the target `target`, unbounded.
+    #[inline]
+    pub(crate) fn row(axis: Vec3, r_a: Vec3, r_b: Vec3, target: RowTarget) -> Row {
+        Row::new(jacobian(axis, r_a, r_b), target)
+    }
+
+    /// [`AxisPart::row`] between the two centres of mass (`r_a = r_b = 0`): no angular sides, without the cross
+    /// products of zero lever arms.
+    #[inline]
+    pub(crate) fn row_between_centres(axis: Vec3, target: RowTarget) -> Row {
+        let side = |linear| Side {
+            linear,
+            angular: Vec3::ZERO,
+        };
+        Row::new([side(-axis), side(axis)], target)
+    }
+
     /// Pushes the row along `dist`'s axis between the joint's anchors into `out` (a rope's, a rod's), with
-    /// the impulse bounds `[lower, upper]` and position error `c` under `rule`: [`Row::linear`], the `J` of
-    /// [`AxisPart::new`] at `dist`'s axis and lever arms, or for a joint between both centres of mass
-    /// ([`BodyPair::is_between_centres`]) [`Row::between_centres`], which has nothing to turn. Inlined into
-    /// the path pass, which builds a rope's row at every new pose.
+    /// the impulse bounds `[lower, upper]` and position error `c` under `rule`: [`AxisPart::row`] at `dist`'s
+    /// axis and lever arms, or for a joint between both centres of mass ([`BodyPair::is_between_centres`])
+    /// [`AxisPart::row_between_centres`], which has nothing to turn. Inlined into the path pass, which builds
+    /// a rope's row at every new pose.
     #[inline(always)]
     pub(crate) fn push_row(
         pair: &BodyPair,
@@ -130,12 +157,28 @@ impl AxisPart {
         out: &mut JointRows,
     ) {
         if pair.is_between_centres() {
-            let row = Row::between_centres(dist.axis, target).clamped(lower, upper);
+            let row = Self::row_between_centres(dist.axis, target).clamped(lower, upper);
             out.push_turned(row, c, rule, [Vec3::ZERO; 2]);
         } else {
-            let row = Row::linear(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
+            let row = Self::row(dist.axis, dist.anchors.r_a, dist.anchors.r_b, target)
                 .clamped(lower, upper);
             out.push(row, c, rule);
         }
     }
+}
+
+/// The part's `J = [ −nᵀ   −(r_a × n)ᵀ   nᵀ   (r_b × n)ᵀ ]` along the unit `axis` n with lever arms `r_a`,
+/// `r_b` (m), as A's and B's sides: the one statement of the part's Jacobian.
+#[inline(always)]
+fn jacobian(axis: Vec3, r_a: Vec3, r_b: Vec3) -> [Side; 2] {
+    [
+        Side {
+            linear: -axis,
+            angular: -r_a.cross(axis),
+        },
+        Side {
+            linear: axis,
+            angular: r_b.cross(axis),
+        },
+    ]
 }

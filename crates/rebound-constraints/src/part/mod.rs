@@ -40,12 +40,14 @@
 mod align;
 mod angle;
 mod axis;
+mod distance;
 mod point;
 mod rotation;
 
 pub use align::AlignPart;
 pub use angle::AnglePart;
 pub use axis::AxisPart;
+pub(crate) use distance::{Bound, DistanceRow};
 pub use point::PointPart;
 pub use rotation::{RotationPart, rotation_error};
 
@@ -235,14 +237,26 @@ pub(crate) fn clamp_impulse(x: f32, lower: f32, upper: f32) -> f32 {
     if above < upper { above } else { upper }
 }
 
-/// The bias and softness of an equality block `C = 0` (vector form of [`RowTarget::equality`]).
+/// The bias and softness of an equality block `C = 0` of three rows: [`RowTarget::equality`] of each
+/// component, so that a block and its rows in the direct solve of a path (equality rows) have the same
+/// targets.
 #[inline]
 #[must_use]
 pub fn block_target(c: Vec3, bias: Bias, joint_softness: Softness) -> (Vec3, Softness) {
-    match bias {
-        Bias::On => (joint_softness.bias_rate * c, joint_softness),
-        Bias::Off => (Vec3::ZERO, Softness::RIGID),
-    }
+    let [x, y, z] = c
+        .to_array()
+        .map(|c| RowTarget::equality(c, bias, joint_softness));
+    (Vec3::new(x.bias, y.bias, z.bias), x.softness)
+}
+
+/// [`block_target`] of a block of two rows.
+#[inline]
+#[must_use]
+pub fn block_target2(c: Vec2, bias: Bias, joint_softness: Softness) -> (Vec2, Softness) {
+    let [x, y] = c
+        .to_array()
+        .map(|c| RowTarget::equality(c, bias, joint_softness));
+    (Vec2::new(x.bias, y.bias), x.softness)
 }
 
 /// The impulse of a 3-row block with effective-mass matrix `effective_mass = K⁻¹`: updates `accumulated`

@@ -9,13 +9,15 @@
 //! impulse P (N·s): v_a −= P/m_a, ω_a −= I_a⁻¹·(r_a × P), v_b += P/m_b, ω_b += I_b⁻¹·(r_b × P)
 //! ```
 //!
-//! The Gauss–Seidel solve uses the block; the direct solve of a path ([`crate::path`]) uses the same `J` as
-//! three rows along the world axes ([`PointPart::push_rows`]), each row's error the component of `d` and its
-//! target the component of [`block_target`]'s.
+//! `J` is stated once, as its angular blocks `([r_a]×, −[r_b]×)` (`angular_jacobian`): the Gauss–Seidel
+//! solve makes the block's `K` from them, and the direct solve of a path ([`crate::path`]) takes their rows
+//! as three rows along the world axes ([`PointPart::push_rows`]), each row's error the component of `d` and
+//! its target the component of [`block_target`]'s. Every impulse of the part, and of the joints' other parts
+//! with it in a warm start, is applied by [`PointPart::apply_with_twist`].
 
 use super::{inverse3_or_zero, solve_block3};
 use crate::pair::BodyPair;
-use crate::path::{JointRows, Row, TargetRule};
+use crate::path::{JointRows, Row, Side, TargetRule};
 use crate::stage::Stage;
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::glam::{Mat3A, Vec3A};
@@ -37,10 +39,10 @@ impl PointPart {
     #[inline]
     #[must_use]
     pub fn new(pair: &BodyPair, r_a: Vec3, r_b: Vec3) -> Self {
-        let (sa, sb) = (skew(r_a), skew(r_b));
+        let (ja, jb) = angular_jacobian(r_a, r_b);
         let k = Mat3::from_diagonal(Vec3::splat(pair.inv_mass_a + pair.inv_mass_b))
-            - sa * pair.inv_inertia_a * sa
-            - sb * pair.inv_inertia_b * sb;
+            + ja * pair.inv_inertia_a * ja.transpose()
+            + jb * pair.inv_inertia_b * jb.transpose();
         Self {
             r_a,
             r_b,
@@ -75,10 +77,8 @@ impl PointPart {
         if impulse == Vec3::ZERO {
             return;
         }
-        a.linear_velocity -= impulse * pair.inv_mass_a;
-        a.angular_velocity -= pair.inv_inertia_a * r_a.cross(impulse);
-        b.linear_velocity += impulse * pair.inv_mass_b;
-        b.angular_velocity += pair.inv_inertia_b * r_b.cross(impulse);
+        let levers = (Vec3A::from(r_a), Vec3A::from(r_b));
+        Self::apply_with_twist(pair, levers, impulse.into(), Vec3A::ZERO, a, b);
     }
 
     /// One iteration toward `Ċ + bias = 0` with the given softness; returns the applied increment (N·s).
@@ -97,10 +97,12 @@ impl PointPart {
         applied
     }
 
-    /// [`PointPart::apply_at`] for the impulse `p` (N·s, world) with lever arms `r_a`, `r_b` (m), together
-    /// with the angular impulse `twist` (N·m·s, world) of the joint's other parts, `+` on B and `−` on A:
-    /// each body's torques summed and turned by its inverse inertia once (`Jᵀ·λ` of all the parts, then
-    /// `M⁻¹`), in 16-byte vectors. A warm start applies a joint's accumulated impulses this way.
+    /// Applies the impulse `p` (N·s, world) at lever arms `r_a`, `r_b` (m), together with the angular impulse
+    /// `twist` (N·m·s, world) of the joint's other parts (zero for the part alone), `+` on B and `−` on A:
+    /// `v_a −= p/m_a`, `ω_a −= I_a⁻¹·(twist + r_a × p)` and the opposite on B — each body's torques summed and
+    /// turned by its inverse inertia once (`Jᵀ·λ` of all the parts, then `M⁻¹`), in 16-byte vectors. The one
+    /// statement of the part's impulse: [`PointPart::apply`] and [`PointPart::apply_at`] call it, and a
+    /// hinge's warm start applies all its accumulated impulses with it.
     #[inline]
     pub fn apply_with_twist(
         pair: &BodyPair,
@@ -121,10 +123,26 @@ impl PointPart {
     /// of [`PointPart::errors`].
     #[inline]
     pub(crate) fn push_rows(r_a: Vec3, r_b: Vec3, d: Vec3, stage: &Stage, out: &mut JointRows) {
-        for (axis, c) in axes_and_errors(d) {
-            let rule = TargetRule::Block;
+        let (ja, jb) = angular_jacobian(r_a, r_b);
+        let angular = [
+            (ja.row(0), jb.row(0)),
+            (ja.row(1), jb.row(1)),
+            (ja.row(2), jb.row(2)),
+        ];
+        for ((axis, c), (angular_a, angular_b)) in axes_and_errors(d).into_iter().zip(angular) {
+            let rule = TargetRule::Equality;
             let target = rule.target(c, stage);
-            out.push(Row::linear(axis, r_a, r_b, target), c, rule);
+            let sides = [
+                Side {
+                    linear: -axis,
+                    angular: angular_a,
+                },
+                Side {
+                    linear: axis,
+                    angular: angular_b,
+                },
+            ];
+            out.push(Row::new(sides, target), c, rule);
         }
     }
 
@@ -132,7 +150,7 @@ impl PointPart {
     /// and their target rules, in row order, without building the rows.
     #[inline]
     pub(crate) fn errors(d: Vec3) -> [(f32, TargetRule); 3] {
-        axes_and_errors(d).map(|(_, c)| (c, TargetRule::Block))
+        axes_and_errors(d).map(|(_, c)| (c, TargetRule::Equality))
     }
 }
 
@@ -141,4 +159,12 @@ impl PointPart {
 #[inline]
 fn axes_and_errors(d: Vec3) -> [(Vec3, f32); 3] {
     [(Vec3::X, d.x), (Vec3::Y, d.y), (Vec3::Z, d.z)]
+}
+
+/// The angular blocks of the part's `J = [ −1   [r_a]×   1   −[r_b]× ]` for lever arms `r_a`, `r_b` (m):
+/// `([r_a]×, −[r_b]×)`, row `i` of each the angular side of the row along world axis `i`. The one statement of
+/// the part's Jacobian, from which [`PointPart::new`] makes `K` and [`PointPart::push_rows`] the rows.
+#[inline]
+fn angular_jacobian(r_a: Vec3, r_b: Vec3) -> (Mat3, Mat3) {
+    (skew(r_a), -skew(r_b))
 }

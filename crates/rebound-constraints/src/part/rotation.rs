@@ -11,8 +11,9 @@
 //! impulse L (N·m·s): ω_a −= I_a⁻¹·L,  ω_b += I_b⁻¹·L
 //! ```
 
-use super::{inverse3_or_zero, solve_block3};
+use super::{block_target, inverse3_or_zero, solve_block3};
 use crate::pair::BodyPair;
+use crate::stage::Stage;
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::{Mat3, Quat, Vec3};
 
@@ -76,6 +77,24 @@ impl RotationPart {
         );
         Self::apply(pair, a, b, applied);
         applied
+    }
+
+    /// One iteration of the lock between the joint frames `(F_a, F_b)` (world) in a pass of `stage`: toward
+    /// the rotation error [`rotation_error`] as an equality block ([`block_target`]); returns the applied
+    /// increment (N·m·s).
+    #[inline]
+    pub(crate) fn solve_frames(
+        &self,
+        pair: &BodyPair,
+        (frame_a, frame_b): (Quat, Quat),
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        stage: &Stage,
+        accumulated: &mut Vec3,
+    ) -> Vec3 {
+        let c = rotation_error(frame_a, frame_b);
+        let target = block_target(c, stage.bias, stage.joint_softness);
+        self.solve(pair, a, b, target, accumulated)
     }
 }
 

@@ -111,5 +111,7 @@ pub(crate) use link::empty_link;
 pub(crate) use link::{Link, link_at, resize_links};
 pub(crate) use pose::{BuiltAt, CARRY_ANGLE, PoseKey};
 pub(crate) use projection::project_rows;
-pub(crate) use row::{InvMass, JointRows, MAX_ROWS, Real, Row, TargetRule, equality_violation};
+pub(crate) use row::{
+    InvMass, JointRows, MAX_ROWS, Real, Row, Side, TargetRule, equality_violation,
+};
 pub(crate) use sweep::{Resume, solve_path};

@@ -4,10 +4,9 @@
 //! the direct one.
 
 use super::link::{Link, Mode};
-use super::row::{JointRows, MAX_ROWS, Real, Row, TargetRule};
-use crate::part::RowTarget;
+use super::row::{JointRows, MAX_ROWS, Real, TargetRule, row_violation};
+use crate::part::{AxisPart, RowTarget};
 use rebound_dynamics::SolverBody;
-use rebound_math::Vec3;
 
 impl Link {
     /// Turns a link whose rows' biases are their position errors into a link of the position projection, in
@@ -69,7 +68,7 @@ impl Link {
         };
         for axis in [across, other] {
             self.rows.push(
-                Row::linear(axis, Vec3::ZERO, Vec3::ZERO, target),
+                AxisPart::row_between_centres(axis, target),
                 0.0,
                 TargetRule::Equality,
             );
@@ -91,13 +90,7 @@ impl Link {
 pub(crate) fn project_rows(rows: &JointRows, a: &mut SolverBody, b: &mut SolverBody) {
     for (k, row) in rows.rows().iter().enumerate() {
         let c = row.target.bias;
-        let violated = if row.upper == 0.0 {
-            c > 0.0
-        } else if row.lower == 0.0 {
-            c < 0.0
-        } else {
-            c != 0.0
-        };
+        let violated = row_violation(c, row.lower, row.upper) > 0.0;
         let mass = rows.self_coupling(k);
         if !violated || mass <= 0.0 {
             continue;

@@ -3,7 +3,7 @@
 //! its target follows from ([`TargetRule`]). Joints write their rows here in *prepare*-time geometry at every
 //! pass that builds them (solve, relax, projection); the rest of the path solver reads them.
 
-use crate::part::{RowTarget, block_target};
+use crate::part::RowTarget;
 use crate::stage::Stage;
 use rebound_dynamics::SolverBody;
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
@@ -37,10 +37,9 @@ pub(crate) struct InvMass {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) enum TargetRule {
-    /// A component of an equality block (the point rows of ball joints and hinges): [`block_target`],
-    /// `bias = bias_rate·C` with the joint softness in the bias pass, `bias = 0`, rigid, in the relax pass.
-    Block,
-    /// An equality row (a rod, a hinge's alignment rows): [`RowTarget::equality`].
+    /// An equality row (a rod, the point rows of ball joints and hinges, a hinge's alignment rows):
+    /// [`RowTarget::equality`], `bias = bias_rate·C` with the joint softness in the bias pass, `Ċ = 0`, rigid,
+    /// in the relax pass.
     Equality,
     /// A rope's upper limit: [`RowTarget::upper_limit`], speculative (`bias = C·inv_h`, rigid) while slack.
     UpperLimit,
@@ -51,14 +50,6 @@ impl TargetRule {
     #[inline]
     pub fn target(self, c: f32, stage: &Stage) -> RowTarget {
         match self {
-            Self::Block => {
-                let (bias, softness) =
-                    block_target(Vec3::new(c, 0.0, 0.0), stage.bias, stage.joint_softness);
-                RowTarget {
-                    bias: bias.x,
-                    softness,
-                }
-            }
             Self::Equality => RowTarget::equality(c, stage.bias, stage.joint_softness),
             Self::UpperLimit => {
                 RowTarget::upper_limit(c, stage.bias, stage.joint_softness, stage.inv_h)
@@ -111,56 +102,13 @@ pub(crate) struct Row {
 }
 
 impl Row {
-    /// A linear row along `axis` (unit, world) between anchors `r_a`, `r_b` (m, from each centre of mass):
-    /// `Ċ = axis·(v_b + ω_b × r_b − v_a − ω_a × r_a)`.
+    /// The row with Jacobian sides `a` (body A's) and `b` (body B's) and target `target`, unbounded. The
+    /// parts state the sides ([`crate::part`]: each its Jacobian once).
     #[inline]
-    pub fn linear(axis: Vec3, r_a: Vec3, r_b: Vec3, target: RowTarget) -> Self {
+    pub fn new([a, b]: [Side; 2], target: RowTarget) -> Self {
         Self {
-            a: Side {
-                linear: -axis,
-                angular: -r_a.cross(axis),
-            },
-            b: Side {
-                linear: axis,
-                angular: r_b.cross(axis),
-            },
-            target,
-            lower: f32::NEG_INFINITY,
-            upper: f32::INFINITY,
-        }
-    }
-
-    /// [`Row::linear`] between the two centres of mass (`r_a = r_b = 0`): no angular parts, without the cross
-    /// products of zero lever arms.
-    #[inline]
-    pub fn between_centres(axis: Vec3, target: RowTarget) -> Self {
-        Self {
-            a: Side {
-                linear: -axis,
-                angular: Vec3::ZERO,
-            },
-            b: Side {
-                linear: axis,
-                angular: Vec3::ZERO,
-            },
-            target,
-            lower: f32::NEG_INFINITY,
-            upper: f32::INFINITY,
-        }
-    }
-
-    /// An angular row about `axis` (world): `Ċ = axis·(ω_b − ω_a)`.
-    #[inline]
-    pub fn angular(axis: Vec3, target: RowTarget) -> Self {
-        Self {
-            a: Side {
-                linear: Vec3::ZERO,
-                angular: -axis,
-            },
-            b: Side {
-                linear: Vec3::ZERO,
-                angular: axis,
-            },
+            a,
+            b,
             target,
             lower: f32::NEG_INFINITY,
             upper: f32::INFINITY,
@@ -233,7 +181,7 @@ impl JointRows {
     /// No rows yet, for a joint whose bodies have the given inverse masses.
     pub fn new(mass_a: InvMass, mass_b: InvMass) -> Self {
         Self {
-            rows: [Row::angular(Vec3::ZERO, RowTarget::speed(0.0)); MAX_ROWS],
+            rows: [Row::new([Side::default(); 2], RowTarget::speed(0.0)); MAX_ROWS],
             turned: [[Vec3::ZERO; 2]; MAX_ROWS],
             errors: [(0.0, TargetRule::Equality); MAX_ROWS],
             bounded_couplings: [None; MAX_ROWS],
@@ -376,17 +324,22 @@ impl JointRows {
     pub fn violation(&self) -> f32 {
         self.rows()
             .iter()
-            .map(|row| {
-                let c = row.target.bias;
-                if row.upper == 0.0 {
-                    c.max(0.0)
-                } else if row.lower == 0.0 {
-                    (-c).max(0.0)
-                } else {
-                    c.abs()
-                }
-            })
+            .map(|row| row_violation(row.target.bias, row.lower, row.upper))
             .fold(0.0, f32::max)
+    }
+}
+
+/// How far a row with position error `c` (m or rad) and impulse bounds `[lower, upper]` is violated: `|C|`
+/// for an equality, `C` past an upper bound of 0 (a stretched rope), `−C` past a lower bound of 0, and 0 for
+/// a row bounded at 0 on its allowed side (a slack rope).
+#[inline]
+pub(super) fn row_violation(c: f32, lower: f32, upper: f32) -> f32 {
+    if upper == 0.0 {
+        c.max(0.0)
+    } else if lower == 0.0 {
+        (-c).max(0.0)
+    } else {
+        c.abs()
     }
 }
 
@@ -396,7 +349,9 @@ impl JointRows {
 pub(crate) fn equality_violation(errors: &[(f32, TargetRule)], stage: &Stage) -> f32 {
     errors
         .iter()
-        .map(|&(c, rule)| rule.target(c, stage).bias.abs())
+        .map(|&(c, rule)| {
+            row_violation(rule.target(c, stage).bias, f32::NEG_INFINITY, f32::INFINITY)
+        })
         .fold(0.0, f32::max)
 }
 

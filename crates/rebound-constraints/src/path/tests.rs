@@ -10,7 +10,7 @@ use super::factor::*;
 use super::link::*;
 use super::row::*;
 use super::sweep::*;
-use crate::part::RowTarget;
+use crate::part::{AnglePart, AxisPart, RowTarget};
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::{Mat3, Quat, Vec3};
 
@@ -116,7 +116,7 @@ fn soft_path(widths: &[usize], masses: &[InvMass]) -> Vec<Link> {
             let axis = Vec3::new(1.0, 0.1 * i as f32, 0.0).normalize();
             let mut rows = if width == 1 {
                 let mut rows = JointRows::new(masses[i], masses[i + 1]);
-                let row = Row::linear(axis, r_a, r_b, soft).clamped(f32::NEG_INFINITY, 0.0);
+                let row = AxisPart::row(axis, r_a, r_b, soft).clamped(f32::NEG_INFINITY, 0.0);
                 rows.push(row, 0.0, TargetRule::UpperLimit);
                 rows
             } else {
@@ -268,7 +268,7 @@ fn only_rows_bounded_at_zero_can_be_released() {
     assert!(!link.would_deactivate(&[1e3; MAX_ROWS]));
     // A rope's row (upper bound 0) pushed after them: a solution that would make it push releases it.
     let rope =
-        Row::linear(Vec3::X, r_a, r_b, RowTarget::speed(0.0)).clamped(f32::NEG_INFINITY, 0.0);
+        AxisPart::row(Vec3::X, r_a, r_b, RowTarget::speed(0.0)).clamped(f32::NEG_INFINITY, 0.0);
     let mut rows = JointRows::new(mass, mass);
     rows.push(rope, 0.0, TargetRule::UpperLimit);
     let mut link = Link::new(rows, [-1.0, 0.0, 0.0, 0.0, 0.0]);
@@ -286,7 +286,7 @@ fn hinge_rows(r_a: Vec3, r_b: Vec3, axis: Vec3, mass_a: InvMass, mass_b: InvMass
     let mut rows = JointRows::new(mass_a, mass_b);
     for direction in [Vec3::X, Vec3::Y, Vec3::Z] {
         rows.push(
-            Row::linear(direction, r_a, r_b, RowTarget::speed(0.0)),
+            AxisPart::row(direction, r_a, r_b, RowTarget::speed(0.0)),
             0.0,
             TargetRule::Equality,
         );
@@ -295,7 +295,7 @@ fn hinge_rows(r_a: Vec3, r_b: Vec3, axis: Vec3, mass_a: InvMass, mass_b: InvMass
     let side = axis.any_orthonormal_vector();
     for perpendicular in [side, axis.cross(side)] {
         rows.push(
-            Row::angular(perpendicular, RowTarget::speed(0.0)),
+            AnglePart::row(perpendicular, RowTarget::speed(0.0)),
             0.0,
             TargetRule::Equality,
         );

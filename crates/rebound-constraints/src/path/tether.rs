@@ -16,8 +16,8 @@
 //! C = |p_body − p_anchor| − L_path ≤ 0,    L_path = Σ link lengths + Σ |r_out − r_in| over the bodies between
 //! ```
 //!
-//! The tether is an upper-limit [`crate::part::AxisPart`] row exactly as a rope ([`crate::Rope`]): speculative
-//! while slack, joint softness in the bias pass, rigid in the relax pass. Its impulse is stored in the
+//! The tether is the distance row of a rope ([`crate::Rope`], `crate::part::DistanceRow` at most its length):
+//! speculative while slack, joint softness in the bias pass, rigid in the relax pass. Its impulse is stored in the
 //! [`crate::JointState::tether_impulse`] of the joint through which the body was reached, for warm starting.
 //!
 //! **Paths solved directly.** A body whose every joint back to the root belongs to one path solved directly
@@ -36,7 +36,7 @@
 //! by joint order), so the result is deterministic.
 
 use crate::pair::BodyPair;
-use crate::part::{AxisPart, RowTarget};
+use crate::part::{AxisPart, Bound, DistanceRow};
 use crate::stage::Stage;
 use rebound_dynamics::SolverBody;
 use rebound_math::{Mat3, Vec3};
@@ -244,27 +244,13 @@ impl Tether {
             return;
         }
         let dist = self.pair.distance(a, b, Vec3::X);
-        AxisPart::new(&self.pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b).apply(
-            &self.pair,
-            a,
-            b,
-            self.impulse,
-        );
+        AxisPart::along(&self.pair, &dist).apply(&self.pair, a, b, self.impulse);
     }
 
     pub(crate) fn solve(&mut self, a: &mut SolverBody, b: &mut SolverBody, stage: &Stage) {
-        let dist = self.pair.distance(a, b, Vec3::X);
-        let c = dist.length - self.max_length;
-        let target = RowTarget::upper_limit(c, stage.bias, stage.joint_softness, stage.inv_h);
-        AxisPart::new(&self.pair, dist.axis, dist.anchors.r_a, dist.anchors.r_b).solve(
-            &self.pair,
-            a,
-            b,
-            target,
-            &mut self.impulse,
-            f32::NEG_INFINITY,
-            0.0,
-        );
+        let bodies = (&*a, &*b);
+        let row = DistanceRow::measure(&self.pair, bodies, Vec3::X, self.max_length, Bound::AtMost);
+        row.solve(&self.pair, a, b, stage, &mut self.impulse);
     }
 }
 
