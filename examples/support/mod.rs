@@ -122,7 +122,7 @@ impl Output {
     }
 
     fn draw(&mut self) -> Result<(), Failure> {
-        let (Some(recorder), Some(animation)) = (&self.recorder, &mut self.animation) else {
+        let (Some(recorder), Some(animation)) = (&mut self.recorder, &mut self.animation) else {
             return Ok(());
         };
         let Some(frame) = recorder.last_frame() else {

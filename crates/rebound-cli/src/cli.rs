@@ -93,7 +93,8 @@ pub struct PictureArgs {
 /// `rebound run`.
 #[derive(Debug, Args)]
 pub struct RunArgs {
-    /// The scene file (RON; see `scenes/`).
+    /// The scene file (RON; see `scenes/`), or the name of a built-in scene: newtons_cradle, rope_bridge,
+    /// pyramid, car, chain, drag_and_drop, spring_camera (a file of that name wins).
     pub scene: PathBuf,
     /// How many steps to run. Default: the scene's `run.steps`.
     #[arg(long, conflicts_with = "seconds")]

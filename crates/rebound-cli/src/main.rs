@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! rebound run scenes/newtons_cradle.ron --gif cradle.gif
+//! rebound run newtons_cradle --gif cradle.gif     # the same scene, built in: from any directory
 //! rebound run scenes/pyramid.ron --seconds 5 --png-every 60 frames/ --camera 14,12,26:0,7,0:45
 //! rebound run scenes/rope_bridge.ron --record bridge.rrec --plot bridge.svg
 //! rebound info bridge.rrec --json
@@ -13,6 +14,7 @@
 //! Each subcommand lives in its own module; `main` parses the arguments (clap), runs the subcommand and turns
 //! an error into a message on standard error and exit status 1 (clap's own usage errors exit with 2).
 
+mod bundled;
 mod cli;
 mod drawing;
 mod error;

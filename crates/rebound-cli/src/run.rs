@@ -2,6 +2,7 @@
 //! time while recording it, draw the asked pictures and plot from the recording's frames, and print a
 //! summary.
 
+use crate::bundled;
 use crate::cli::RunArgs;
 use crate::drawing::Drawing;
 use crate::error::CliError;
@@ -75,7 +76,20 @@ pub fn print(lines: &[String]) {
 /// A bad scene file, a bad argument, or an output that cannot be written. Nothing is stepped or written
 /// before the scene and the arguments are checked.
 pub fn run(args: &RunArgs) -> Result<(), CliError> {
-    let (scene, built) = rebound_scene::load_file(&args.scene)?;
+    let (scene, built) = match bundled::scene(&args.scene) {
+        Some(source) => rebound_scene::load_str(source)?,
+        None if !args.scene.exists() => {
+            return Err(CliError::Argument {
+                argument: "SCENE",
+                message: format!(
+                    "no file {}, and not a built-in scene ({})",
+                    args.scene.display(),
+                    bundled::names()
+                ),
+            });
+        }
+        None => rebound_scene::load_file(&args.scene)?,
+    };
     let mut world = built.world;
     let dt = scene.run.dt;
     let steps = step_count(args, dt, scene.run.steps)?;
@@ -95,7 +109,7 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     let mut recorder = Recorder::new(&world, out)?;
     // For the plot: each frame's time and diagnostics, without its bodies and contacts.
     let mut history: Vec<Frame> = Vec::new();
-    let mut take = |recorder: &Recorder<Box<dyn Write>>| -> Result<(), CliError> {
+    let mut take = |recorder: &mut Recorder<Box<dyn Write>>| -> Result<(), CliError> {
         let Some(frame) = recorder.last_frame() else {
             return Ok(());
         };
@@ -115,10 +129,10 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
 
     let bar = progress::bar(u64::from(steps), "stepping");
     recorder.record(&world)?;
-    take(&recorder)?;
+    take(&mut recorder)?;
     for _ in 0..steps {
         recorder.step(&mut world, dt)?;
-        take(&recorder)?;
+        take(&mut recorder)?;
         bar.inc(1);
     }
     bar.finish_and_clear();

@@ -315,3 +315,48 @@ fn a_recorded_run_is_summarised_rendered_and_plotted() {
     );
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn a_built_in_scene_runs_by_name_away_from_the_source_tree() {
+    let dir = scratch("built-in");
+    let run = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_rebound"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .expect("the binary runs")
+    };
+    let out = run(&[
+        "run",
+        "newtons_cradle",
+        "--steps",
+        "30",
+        "--record",
+        "c.rrec",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let by_name = std::fs::read(dir.join("c.rrec")).expect("the recording");
+    let by_path = dir.join("p.rrec");
+    let file = repository().join("scenes/newtons_cradle.ron");
+    let out = run(&[
+        "run",
+        file.to_str().unwrap(),
+        "--steps",
+        "30",
+        "--record",
+        by_path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    assert!(
+        by_name == std::fs::read(by_path).unwrap(),
+        "the same run, byte for byte"
+    );
+    let out = run(&["run", "no_such_scene"]);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        stderr.contains("no_such_scene") && stderr.contains("newtons_cradle"),
+        "names the argument and the built-in scenes: {stderr}"
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}

@@ -253,3 +253,168 @@ fn a_slider_draws_its_range_along_its_axis_and_a_broken_joint_only_its_anchors()
             .all(|l| l.color == settings.colors.broken_joint)
     );
 }
+
+/// Whether `draw` has a joint segment from `a` to `b` (either way round) in `color`.
+fn has_joint_line(draw: &DebugDraw, a: Vec3, b: Vec3, color: rebound_debug::Color) -> bool {
+    draw.lines_of(Layer::Joint).any(|l| {
+        l.color == color
+            && ((l.a.distance(a) < EPS && l.b.distance(b) < EPS)
+                || (l.a.distance(b) < EPS && l.b.distance(a) < EPS))
+    })
+}
+
+#[test]
+fn every_joint_kind_in_a_world_draws_at_its_anchors_with_its_axes_and_limits() {
+    let mut world = PhysicsWorld::new(WorldSettings {
+        gravity: Vec3::ZERO,
+        ..WorldSettings::default()
+    })
+    .unwrap();
+    let spring = Spring::new(1.0, SpringModel::soft_frequency(2.0, 0.5).unwrap()).unwrap();
+    let wheel = WheelJoint::new(SoftSpring::default())
+        .unwrap()
+        .with_suspension_limits(Limits::new(-0.2, 0.3).unwrap());
+    let kinds: Vec<JointKind> = vec![
+        spring.into(),
+        Rope::new(2.0).unwrap().into(),
+        Rod::new(1.2).unwrap().into(),
+        BallJoint::new().into(),
+        HingeJoint::new().with_limits(-0.5, 1.0).unwrap().into(),
+        FixedJoint::new().into(),
+        PrismaticJoint::new()
+            .with_limits(Limits::new(-0.25, 0.75).unwrap())
+            .into(),
+        wheel.into(),
+    ];
+    let settings = DebugSettings::default();
+    let colors = &settings.colors;
+    let (size, length) = (settings.marker_size, settings.joint_axis_length);
+    // Each joint on its own pair of turned bodies, 10 m apart; the last one also as a world joint.
+    let mut expected = Vec::new();
+    for (i, kind) in kinds.into_iter().enumerate() {
+        let origin = Vec3::new(10.0 * i as f32, 0.0, 0.0);
+        let pose_a = Pose::new(origin, Quat::from_rotation_z(0.3));
+        let pose_b = Pose::new(
+            origin + Vec3::new(1.0, 0.5, -0.25),
+            Quat::from_rotation_x(-0.7),
+        );
+        let a = world
+            .insert_body(
+                BodyDesc::dynamic()
+                    .with_position(pose_a.position)
+                    .with_rotation(pose_a.rotation),
+            )
+            .unwrap();
+        let b = world
+            .insert_body(
+                BodyDesc::dynamic()
+                    .with_position(pose_b.position)
+                    .with_rotation(pose_b.rotation),
+            )
+            .unwrap();
+        let joint = Joint::new(kind)
+            .with_local_anchors(Vec3::new(0.1, 0.2, 0.3), Vec3::new(-0.2, 0.0, 0.1))
+            .unwrap()
+            .with_local_bases(Quat::from_rotation_y(0.4), Quat::from_rotation_y(0.4))
+            .unwrap();
+        world.insert_joint(joint, a, b).unwrap();
+        expected.push((joint, Some(pose_a), pose_b));
+        if i == 7 {
+            let world_joint = joint
+                .with_local_anchors(Vec3::new(70.0, 3.0, 0.0), Vec3::ZERO)
+                .unwrap();
+            world.insert_world_joint(world_joint, b).unwrap();
+            expected.push((world_joint, None, pose_b));
+        }
+    }
+    let draw = draw_world(&world, &settings);
+    assert!(draw.lines_of(Layer::Shape).next().is_none(), "no colliders");
+    let mut lines = 0;
+    for (joint, pose_a, pose_b) in &expected {
+        let frame = pose_a.map_or(Pose::IDENTITY, |p| p).rotation * joint.local_basis_a();
+        let anchor_a = pose_a.map_or(joint.local_anchor_a(), |p| {
+            p.transform_point(joint.local_anchor_a())
+        });
+        let anchor_b = pose_b.transform_point(joint.local_anchor_b());
+        let name = joint.kind().name();
+        // A cross at each anchor and the line between them, for every kind.
+        for at in [anchor_a, anchor_b] {
+            for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
+                let (from, to) = (at - axis * size, at + axis * size);
+                assert!(
+                    has_joint_line(&draw, from, to, colors.joint),
+                    "{name}: cross at {at}"
+                );
+            }
+        }
+        assert!(
+            has_joint_line(&draw, anchor_a, anchor_b, colors.joint),
+            "{name}: link"
+        );
+        lines += 7;
+        let (x, y, z) = (frame * Vec3::X, frame * Vec3::Y, frame * Vec3::Z);
+        let axis_line = |axis: Vec3| {
+            has_joint_line(
+                &draw,
+                anchor_a - axis * 0.5 * length,
+                anchor_a + axis * 0.5 * length,
+                colors.joint_axis,
+            )
+        };
+        let range = |axis: Vec3, tick: Vec3, (lower, upper): (f32, f32)| {
+            let (from, to) = (anchor_a + axis * lower, anchor_a + axis * upper);
+            has_joint_line(&draw, from, to, colors.joint_limit)
+                && [from, to].iter().all(|&end| {
+                    has_joint_line(
+                        &draw,
+                        end - tick * size,
+                        end + tick * size,
+                        colors.joint_limit,
+                    )
+                })
+        };
+        match joint.kind() {
+            JointKind::Hinge(_) => {
+                assert!(axis_line(x), "{name}: axis");
+                let at = |angle: f32| anchor_a + (y * angle.cos() + z * angle.sin()) * length;
+                assert!(has_joint_line(
+                    &draw,
+                    anchor_a,
+                    at(-0.5),
+                    colors.joint_limit
+                ));
+                assert!(has_joint_line(&draw, anchor_a, at(1.0), colors.joint_limit));
+                // The arc's segments: both ends at the axis length from the anchor, across the axis.
+                let arc = draw
+                    .lines_of(Layer::Joint)
+                    .filter(|l| l.color == colors.joint_limit)
+                    .filter(|l| {
+                        [l.a, l.b].iter().all(|p| {
+                            (p.distance(anchor_a) - length).abs() < EPS
+                                && (*p - anchor_a).dot(x).abs() < EPS
+                        })
+                    })
+                    .count();
+                assert!(arc >= 6, "{name}: 1.5 rad of arc in {arc} segments");
+                lines += 1 + 2 + arc;
+            }
+            JointKind::Prismatic(_) => {
+                assert!(axis_line(x), "{name}: axis");
+                assert!(range(x, y, (-0.25, 0.75)), "{name}: range");
+                lines += 1 + 3;
+            }
+            JointKind::Wheel(_) => {
+                assert!(axis_line(x) && axis_line(y), "{name}: axle and suspension");
+                assert!(range(y, x, (-0.2, 0.3)), "{name}: travel");
+                lines += 2 + 3;
+            }
+            _ => {}
+        }
+    }
+    assert_eq!(
+        draw.lines_of(Layer::Joint).count(),
+        lines,
+        "nothing else is drawn"
+    );
+    assert_eq!(draw.lines.len(), lines);
+}

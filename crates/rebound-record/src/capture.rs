@@ -2,15 +2,17 @@
 //! what was inserted, edited or removed since the last frame (the frame's [`Changes`]), and sample the
 //! world's state into a [`Frame`] with handles turned into recording indices.
 
+use crate::contacts::{BodyFrame, write_contacts};
 use crate::diagnostics::{diagnostics, inv_mass, joint_error, spring_energy};
-use crate::frame::{BodySample, ContactSample, Frame, JointSample, RecordedEvent};
+use crate::encode::ContactTotals;
+use crate::frame::{BodySample, Frame, JointSample, RecordedEvent};
 use crate::handle_index::HandleIndex;
 use crate::manifest::{
     BodyEntry, Changes, ColliderEntry, JointEntry, JointKindName, LimitsEntry, Manifest,
 };
 use rebound::{
     BodyHandle, ColliderDesc, ColliderHandle, Event, Joint, JointHandle, MassProperties,
-    PhysicsWorld, Pose, Quat, RigidBody, Vec3,
+    PhysicsWorld, Quat, RigidBody, Vec3,
 };
 
 /// A collider as last described to the file.
@@ -43,6 +45,8 @@ pub(crate) struct Tracker {
     live_colliders: usize,
     joint_index: HandleIndex,
     joints: Vec<WrittenJoint>,
+    /// By body index: the pose of the last sample, for the contact points.
+    frames: Vec<BodyFrame>,
 }
 
 impl Tracker {
@@ -186,8 +190,9 @@ impl Tracker {
         collider_entry(index, body, desc)
     }
 
-    /// Fills `frame` (all but step, time and changes) with the state of `world`, reusing its buffers.
-    pub(crate) fn sample(&self, world: &PhysicsWorld, frame: &mut Frame) {
+    /// Fills `frame` (all but step, time, changes and contacts, and the deepest penetration, which
+    /// [`Tracker::write_contacts`] finds) with the state of `world`, reusing its buffers.
+    pub(crate) fn sample(&mut self, world: &PhysicsWorld, frame: &mut Frame) {
         frame.bodies.clear();
         frame.bodies.extend(self.bodies.iter().map(|&(handle, ..)| {
             world
@@ -202,34 +207,11 @@ impl Tracker {
                     kind: body.body_type().into(),
                 })
         }));
+        // The contacts are written straight into the frame's bytes (`Tracker::write_contacts`); the
+        // frame holds them only when asked for (`Recorder::last_frame`).
         frame.contacts.clear();
-        // The poses just sampled, by index: no second look-up of the bodies in the world.
-        let pose = |index: u32| {
-            frame
-                .bodies
-                .get(index as usize)
-                .map(|b| Pose::new(b.position, b.rotation))
-        };
-        for manifold in world.contacts() {
-            let (Some(a), Some(b)) = (self.body(manifold.body_a), self.body(manifold.body_b))
-            else {
-                continue;
-            };
-            let (Some(pose_a), Some(pose_b)) = (pose(a), pose(b)) else {
-                continue;
-            };
-            let count = manifold.point_count.min(manifold.points.len());
-            for p in &manifold.points[..count] {
-                frame.contacts.push(ContactSample {
-                    body_a: a,
-                    body_b: b,
-                    point: p.world_point(pose_a, pose_b),
-                    normal: manifold.normal,
-                    normal_impulse: p.normal_impulse,
-                    separation: p.separation,
-                });
-            }
-        }
+        self.frames.clear();
+        self.frames.extend(frame.bodies.iter().map(BodyFrame::of));
         frame.joints.clear();
         let mut springs = 0.0;
         for written in &self.joints {
@@ -240,7 +222,13 @@ impl Tracker {
         frame
             .events
             .extend(world.events().iter().map(|e| self.event(e)));
-        frame.diagnostics = diagnostics(world, springs, &frame.joints, &frame.contacts);
+        frame.diagnostics = diagnostics(world, springs, &frame.joints);
+    }
+
+    /// Appends the CONTACT entries of `world`'s manifolds to `out`, with the poses of the last
+    /// [`Tracker::sample`].
+    pub(crate) fn write_contacts(&self, world: &PhysicsWorld, out: &mut Vec<u8>) -> ContactTotals {
+        write_contacts(world.contacts(), |h| self.body(h), &self.frames, out)
     }
 
     /// A joint's sample (`None` if it no longer exists); adds its spring energy to `springs` if unbroken.

@@ -5,12 +5,13 @@
 
 use crate::NONE;
 use crate::catalog::Catalog;
+use crate::contacts::contact_entry;
 use crate::error::RecordingError;
 use crate::format::{
-    BODY_KIND_SHIFT, BODY_LEN, BODY_PRESENT, BODY_SLEEPING, FRAME_HEADER_LEN, JOINT_BROKEN,
-    JOINT_PRESENT, pad4, payload_len,
+    BODY_KIND_SHIFT, BODY_LEN, BODY_PRESENT, BODY_SLEEPING, CONTACT_LEN, FRAME_HEADER_LEN,
+    JOINT_BROKEN, JOINT_PRESENT, pad4, payload_len,
 };
-use crate::frame::{BodySample, ContactSample, Diagnostics, Frame, JointSample, RecordedEvent};
+use crate::frame::{BodySample, Diagnostics, Frame, JointSample, RecordedEvent};
 use crate::manifest::{BodyKind, Changes};
 use rebound::{Quat, Vec3};
 use serde::de::DeserializeOwned;
@@ -239,24 +240,16 @@ pub(crate) fn decode_frame(
     let mut contacts = Vec::with_capacity(nc);
     for _ in 0..nc {
         let at = c.offset();
-        let body_a = c.u32()?;
-        let body_b = c.u32()?;
+        let contact = contact_entry(&c.take::<CONTACT_LEN>()?);
         for (field, value, off) in [
-            ("contact body A", body_a, at),
-            ("contact body B", body_b, at + 4),
+            ("contact body A", contact.body_a, at),
+            ("contact body B", contact.body_b, at + 4),
         ] {
             if value as usize >= nb {
                 return Err(bad(field, off, format!("{value} (there are {nb} bodies)")));
             }
         }
-        contacts.push(ContactSample {
-            body_a,
-            body_b,
-            point: c.vec3()?,
-            normal: c.vec3()?,
-            normal_impulse: c.f32()?,
-            separation: c.f32()?,
-        });
+        contacts.push(contact);
     }
     let mut joints = Vec::with_capacity(nj);
     for _ in 0..nj {

@@ -10,6 +10,7 @@ use crate::format::{
 use crate::frame::{Frame, RecordedEvent};
 use crate::manifest::Manifest;
 use rebound::{Quat, Vec3};
+use std::ops::Range;
 
 /// Appends `value` as JSON padded with spaces to a multiple of 4 bytes; returns the padded length.
 fn put_json(
@@ -45,23 +46,19 @@ fn put_f32(out: &mut Vec<u8>, v: f32) {
     out.extend_from_slice(&v.to_le_bytes());
 }
 
-/// `N` little-endian 32-bit words as bytes, so that an entry is appended in one piece (one capacity check
-/// per entry rather than per number: the body and contact blocks are most of a frame).
-fn words<const N: usize, const B: usize>(values: [u32; N]) -> [u8; B] {
-    debug_assert_eq!(B, 4 * N);
-    let mut bytes = [0; B];
-    for (chunk, v) in bytes.chunks_exact_mut(4).zip(values) {
-        chunk.copy_from_slice(&v.to_le_bytes());
-    }
-    bytes
+/// Appends `N` little-endian 32-bit words in one piece (one capacity check per entry rather than per
+/// number, and straight-line stores: the body and contact blocks are most of a frame).
+#[inline]
+pub(crate) fn put_words<const N: usize>(out: &mut Vec<u8>, values: [u32; N]) {
+    out.extend_from_slice(values.map(u32::to_le_bytes).as_flattened());
 }
 
 fn put_vec3(out: &mut Vec<u8>, v: Vec3) {
-    out.extend_from_slice(&words::<3, 12>(v.to_array().map(f32::to_bits)));
+    put_words(out, v.to_array().map(f32::to_bits));
 }
 
 fn put_quat(out: &mut Vec<u8>, q: Quat) {
-    out.extend_from_slice(&words::<4, 16>(q.to_array().map(f32::to_bits)));
+    put_words(out, q.to_array().map(f32::to_bits));
 }
 
 /// Writes the 16-byte file header and the padded manifest into `out` (cleared first).
@@ -80,29 +77,41 @@ pub(crate) fn encode_header(manifest: &Manifest, out: &mut Vec<u8>) -> Result<()
     Ok(())
 }
 
+/// What writing a frame's CONTACT entries found (see [`encode_frame`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct ContactTotals {
+    /// How many CONTACT entries were written.
+    pub(crate) count: usize,
+    /// The largest overlap of the points (m, ≥ 0): `max(0, −separation)` over them, in their order.
+    pub(crate) deepest_penetration: f32,
+}
+
 /// Writes `frame` with its length prefix into `out` (cleared first); `offset` is where the frame will
-/// start in the file, for error messages.
+/// start in the file, for error messages. The CONTACT entries are not taken from `frame.contacts`:
+/// `write_contacts` appends them and returns their count and deepest penetration, which go into the header
+/// (the recorder writes them straight from the world's manifolds: `contacts::write_contacts`).
+/// Returns those totals and where in `out` the entries lie.
 ///
 /// # Errors
 /// [`RecordingError::TooMany`] for counts or a payload beyond `u32`; [`RecordingError::Json`] if the
 /// changes cannot be serialised.
 pub(crate) fn encode_frame(
     frame: &Frame,
+    write_contacts: impl FnOnce(&mut Vec<u8>) -> ContactTotals,
     offset: u64,
     out: &mut Vec<u8>,
-) -> Result<(), RecordingError> {
+) -> Result<(ContactTotals, Range<usize>), RecordingError> {
     out.clear();
     let nb = frame.bodies.len();
-    let nc = frame.contacts.len();
     let nj = frame.joints.len();
     let ne = frame.events.len();
-    let estimate = payload_len(0, nb, nc, nj, ne).unwrap_or(0);
+    let estimate = payload_len(0, nb, 0, nj, ne).unwrap_or(0);
     out.reserve(estimate + 4);
     put_u32(out, 0); // payload length, filled in below
     out.extend_from_slice(&frame.step.to_le_bytes());
     out.extend_from_slice(&frame.time.to_le_bytes());
     put_u32(out, count("bodies", nb)?);
-    put_u32(out, count("contacts", nc)?);
+    put_u32(out, 0); // contact count, filled in below
     put_u32(out, count("joints", nj)?);
     put_u32(out, count("events", ne)?);
     put_u32(out, 0); // changes length, filled in below
@@ -114,7 +123,7 @@ pub(crate) fn encode_frame(
     put_vec3(out, d.linear_momentum);
     put_vec3(out, d.angular_momentum);
     put_f32(out, d.worst_joint_error);
-    put_f32(out, d.deepest_penetration);
+    put_f32(out, 0.0); // deepest penetration, filled in below
     if let Some(changes) = frame.changes.as_ref().filter(|c| !c.is_empty()) {
         let len = put_json(out, changes, "changes", offset + 4 + 84)?;
         let len = count("changes bytes", len)?;
@@ -143,22 +152,12 @@ pub(crate) fn encode_frame(
         out.push(flags);
     }
     out.resize(out.len() + (pad4(nb) - nb), 0);
-    for c in &frame.contacts {
-        let [px, py, pz] = c.point.to_array().map(f32::to_bits);
-        let [nx, ny, nz] = c.normal.to_array().map(f32::to_bits);
-        out.extend_from_slice(&words::<10, 40>([
-            c.body_a,
-            c.body_b,
-            px,
-            py,
-            pz,
-            nx,
-            ny,
-            nz,
-            c.normal_impulse.to_bits(),
-            c.separation.to_bits(),
-        ]));
-    }
+    let contacts_at = out.len();
+    let totals = write_contacts(out);
+    let contacts = contacts_at..out.len();
+    let start = 4; // the payload's first byte
+    out[start + 20..start + 24].copy_from_slice(&count("contacts", totals.count)?.to_le_bytes());
+    out[start + 80..start + 84].copy_from_slice(&totals.deepest_penetration.to_le_bytes());
     for j in &frame.joints {
         let [ax, ay, az] = j.anchor_a.to_array().map(f32::to_bits);
         let [bx, by, bz] = j.anchor_b.to_array().map(f32::to_bits);
@@ -169,31 +168,32 @@ pub(crate) fn encode_frame(
         if j.broken {
             flags |= JOINT_BROKEN;
         }
-        out.extend_from_slice(&words::<10, 40>([
-            ax,
-            ay,
-            az,
-            bx,
-            by,
-            bz,
-            j.error.to_bits(),
-            j.reaction_force.to_bits(),
-            j.reaction_torque.to_bits(),
-            flags,
-        ]));
+        put_words(
+            out,
+            [
+                ax,
+                ay,
+                az,
+                bx,
+                by,
+                bz,
+                j.error.to_bits(),
+                j.reaction_force.to_bits(),
+                j.reaction_torque.to_bits(),
+                flags,
+            ],
+        );
     }
     for e in &frame.events {
         let (kind, a, b, value) = event_fields(e);
-        out.extend_from_slice(&words::<4, 16>([
-            kind,
-            a.unwrap_or(NONE),
-            b.unwrap_or(NONE),
-            value.to_bits(),
-        ]));
+        put_words(
+            out,
+            [kind, a.unwrap_or(NONE), b.unwrap_or(NONE), value.to_bits()],
+        );
     }
     let len = count("frame payload bytes", out.len() - 4)?;
     out[0..4].copy_from_slice(&len.to_le_bytes());
-    Ok(())
+    Ok((totals, contacts))
 }
 
 /// An event's kind code, its two index fields and its value (`docs/recording.md`, EVENT).

@@ -2,6 +2,7 @@
 
 mod capture;
 mod catalog;
+mod contacts;
 mod decode;
 mod diagnostics;
 mod encode;

@@ -3,11 +3,13 @@
 //! one frame's buffers, reused; nothing grows with the number of frames.
 
 use crate::capture::Tracker;
+use crate::contacts::read_contacts;
 use crate::encode::{encode_frame, encode_header};
 use crate::error::RecordingError;
 use crate::frame::Frame;
 use rebound::{PhysicsWorld, StepReport};
 use std::io::Write;
+use std::ops::Range;
 
 /// Writes a recording of a world's run.
 ///
@@ -41,8 +43,13 @@ pub struct Recorder<W: Write> {
     /// Bytes written so far (the file offset of the next frame).
     offset: u64,
     tracker: Tracker,
+    /// The last frame's samples; its contacts only once read back from `buffer` (see
+    /// [`Recorder::last_frame`]).
     frame: Frame,
+    /// The last frame's bytes.
     buffer: Vec<u8>,
+    /// Where the last frame's CONTACT entries lie in `buffer`, until they are read into `frame`.
+    contacts: Option<Range<usize>>,
     /// The step count of the last frame, if any.
     last_step: Option<u64>,
     frames: u64,
@@ -67,6 +74,7 @@ impl<W: Write> Recorder<W> {
             frame: Frame::default(),
             // The manifest can be many times a frame's size: the frames start a buffer of their own.
             buffer: Vec::new(),
+            contacts: None,
             last_step: None,
             frames: 0,
         })
@@ -114,7 +122,15 @@ impl<W: Write> Recorder<W> {
         self.frame.time = time;
         self.frame.changes = (!changes.is_empty()).then_some(changes);
         self.tracker.sample(world, &mut self.frame);
-        encode_frame(&self.frame, self.offset, &mut self.buffer)?;
+        let tracker = &self.tracker;
+        let (totals, contacts) = encode_frame(
+            &self.frame,
+            |out| tracker.write_contacts(world, out),
+            self.offset,
+            &mut self.buffer,
+        )?;
+        self.frame.diagnostics.deepest_penetration = totals.deepest_penetration;
+        self.contacts = Some(contacts);
         self.out
             .write_all(&self.buffer)
             .map_err(|source| RecordingError::Io {
@@ -127,10 +143,20 @@ impl<W: Write> Recorder<W> {
         Ok(())
     }
 
-    /// The last frame written (as the reader will give it back), if any.
-    #[must_use]
-    pub fn last_frame(&self) -> Option<&Frame> {
-        (self.frames > 0).then_some(&self.frame)
+    /// The last frame written (as the reader will give it back), if any. Its contacts are read back from
+    /// the frame's bytes on the first call after each frame (they are written straight from the world's
+    /// manifolds; a recording that never asks pays nothing for them).
+    pub fn last_frame(&mut self) -> Option<&Frame> {
+        if self.frames == 0 {
+            return None;
+        }
+        if let Some(contacts) = self.contacts.take() {
+            read_contacts(
+                self.buffer.get(contacts).unwrap_or_default(),
+                &mut self.frame.contacts,
+            );
+        }
+        Some(&self.frame)
     }
 
     /// The number of frames written.

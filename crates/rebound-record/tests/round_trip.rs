@@ -38,6 +38,37 @@ fn every_number_reads_back_bit_for_bit() {
     assert_eq!(last.step, 120);
     assert!((last.time - 120.0 * f64::from(DT)).abs() < 1e-9);
     assert!(!last.contacts.is_empty(), "the shapes land on the ground");
+    // The contacts are the world's manifold points, in order: the point is `world_point` (to rounding: the
+    // recorder rotates the anchors by matrices), every other number the manifold's own.
+    let index = |h: BodyHandle| world.bodies().iter().position(|(b, _)| b == h).unwrap() as u32;
+    let pose = |h: BodyHandle| world.body(h).unwrap().pose();
+    let expected: Vec<_> = world
+        .contacts()
+        .iter()
+        .flat_map(|m| m.points[..m.point_count].iter().map(move |p| (m, p)))
+        .collect();
+    assert_eq!(last.contacts.len(), expected.len());
+    let mut deepest = 0.0f32;
+    for (c, (m, p)) in last.contacts.iter().zip(&expected) {
+        assert_eq!((c.body_a, c.body_b), (index(m.body_a), index(m.body_b)));
+        let point = p.world_point(pose(m.body_a), pose(m.body_b));
+        assert!(
+            c.point.distance(point) <= 1e-6 * (1.0 + point.length()),
+            "{} vs {point}",
+            c.point
+        );
+        assert_eq!(
+            c.normal.to_array().map(f32::to_bits),
+            m.normal.to_array().map(f32::to_bits)
+        );
+        assert_eq!(c.normal_impulse.to_bits(), p.normal_impulse.to_bits());
+        assert_eq!(c.separation.to_bits(), p.separation.to_bits());
+        deepest = deepest.max(-p.separation);
+    }
+    assert_eq!(
+        last.diagnostics.deepest_penetration.to_bits(),
+        deepest.to_bits()
+    );
 }
 
 #[test]
