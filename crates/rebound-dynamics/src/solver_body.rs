@@ -7,7 +7,7 @@
 //! (`Δp`, `Δq`) rather than from absolute positions, which keeps the error free of the round-off of large
 //! coordinates (Box2D v3's `b2BodyState`).
 
-use crate::{BodyType, Integrator, RigidBody};
+use crate::{BodyType, Integrator, LockedAxes, RigidBody};
 use rebound_math::{Mat3, Pose, Quat, Vec3, inertia, rotate};
 
 /// The hot state of one body in the solver: 64 bytes, one cache line (`Quat` is 16-byte aligned; the three
@@ -100,6 +100,8 @@ pub struct BodyParams {
     pub motion: Motion,
     /// Whether the gyroscopic term is integrated.
     pub gyroscopic: bool,
+    /// The world axes the body may not move along or turn about ([`LockedAxes`]).
+    pub locks: LockedAxes,
 }
 
 impl BodyParams {
@@ -119,6 +121,7 @@ impl BodyParams {
         angular_damping: 0.0,
         motion: Motion::Fixed,
         gyroscopic: false,
+        locks: LockedAxes::NONE,
     };
 
     /// The constants of `body` for the step about to run.
@@ -133,10 +136,22 @@ impl BodyParams {
         let mass = body.mass_properties();
         // Inverted once (it is not stored): `RigidBody::inv_inertia_world` would invert it again.
         let local_inv_inertia = body.local_inv_inertia();
+        let locks = body.locked_axes();
+        // A body that may not turn about some world axes turns about the others only: the inverse of its world
+        // inertia restricted to them (`LockedAxes::inv_inertia`).
+        let locked_inv_inertia = if locks.is_any() && body.is_dynamic() {
+            locks.inv_inertia(inertia::rotate_inertia(
+                body.rotation(),
+                mass.local_inertia(),
+            ))
+        } else {
+            None
+        };
         Self {
             inv_mass: body.inv_mass(),
             // An isotropic tensor (a ball, a cube) comes back as it is (`rotate_inertia`).
-            inv_inertia_world: inertia::rotate_inertia(body.rotation(), local_inv_inertia),
+            inv_inertia_world: locked_inv_inertia
+                .unwrap_or_else(|| inertia::rotate_inertia(body.rotation(), local_inv_inertia)),
             local_inertia: mass.local_inertia(),
             local_inv_inertia,
             rotation: body.rotation(),
@@ -150,6 +165,7 @@ impl BodyParams {
             motion,
             // ω × I·ω vanishes for an isotropic tensor (balls, cubes): skip the solve, not just the result.
             gyroscopic: body.gyroscopic() && !mass.is_isotropic(),
+            locks,
         }
     }
 
