@@ -71,14 +71,12 @@ pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ct
             };
         state.linear_velocity = flush_tiny(state.linear_velocity);
         state.angular_velocity = flush_tiny(state.angular_velocity);
-        if p.locks.is_any() {
-            lock_axes(state, p.locks);
-        }
     }
 }
 
-/// Sets the velocity components and the displacement along `locks`' axes to zero (after integration and
-/// after each constraint pass, see [`LockedAxes`]).
+/// Sets the velocity components and the displacement along `locks`' axes to zero (the caller does it after
+/// integration and after each constraint pass for the bodies with locks, see [`LockedAxes`]; not done here,
+/// so that bodies without locks pay nothing).
 #[inline]
 pub fn lock_axes(state: &mut SolverBody, locks: LockedAxes) {
     state.linear_velocity = locks.lock_linear(state.linear_velocity);

@@ -52,7 +52,8 @@ impl LockedAxes {
     pub const fn is_any(self) -> bool {
         let [tx, ty, tz] = self.translation;
         let [rx, ry, rz] = self.rotation;
-        tx || ty || tz || rx || ry || rz
+        // `|`, not `||`: one test instead of six branches (every body asks, every step).
+        tx | ty | tz | rx | ry | rz
     }
 
     /// `v` with the components along locked translation axes set to `+0.0`.

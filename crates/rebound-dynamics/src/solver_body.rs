@@ -104,6 +104,21 @@ pub struct BodyParams {
     pub locks: LockedAxes,
 }
 
+/// The world inverse inertia of a dynamic `body` that may not turn about `locks`' rotation axes: the inverse
+/// of its world inertia restricted to the free axes ([`LockedAxes::inv_inertia`]); `None` for other bodies
+/// and without rotation locks. Kept out of [`BodyParams::from_body`]'s common path, which it would slow.
+#[cold]
+#[inline(never)]
+fn locked_inv_inertia(body: &RigidBody, locks: LockedAxes) -> Option<Mat3> {
+    if !body.is_dynamic() {
+        return None;
+    }
+    locks.inv_inertia(inertia::rotate_inertia(
+        body.rotation(),
+        body.mass_properties().local_inertia(),
+    ))
+}
+
 impl BodyParams {
     /// A fixed body at the origin with identity rotation: the anchor of constraints attached to a world point.
     pub const WORLD: Self = Self {
@@ -137,21 +152,16 @@ impl BodyParams {
         // Inverted once (it is not stored): `RigidBody::inv_inertia_world` would invert it again.
         let local_inv_inertia = body.local_inv_inertia();
         let locks = body.locked_axes();
-        // A body that may not turn about some world axes turns about the others only: the inverse of its world
-        // inertia restricted to them (`LockedAxes::inv_inertia`).
-        let locked_inv_inertia = if locks.is_any() && body.is_dynamic() {
-            locks.inv_inertia(inertia::rotate_inertia(
-                body.rotation(),
-                mass.local_inertia(),
-            ))
-        } else {
-            None
-        };
+        // An isotropic tensor (a ball, a cube) comes back as it is (`rotate_inertia`).
+        let mut inv_inertia_world = inertia::rotate_inertia(body.rotation(), local_inv_inertia);
+        if locks.is_any()
+            && let Some(locked) = locked_inv_inertia(body, locks)
+        {
+            inv_inertia_world = locked;
+        }
         Self {
             inv_mass: body.inv_mass(),
-            // An isotropic tensor (a ball, a cube) comes back as it is (`rotate_inertia`).
-            inv_inertia_world: locked_inv_inertia
-                .unwrap_or_else(|| inertia::rotate_inertia(body.rotation(), local_inv_inertia)),
+            inv_inertia_world,
             local_inertia: mass.local_inertia(),
             local_inv_inertia,
             rotation: body.rotation(),

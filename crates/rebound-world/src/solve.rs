@@ -14,6 +14,7 @@ pub(crate) fn solve_substeps(s: &mut Solver, ctx: &StepContext) {
     for index in 0..ctx.substep_count {
         let substep = Substep::new(index, ctx.substep_count);
         integrate_velocities(&mut s.states, &s.params, ctx);
+        lock_axes_of(s);
         s.joint_solver.apply_forces(&mut s.states, ctx);
         s.joint_solver.warm_start(&mut s.states);
         s.contact_solver.warm_start(&mut s.states);
