@@ -113,10 +113,10 @@ fn locked_inv_inertia(body: &RigidBody, locks: LockedAxes) -> Option<Mat3> {
     if !body.is_dynamic() {
         return None;
     }
-    locks.inv_inertia(inertia::rotate_inertia(
-        body.rotation(),
-        body.mass_properties().local_inertia(),
-    ))
+    // R·I·Rᵀ written out here: a second call site of `rotate_inertia` would keep it from being inlined in the
+    // common path.
+    let rotation = Mat3::from_quat(body.rotation());
+    locks.inv_inertia(rotation * body.mass_properties().local_inertia() * rotation.transpose())
 }
 
 impl BodyParams {

@@ -206,16 +206,15 @@ fn is_usable(m: &ContactManifold) -> bool {
         && m.restitution >= 0.0
         && m.rolling_friction.is_finite()
         && m.rolling_friction >= 0.0
-        && m.surface_velocity.is_finite()
         && m.force_event_threshold.is_none_or(|f| f >= 0.0 && f.is_finite())
-        && points_are_finite(m.points())
+        && points_are_finite(m.points(), m.surface_velocity)
 }
 
-/// Whether every anchor and separation of `points` is finite, without a branch per number: `x·0` is `±0` for
-/// a finite `x` and NaN for an infinite or NaN one, so the sum of the products is zero exactly when every
-/// number is finite (every point of every manifold is checked, every step).
-fn points_are_finite(points: &[ManifoldPoint]) -> bool {
-    let zero_if_finite = points.iter().fold(Vec3::ZERO, |sum, p| {
+/// Whether every anchor and separation of `points`, and `surface_velocity`, are finite, without a branch per
+/// number: `x·0` is `±0` for a finite `x` and NaN for an infinite or NaN one, so the sum of the products is
+/// zero exactly when every number is finite (every point of every manifold is checked, every step).
+fn points_are_finite(points: &[ManifoldPoint], surface_velocity: Vec3) -> bool {
+    let zero_if_finite = points.iter().fold(surface_velocity * 0.0, |sum, p| {
         sum + p.local_anchor_a * 0.0 + p.local_anchor_b * 0.0 + Vec3::splat(p.separation * 0.0)
     });
     zero_if_finite == Vec3::ZERO

@@ -66,14 +66,13 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
         if body.is_sleeping() || body.body_type() == BodyType::Fixed {
             continue;
         }
-        let params = BodyParams::from_body(body);
-        if params.locks.is_any() && params.is_dynamic() {
+        if body.locked_axes().is_any() && body.is_dynamic() {
             s.locked.push(s.states.len());
         }
         s.solver_index[index.index as usize] = s.states.len() as u32;
         s.solver_handles.push(Some(BodyHandle(index)));
         s.states.push(SolverBody::from_body(body));
-        s.params.push(params);
+        s.params.push(BodyParams::from_body(body));
     }
 }
 

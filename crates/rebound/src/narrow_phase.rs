@@ -154,10 +154,15 @@ impl NarrowPhase {
         let mut old = self.previous.drain(..).peekable();
         let mut cursor = 0;
         for &(h1, h2) in pairs {
-            if let (Some(hooks), Some((pair, first))) = (hooks, hooked.take()) {
+            // Tested first: a world without hooks or force events pays one test per pair for each.
+            if let Some(hooks) = hooks
+                && let Some((pair, first)) = hooked.take()
+            {
                 hooks::modify(hooks, &pair, out, first, failures);
             }
-            if let Some((a, b, first)) = reporting.take() {
+            if reporting.is_some()
+                && let Some((a, b, first)) = reporting.take()
+            {
                 record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
             }
             // Both lists are sorted: drop the old pairs before this one, reuse this one's cache if present.
