@@ -111,6 +111,8 @@ impl Physics {
                 .copied()
         };
         Some(match event {
+            // Not forwarded to Bevy yet: read them from the world's events.
+            Event::ContactForce { .. } => return None,
             Event::ContactBegan {
                 body_a,
                 body_b,

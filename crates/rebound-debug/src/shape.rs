@@ -81,6 +81,7 @@ pub fn shape_aabb(shape: &ColliderShape, pose: Pose) -> Option<(Vec3, Vec3)> {
             .iter()
             .filter_map(|(part_pose, part)| shape_aabb(part, pose.mul_pose(part_pose)))
             .reduce(|(lo, hi), (l, h)| (lo.min(l), hi.max(h))),
+        ColliderShape::HalfSpace { normal } => points(&mut half_space_square(*normal).into_iter()),
     }
 }
 
@@ -373,6 +374,14 @@ impl DebugDraw {
                     }
                 }
             }
+            ColliderShape::HalfSpace { normal } => {
+                let corners = half_space_square(*normal);
+                for (k, &corner) in corners.iter().enumerate() {
+                    pen.line(corner, corners[(k + 1) % 4]);
+                }
+                let unit = normal.try_normalize().unwrap_or(Vec3::Y);
+                pen.line(Vec3::ZERO, unit);
+            }
             ColliderShape::TriMesh { vertices, indices } => {
                 for (i, j) in unique_edges(indices) {
                     if let (Some(&a), Some(&b)) =
@@ -464,6 +473,11 @@ impl DebugDraw {
                     }
                 }
             }
+            ColliderShape::HalfSpace { normal } => {
+                let [a, b, c, d] = half_space_square(*normal);
+                pen.triangle([a, b, c]);
+                pen.triangle([a, c, d]);
+            }
             ColliderShape::TriMesh { vertices, indices } => {
                 for t in indices {
                     if let Some(corners) = corners(vertices, *t) {
@@ -508,4 +522,16 @@ impl DebugDraw {
 fn corners(vertices: &[Vec3], [a, b, c]: [u32; 3]) -> Option<[Vec3; 3]> {
     let p = |i: u32| vertices.get(i as usize).copied();
     Some([p(a)?, p(b)?, p(c)?])
+}
+
+/// Half the side (m) of the square a half-space is drawn as: its surface is infinite.
+pub const HALF_SPACE_DRAWN_HALF_SIDE: f32 = 10.0;
+
+/// The corners of the square, centred on the collider origin in the boundary plane, that a half-space with
+/// outward `normal` is drawn as (collider frame), in order around it.
+fn half_space_square(normal: Vec3) -> [Vec3; 4] {
+    let n = normal.try_normalize().unwrap_or(Vec3::Y);
+    let (u, v) = n.any_orthonormal_pair();
+    let h = HALF_SPACE_DRAWN_HALF_SIDE;
+    [(-u - v) * h, (u - v) * h, (u + v) * h, (-u + v) * h]
 }

@@ -1,7 +1,7 @@
 //! Rigid bodies: the body types, their description (`BodyDesc`) and state (`RigidBody`), force and impulse
 //! application. Bodies are read into the solver at *prepare* and written back after the substeps.
 
-use crate::{DynamicsError, MassProperties};
+use crate::{DynamicsError, LockedAxes, MassProperties};
 use rebound_math::validity::{check_finite, check_finite_vec3, check_non_negative, check_rotation};
 use rebound_math::{Mat3, Pose, Quat, Vec3, inertia};
 
@@ -75,6 +75,9 @@ pub struct BodyDesc {
     pub sleeping: bool,
     /// Whether the body may fall asleep when it comes to rest. Default: true.
     pub can_sleep: bool,
+    /// World axes along which the body may not translate or about which it may not turn; their velocity
+    /// components stay exactly zero ([`LockedAxes`]). Default: none.
+    pub locked_axes: LockedAxes,
 }
 
 impl Default for BodyDesc {
@@ -93,6 +96,7 @@ impl Default for BodyDesc {
             gyroscopic: true,
             sleeping: false,
             can_sleep: true,
+            locked_axes: LockedAxes::NONE,
         }
     }
 }
@@ -198,6 +202,13 @@ impl BodyDesc {
         self.can_sleep = can_sleep;
         self
     }
+
+    /// Sets the locked axes.
+    #[must_use]
+    pub const fn with_locked_axes(mut self, locked_axes: LockedAxes) -> Self {
+        self.locked_axes = locked_axes;
+        self
+    }
 }
 
 /// A rigid body's state. Built from a [`BodyDesc`] by [`RigidBody::new`], which checks every field; every
@@ -219,6 +230,8 @@ pub struct RigidBody {
     gyroscopic: bool,
     sleeping: bool,
     can_sleep: bool,
+    #[cfg_attr(feature = "serde", serde(default))]
+    locked_axes: LockedAxes,
 }
 
 impl RigidBody {
@@ -236,16 +249,17 @@ impl RigidBody {
         check_non_negative("linear_damping", desc.linear_damping)?;
         check_non_negative("angular_damping", desc.angular_damping)?;
         let moves = desc.body_type != BodyType::Fixed;
+        let locks = desc.locked_axes;
         Ok(Self {
             body_type: desc.body_type,
             pose: Pose::new(desc.position, desc.rotation.normalize()),
             linear_velocity: if moves {
-                desc.linear_velocity
+                locks.lock_linear(desc.linear_velocity)
             } else {
                 Vec3::ZERO
             },
             angular_velocity: if moves {
-                desc.angular_velocity
+                locks.lock_angular(desc.angular_velocity)
             } else {
                 Vec3::ZERO
             },
@@ -259,6 +273,7 @@ impl RigidBody {
             gyroscopic: desc.gyroscopic,
             sleeping: desc.sleeping,
             can_sleep: desc.can_sleep,
+            locked_axes: locks,
         })
     }
 
@@ -431,6 +446,21 @@ impl RigidBody {
         self.can_sleep = can_sleep;
     }
 
+    /// The locked world axes ([`LockedAxes`]).
+    #[must_use]
+    pub const fn locked_axes(&self) -> LockedAxes {
+        self.locked_axes
+    }
+
+    /// Locks (or unlocks) world axes; the velocity components along newly locked axes become zero. Wakes the
+    /// body.
+    pub fn set_locked_axes(&mut self, locked_axes: LockedAxes) {
+        self.locked_axes = locked_axes;
+        self.linear_velocity = locked_axes.lock_linear(self.linear_velocity);
+        self.angular_velocity = locked_axes.lock_angular(self.angular_velocity);
+        self.sleeping = false;
+    }
+
     /// Changes the body type. Becoming fixed zeroes the velocities; wakes the body.
     pub fn set_body_type(&mut self, body_type: BodyType) {
         self.body_type = body_type;
@@ -478,7 +508,7 @@ impl RigidBody {
     pub fn set_linear_velocity(&mut self, velocity: Vec3) -> Result<(), DynamicsError> {
         check_finite_vec3("linear_velocity", velocity)?;
         if self.body_type != BodyType::Fixed {
-            self.linear_velocity = velocity;
+            self.linear_velocity = self.locked_axes.lock_linear(velocity);
             self.sleeping = false;
         }
         Ok(())
@@ -491,7 +521,7 @@ impl RigidBody {
     pub fn set_angular_velocity(&mut self, velocity: Vec3) -> Result<(), DynamicsError> {
         check_finite_vec3("angular_velocity", velocity)?;
         if self.body_type != BodyType::Fixed {
-            self.angular_velocity = velocity;
+            self.angular_velocity = self.locked_axes.lock_angular(velocity);
             self.sleeping = false;
         }
         Ok(())

@@ -29,7 +29,7 @@
 //! Without it, ω stays fixed in world space while the inertia turns, so `L` is not conserved (the `rotation`
 //! test shows it).
 
-use crate::{BodyParams, Motion, SolverBody, StepContext};
+use crate::{BodyParams, LockedAxes, Motion, SolverBody, StepContext};
 use rebound_math::glam::{Mat3A, Vec3A};
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
 use rebound_math::{Mat3, Quat, Vec3};
@@ -72,6 +72,16 @@ pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ct
         state.linear_velocity = flush_tiny(state.linear_velocity);
         state.angular_velocity = flush_tiny(state.angular_velocity);
     }
+}
+
+/// Sets the velocity components and the displacement along `locks`' axes to zero (the caller does it after
+/// integration and after each constraint pass for the bodies with locks, see [`LockedAxes`]; not done here,
+/// so that bodies without locks pay nothing).
+#[inline]
+pub fn lock_axes(state: &mut SolverBody, locks: LockedAxes) {
+    state.linear_velocity = locks.lock_linear(state.linear_velocity);
+    state.angular_velocity = locks.lock_angular(state.angular_velocity);
+    state.delta_position = locks.lock_linear(state.delta_position);
 }
 
 /// Velocity components smaller than this are set to exactly zero (m/s, rad/s): 1e-15 m/s is 3e-8 m a year.

@@ -8,6 +8,7 @@ pub mod momentum;
 
 mod body;
 mod error;
+mod locks;
 mod mass;
 mod softness;
 mod solver_body;
@@ -19,6 +20,7 @@ pub use rebound_math as math;
 pub use body::{BodyDesc, BodyType, Integrator, RigidBody};
 pub use contact::{Bias, Contact, ContactPoint, ContactSolver, MAX_CONTACT_POINTS};
 pub use error::DynamicsError;
+pub use locks::LockedAxes;
 pub use mass::MassProperties;
 pub use material::CombineRule;
 pub use softness::Softness;

@@ -7,7 +7,7 @@
 //! (`Δp`, `Δq`) rather than from absolute positions, which keeps the error free of the round-off of large
 //! coordinates (Box2D v3's `b2BodyState`).
 
-use crate::{BodyType, Integrator, RigidBody};
+use crate::{BodyType, Integrator, LockedAxes, RigidBody};
 use rebound_math::{Mat3, Pose, Quat, Vec3, inertia, rotate};
 
 /// The hot state of one body in the solver: 64 bytes, one cache line (`Quat` is 16-byte aligned; the three
@@ -100,6 +100,23 @@ pub struct BodyParams {
     pub motion: Motion,
     /// Whether the gyroscopic term is integrated.
     pub gyroscopic: bool,
+    /// The world axes the body may not move along or turn about ([`LockedAxes`]).
+    pub locks: LockedAxes,
+}
+
+/// The world inverse inertia of a dynamic `body` that may not turn about `locks`' rotation axes: the inverse
+/// of its world inertia restricted to the free axes ([`LockedAxes::inv_inertia`]); `None` for other bodies
+/// and without rotation locks. Kept out of [`BodyParams::from_body`]'s common path, which it would slow.
+#[cold]
+#[inline(never)]
+fn locked_inv_inertia(body: &RigidBody, locks: LockedAxes) -> Option<Mat3> {
+    if !body.is_dynamic() {
+        return None;
+    }
+    // R·I·Rᵀ written out here: a second call site of `rotate_inertia` would keep it from being inlined in the
+    // common path.
+    let rotation = Mat3::from_quat(body.rotation());
+    locks.inv_inertia(rotation * body.mass_properties().local_inertia() * rotation.transpose())
 }
 
 impl BodyParams {
@@ -119,6 +136,7 @@ impl BodyParams {
         angular_damping: 0.0,
         motion: Motion::Fixed,
         gyroscopic: false,
+        locks: LockedAxes::NONE,
     };
 
     /// The constants of `body` for the step about to run.
@@ -133,10 +151,17 @@ impl BodyParams {
         let mass = body.mass_properties();
         // Inverted once (it is not stored): `RigidBody::inv_inertia_world` would invert it again.
         let local_inv_inertia = body.local_inv_inertia();
+        let locks = body.locked_axes();
+        // An isotropic tensor (a ball, a cube) comes back as it is (`rotate_inertia`).
+        let mut inv_inertia_world = inertia::rotate_inertia(body.rotation(), local_inv_inertia);
+        if locks.is_any()
+            && let Some(locked) = locked_inv_inertia(body, locks)
+        {
+            inv_inertia_world = locked;
+        }
         Self {
             inv_mass: body.inv_mass(),
-            // An isotropic tensor (a ball, a cube) comes back as it is (`rotate_inertia`).
-            inv_inertia_world: inertia::rotate_inertia(body.rotation(), local_inv_inertia),
+            inv_inertia_world,
             local_inertia: mass.local_inertia(),
             local_inv_inertia,
             rotation: body.rotation(),
@@ -150,6 +175,7 @@ impl BodyParams {
             motion,
             // ω × I·ω vanishes for an isotropic tensor (balls, cubes): skip the solve, not just the result.
             gyroscopic: body.gyroscopic() && !mass.is_isotropic(),
+            locks,
         }
     }
 

@@ -221,7 +221,7 @@ impl Tracker {
         frame.events.clear();
         frame
             .events
-            .extend(world.events().iter().map(|e| self.event(e)));
+            .extend(world.events().iter().filter_map(|e| self.event(e)));
         frame.diagnostics = diagnostics(world, springs, &frame.joints);
     }
 
@@ -271,10 +271,12 @@ impl Tracker {
         })
     }
 
-    /// An engine event with handles as indices.
-    fn event(&self, event: &Event) -> RecordedEvent {
+    /// An engine event with handles as indices; `None` for contact force events, which recordings do not
+    /// hold.
+    fn event(&self, event: &Event) -> Option<RecordedEvent> {
         let collider = |h: ColliderHandle| self.collider_index.get(h.into_raw_parts());
-        match *event {
+        Some(match *event {
+            Event::ContactForce { .. } => return None,
             Event::ContactBegan {
                 body_a,
                 body_b,
@@ -311,7 +313,7 @@ impl Tracker {
                 sensor: collider(sensor),
                 collider: collider(c),
             },
-        }
+        })
     }
 }
 

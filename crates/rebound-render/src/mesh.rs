@@ -43,7 +43,9 @@ impl Mesh {
         draw.shape(shape, Pose::IDENTITY, Color::WHITE, false, true, segments);
         let closed = !matches!(
             shape,
-            ColliderShape::TriMesh { .. } | ColliderShape::HeightField { .. }
+            ColliderShape::TriMesh { .. }
+                | ColliderShape::HeightField { .. }
+                | ColliderShape::HalfSpace { .. }
         );
         let positions: Vec<Vec3> = draw.triangles.iter().flat_map(|t| t.vertices).collect();
         let triangles = (0..draw.triangles.len() as u32)

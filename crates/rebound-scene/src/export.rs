@@ -28,6 +28,7 @@ fn body_desc(body: &RigidBody, colliders_give_mass: bool) -> BodyDesc {
         gyroscopic: body.gyroscopic(),
         sleeping: body.is_sleeping(),
         can_sleep: body.can_sleep(),
+        locked_axes: body.locked_axes(),
     }
 }
 

@@ -73,6 +73,7 @@ fn body_desc(desc: &BodyDesc) -> String {
     f.differ("gyroscopic", &desc.gyroscopic, &d.gyroscopic);
     f.differ("sleeping", &desc.sleeping, &d.sleeping);
     f.differ("can_sleep", &desc.can_sleep, &d.can_sleep);
+    f.differ("locked_axes", &desc.locked_axes, &d.locked_axes);
     f.finish()
 }
 
@@ -102,6 +103,11 @@ fn collider_desc(desc: &ColliderDesc) -> String {
     f.differ("groups", &desc.groups, &d.groups);
     f.differ("is_sensor", &desc.is_sensor, &d.is_sensor);
     f.differ("enabled", &desc.enabled, &d.enabled);
+    f.differ(
+        "force_event_threshold",
+        &desc.force_event_threshold,
+        &d.force_event_threshold,
+    );
     f.finish()
 }
 

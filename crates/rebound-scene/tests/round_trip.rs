@@ -150,6 +150,7 @@ fn full_scene() -> Result<Scene, Error> {
         gyroscopic: false,
         sleeping: true,
         can_sleep: false,
+        locked_axes: LockedAxes::PLANE_XY,
     };
     let colliders = every_shape()
         .into_iter()
@@ -165,6 +166,7 @@ fn full_scene() -> Result<Scene, Error> {
             groups: CollisionGroups::new(0b01, 0b10),
             is_sensor: true,
             enabled: false,
+            force_event_threshold: Some(12.5),
         })
         .collect();
     let mut bodies = vec![

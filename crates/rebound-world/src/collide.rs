@@ -8,7 +8,7 @@ use crate::handles::BodyHandle;
 use crate::manifold::{CollisionBackend, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint};
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
-use rebound_dynamics::RigidBody;
+use rebound_dynamics::{BodyType, RigidBody};
 use rebound_math::{Mat3, Vec3};
 
 /// This step's manifolds and what the stages after *collide* learn about each, reused from step to step.
@@ -54,6 +54,10 @@ pub(crate) fn collide<B: CollisionBackend>(
     // for the same input: the sort is deterministic). The key reads no number, so the manifolds the walk
     // below rejects (`is_usable`) sort like the others.
     manifolds.sort_unstable_by_key(ContactManifold::order_key);
+    // Contacts survive sleep: a pair of which neither body moves and one sleeps is not collided again (the
+    // backend tests only pairs with a moving body), so last step's manifold carries over unchanged. The
+    // pair stays in `contacts()` and touching, and its impulses warm-start the contact when a body wakes.
+    let carried = !state.islands.is_empty() && carry_resting(state, &mut manifolds);
 
     // Warm start: copy impulses from last step's manifold with the same key, point by point by feature id;
     // a persisting point also keeps its lever arms (see `LEVER_ARM_TOLERANCE`). Both lists are sorted by
@@ -68,6 +72,10 @@ pub(crate) fn collide<B: CollisionBackend>(
     // manifold is dropped, the kept ones move down over it in order.
     let mut speeds = core::mem::take(&mut c.approach_speeds);
     speeds.clear();
+    // Whether each manifold counts as pushed before the solver runs (stage *store* adds the solver's
+    // pushes): a carried manifold keeps the touching state its pair had last step.
+    let mut pushed = core::mem::take(&mut c.pushed);
+    pushed.clear();
     let mut rotations = core::mem::take(&mut c.rotations);
     rotations.resize(bodies.slot_count(), (0, Mat3::IDENTITY));
     c.collide_calls += 1;
@@ -107,6 +115,15 @@ pub(crate) fn collide<B: CollisionBackend>(
                 0.0
             },
         );
+        pushed.push(
+            carried
+                && !moves(body_a)
+                && !moves(body_b)
+                && state
+                    .touching
+                    .binary_search(&ordered(manifold.body_a, manifold.body_b))
+                    .is_ok(),
+        );
         let count = manifold.point_count.min(MAX_MANIFOLD_POINTS);
         let old_points = old.map_or(&[][..], ContactManifold::points);
         let rotations = [
@@ -132,8 +149,47 @@ pub(crate) fn collide<B: CollisionBackend>(
     manifolds.truncate(kept);
     c.rotations = rotations;
     c.approach_speeds = speeds;
+    c.pushed = pushed;
     c.manifolds = manifolds;
     rejected
+}
+
+/// Whether a body moves this step and so has its contacts found by the backend: awake and not fixed.
+fn moves(body: &RigidBody) -> bool {
+    !body.is_sleeping() && body.body_type() != BodyType::Fixed
+}
+
+/// A pair in ascending order.
+fn ordered(a: BodyHandle, b: BodyHandle) -> (BodyHandle, BodyHandle) {
+    if a <= b { (a, b) } else { (b, a) }
+}
+
+/// Adds to `manifolds` (sorted by order key, and kept so) every manifold of last step between two bodies
+/// that do not move, one of them asleep, which the backend did not report again. Returns whether any was
+/// added.
+fn carry_resting(state: &WorldState, manifolds: &mut Vec<ContactManifold>) -> bool {
+    let reported = manifolds.len();
+    for old in &state.manifolds {
+        let (Some(a), Some(b)) = (state.bodies.get(old.body_a), state.bodies.get(old.body_b))
+        else {
+            continue;
+        };
+        if moves(a) || moves(b) || !(a.is_sleeping() || b.is_sleeping()) {
+            continue;
+        }
+        let key = old.order_key();
+        if manifolds[..reported]
+            .binary_search_by_key(&key, ContactManifold::order_key)
+            .is_err()
+        {
+            manifolds.push(*old);
+        }
+    }
+    if manifolds.len() == reported {
+        return false;
+    }
+    manifolds.sort_unstable_by_key(ContactManifold::order_key);
+    true
 }
 
 /// Whether a backend's manifold (between live bodies) can be used: distinct bodies, finite unit normal, at most
@@ -150,14 +206,15 @@ fn is_usable(m: &ContactManifold) -> bool {
         && m.restitution >= 0.0
         && m.rolling_friction.is_finite()
         && m.rolling_friction >= 0.0
-        && points_are_finite(m.points())
+        && m.force_event_threshold.is_none_or(|f| f >= 0.0 && f.is_finite())
+        && points_are_finite(m.points(), m.surface_velocity)
 }
 
-/// Whether every anchor and separation of `points` is finite, without a branch per number: `x·0` is `±0` for
-/// a finite `x` and NaN for an infinite or NaN one, so the sum of the products is zero exactly when every
-/// number is finite (every point of every manifold is checked, every step).
-fn points_are_finite(points: &[ManifoldPoint]) -> bool {
-    let zero_if_finite = points.iter().fold(Vec3::ZERO, |sum, p| {
+/// Whether every anchor and separation of `points`, and `surface_velocity`, are finite, without a branch per
+/// number: `x·0` is `±0` for a finite `x` and NaN for an infinite or NaN one, so the sum of the products is
+/// zero exactly when every number is finite (every point of every manifold is checked, every step).
+fn points_are_finite(points: &[ManifoldPoint], surface_velocity: Vec3) -> bool {
+    let zero_if_finite = points.iter().fold(surface_velocity * 0.0, |sum, p| {
         sum + p.local_anchor_a * 0.0 + p.local_anchor_b * 0.0 + Vec3::splat(p.separation * 0.0)
     });
     zero_if_finite == Vec3::ZERO

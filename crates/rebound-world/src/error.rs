@@ -31,6 +31,15 @@ pub enum WorldError {
     /// The joint handle refers to no joint in this world.
     #[error("stale or foreign joint handle {0:?}")]
     StaleJoint(JointHandle),
+    /// A kinematic target was set on a body that is not kinematic (a dynamic body is moved by forces, a
+    /// fixed one not at all).
+    #[error("body {handle:?} is {body_type:?}: a kinematic target needs a kinematic body")]
+    NotKinematic {
+        /// The body.
+        handle: BodyHandle,
+        /// Its type.
+        body_type: rebound_dynamics::BodyType,
+    },
     /// A joint would connect a body to itself.
     #[error("a joint needs two different bodies, got {0:?} twice")]
     SameBody(BodyHandle),

@@ -2,11 +2,14 @@
 //! begin and end come from this step's touching pairs against last step's; broken joints (stage *store*)
 //! and bodies falling asleep (stage *islands and sleep*) are already in the list; the bodies woken since
 //! the last events stage close it. Produced in a deterministic order: contact events in body-pair order,
-//! then broken joints, then sleep changes, each sorted by handle.
+//! then broken joints, then contact forces (manifold order, pushed after write-back), then sleep changes,
+//! each sorted by handle.
 
 use crate::handles::{BodyHandle, JointHandle};
+use crate::prepare::Solver;
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
+use rebound_math::Vec3;
 
 /// Something that happened during the last step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,6 +31,9 @@ pub enum Event {
         /// Body B of the pair.
         body_b: BodyHandle,
     },
+    /// A contact whose colliders opted in pushed with at least their threshold force this step
+    /// ([`crate::ContactManifold::force_event_threshold`]).
+    ContactForce(ContactForce),
     /// A joint's impulse exceeded its break force or torque; it is now disabled.
     JointBroken {
         /// The joint.
@@ -43,6 +49,71 @@ pub enum Event {
         /// The body.
         body: BodyHandle,
     },
+}
+
+/// What one contact manifold pushed with over a step ([`Event::ContactForce`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct ContactForce {
+    /// Body A of the manifold.
+    pub body_a: BodyHandle,
+    /// Body B of the manifold.
+    pub body_b: BodyHandle,
+    /// The manifold's backend key ([`crate::ContactManifold::key`]).
+    pub key: u64,
+    /// The manifold's unit normal, world axes, from A to B; B was pushed along it, A against it.
+    pub normal: Vec3,
+    /// The normal impulse the contact applied over the step, summed over its points and substeps (N·s).
+    pub total_impulse: f32,
+    /// The mean normal force over the step, `total_impulse / dt` (N).
+    pub total_force: f32,
+    /// The point that applied the largest impulse, in world space at the end of the step (m).
+    pub max_impulse_point: Vec3,
+    /// That point's impulse over the step (N·s).
+    pub max_impulse: f32,
+}
+
+/// Stage *finalize*, after write-back: an [`Event::ContactForce`] for each solved manifold with a force
+/// event threshold whose mean normal force over the step (`s.step_impulses`, summed by the substeps) reached
+/// it, in manifold order. `state.manifolds` are this step's.
+pub(crate) fn push_force_events(state: &WorldState, s: &Solver, dt: f32, events: &mut Vec<Event>) {
+    for (sums, &source) in s.step_impulses.iter().zip(&s.contact_sources) {
+        let Some(m) = state.manifolds.get(source) else {
+            continue;
+        };
+        let Some(threshold) = m.force_event_threshold else {
+            continue;
+        };
+        let sums = &sums[..m.points().len()];
+        let total_impulse: f32 = sums.iter().sum();
+        let total_force = total_impulse / dt;
+        if total_force < threshold {
+            continue;
+        }
+        let (mut max_point, mut max_impulse) = (0, f32::NEG_INFINITY);
+        for (k, &impulse) in sums.iter().enumerate() {
+            if impulse > max_impulse {
+                (max_point, max_impulse) = (k, impulse);
+            }
+        }
+        let (Some(a), Some(b), Some(point)) = (
+            state.bodies.get(m.body_a),
+            state.bodies.get(m.body_b),
+            m.points().get(max_point),
+        ) else {
+            continue;
+        };
+        events.push(Event::ContactForce(ContactForce {
+            body_a: m.body_a,
+            body_b: m.body_b,
+            key: m.key,
+            normal: m.normal,
+            total_impulse,
+            total_force,
+            max_impulse_point: point.world_point(a.pose(), b.pose()),
+            max_impulse,
+        }));
+    }
 }
 
 /// The buffers of the *events* stage, reused from step to step.

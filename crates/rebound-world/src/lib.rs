@@ -32,7 +32,7 @@ pub use rebound_math as math;
 
 pub use body_set::BodySet;
 pub use error::WorldError;
-pub use events::Event;
+pub use events::{ContactForce, Event};
 pub use handles::{BodyHandle, JointHandle};
 pub use manifold::{
     CollisionBackend, ContactBasis, ContactManifold, LEVER_ARM_RELATIVE_TOLERANCE,

@@ -151,6 +151,14 @@ pub struct ContactManifold {
     pub restitution: f32,
     /// Rolling resistance lever arm (m, ≥ 0; see `rebound_dynamics::Contact::rolling_friction`).
     pub rolling_friction: f32,
+    /// The velocity (m/s, world axes) B's surface slides at relative to A's in the contact plane — a
+    /// conveyor belt (see `rebound_dynamics::Contact::surface_velocity`). Default: zero.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub surface_velocity: Vec3,
+    /// The smallest total normal force (N, ≥ 0) of a step at which this manifold is reported in an
+    /// [`Event::ContactForce`](crate::Event::ContactForce). Default `None`: never.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub force_event_threshold: Option<f32>,
     /// The points; only the first `point_count` are meaningful.
     pub points: [ManifoldPoint; MAX_MANIFOLD_POINTS],
     /// How many points are in use.
@@ -180,6 +188,8 @@ impl ContactManifold {
             friction,
             restitution,
             rolling_friction: 0.0,
+            surface_velocity: Vec3::ZERO,
+            force_event_threshold: None,
             points: [ManifoldPoint::default(); MAX_MANIFOLD_POINTS],
             point_count: 0,
             basis: None,

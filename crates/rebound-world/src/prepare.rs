@@ -12,7 +12,8 @@ use crate::report::StepReport;
 use crate::state::WorldState;
 use rebound_constraints::{JointBodies, JointSolver};
 use rebound_dynamics::{
-    BodyParams, BodyType, Contact, ContactPoint, ContactSolver, SolverBody, StepContext,
+    BodyParams, BodyType, Contact, ContactPoint, ContactSolver, MAX_CONTACT_POINTS, SolverBody,
+    StepContext,
 };
 
 /// The solver index of a body that has none (a sleeping body, or a fixed one no constraint needs).
@@ -43,6 +44,11 @@ pub(crate) struct Solver {
     pub(crate) broken: Vec<usize>,
     pub(crate) contact_solver: ContactSolver,
     pub(crate) joint_solver: JointSolver,
+    /// Solver contact → each point's normal impulse summed over the step (N·s), kept only when a contact
+    /// reports forces (empty otherwise: nothing is summed).
+    pub(crate) step_impulses: Vec<[f32; MAX_CONTACT_POINTS]>,
+    /// Solver indices of the bodies with locked axes (the substeps lock them after every pass).
+    pub(crate) locked: Vec<usize>,
 }
 
 /// Stage *prepare*, part 1: the dense solver arrays. Awake moving bodies in handle order get indices
@@ -54,10 +60,14 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
     s.solver_handles.clear();
     s.states.clear();
     s.params.clear();
+    s.locked.clear();
     for (index, entry) in bodies.arena.iter() {
         let body = &entry.body;
         if body.is_sleeping() || body.body_type() == BodyType::Fixed {
             continue;
+        }
+        if body.locked_axes().is_any() && body.is_dynamic() {
+            s.locked.push(s.states.len());
         }
         s.solver_index[index.index as usize] = s.states.len() as u32;
         s.solver_handles.push(Some(BodyHandle(index)));
@@ -98,6 +108,7 @@ pub(crate) fn build_contacts(
 ) {
     s.contacts.clear();
     s.contact_sources.clear();
+    let mut reports_forces = false;
     for (source, manifold) in manifolds.iter().enumerate() {
         let ia = solver_index_of(s, bodies, manifold.body_a);
         let ib = solver_index_of(s, bodies, manifold.body_b);
@@ -119,6 +130,8 @@ pub(crate) fn build_contacts(
             continue;
         };
         contact.rolling_friction = manifold.rolling_friction;
+        contact.surface_velocity = manifold.surface_velocity;
+        reports_forces |= manifold.force_event_threshold.is_some();
         for point in manifold.points() {
             // The collide stage chose every point's lever arms.
             let Some([anchor_a, anchor_b]) = point.solver_lever_arms else {
@@ -137,6 +150,11 @@ pub(crate) fn build_contacts(
         s.contact_sources.push(source);
     }
     report.contact_count = s.contacts.len();
+    s.step_impulses.clear();
+    if reports_forces {
+        s.step_impulses
+            .resize(s.contacts.len(), [0.0; MAX_CONTACT_POINTS]);
+    }
     report.rejected_contact_count +=
         s.contact_solver
             .prepare(&s.contacts, &s.states, &s.params, ctx);

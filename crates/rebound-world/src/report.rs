@@ -55,6 +55,10 @@ pub struct StepReport {
     /// Manifolds the backend reported that could not be used (a stale handle, a body against itself, a
     /// non-finite normal or separation). Should be 0; anything else is a backend bug.
     pub rejected_contact_count: usize,
+    /// Calls of the facade's contact hooks that panicked or returned an edit out of range this step; each
+    /// left its pair or manifold as if no hook were set (`rebound::ContactHooks`). 0 in a world without
+    /// hooks.
+    pub hook_failure_count: usize,
     /// Phase timings.
     pub profile: Profile,
 }

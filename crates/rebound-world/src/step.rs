@@ -85,6 +85,7 @@ impl<B: CollisionBackend> World<B> {
 
         phase = Instant::now();
         store::write_back(&mut state.bodies, solver);
+        events::push_force_events(state, solver, dt, events);
         islands::update_sleep(state, solver, sleep, events, dt);
         events::emit_events(
             state,

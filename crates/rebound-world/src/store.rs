@@ -38,7 +38,7 @@ pub(crate) fn store_impulses(
 ) {
     // Straight into the manifolds (the solver's contacts are not read again): impulses for the next
     // step's warm start, and whether each manifold pushed (for the touching test of the events).
-    c.pushed.clear();
+    // `pushed` holds collide's verdict for each manifold (a carried resting contact keeps its touching).
     c.pushed.resize(c.manifolds.len(), false);
     let (manifolds, pushed, sources) = (&mut c.manifolds, &mut c.pushed, &s.contact_sources);
     s.contact_solver

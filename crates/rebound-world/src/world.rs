@@ -267,7 +267,8 @@ impl<B: CollisionBackend> World<B> {
     /// angular velocity that gets it there, so it pushes what it meets. Cleared after the step.
     ///
     /// # Errors
-    /// A stale handle, or a target that is not finite with a unit rotation. Nothing changes on error.
+    /// A stale handle, a body that is not kinematic ([`WorldError::NotKinematic`]), or a target that is not
+    /// finite with a unit rotation. Nothing changes on error.
     pub fn set_kinematic_target(
         &mut self,
         handle: BodyHandle,
@@ -279,6 +280,10 @@ impl<B: CollisionBackend> World<B> {
             .bodies
             .entry_mut(handle)
             .ok_or(WorldError::StaleBody(handle))?;
+        let body_type = entry.body.body_type();
+        if body_type != BodyType::Kinematic {
+            return Err(WorldError::NotKinematic { handle, body_type });
+        }
         entry.kinematic_target = Some(target);
         entry.body.set_sleeping(false);
         Ok(())

@@ -4,10 +4,12 @@
 //! [`crate::PhysicsWorld`].
 
 use crate::broad_phase::BroadPhase;
+use crate::hooks::ContactHooks;
 use crate::narrow_phase::NarrowPhase;
 use crate::{Collider, ColliderHandle, ColliderSet};
 use rebound_world::{BodyHandle, BodySet, CollisionBackend, ContactManifold, WorldSettings};
 use std::collections::BTreeSet;
+use std::sync::Arc;
 
 /// Colliders on parry3d shapes, a BVH broad phase and parry's persistent contact manifolds. Reach it through
 /// [`crate::PhysicsWorld::world`]`().backend()` to read the colliders and counters.
@@ -18,6 +20,20 @@ pub struct ParryBackend {
     pub(crate) narrow_phase: NarrowPhase,
     /// Body pairs (lower handle first) whose contacts a joint disabled.
     pub(crate) disabled_pairs: BTreeSet<(BodyHandle, BodyHandle)>,
+    /// The contact hooks, if set ([`crate::PhysicsWorld::set_contact_hooks`]).
+    pub(crate) hooks: Option<SharedHooks>,
+    /// Hook calls that failed during the last collide stage (panicked or returned an edit out of range).
+    pub(crate) hook_failures: usize,
+}
+
+/// The contact hooks as the backend holds them: shared, so that the backend (and a world) stays `Clone`.
+#[derive(Clone)]
+pub(crate) struct SharedHooks(pub(crate) Arc<dyn ContactHooks>);
+
+impl core::fmt::Debug for SharedHooks {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("ContactHooks")
+    }
 }
 
 impl ParryBackend {
@@ -77,6 +93,7 @@ impl CollisionBackend for ParryBackend {
             dt,
         );
         let broad_phase = &self.broad_phase;
+        self.hook_failures = 0;
         self.narrow_phase.collide(
             &broad_phase.pairs,
             |handle| broad_phase.rotation_reach(handle),
@@ -85,6 +102,8 @@ impl CollisionBackend for ParryBackend {
             settings.speculative_margin,
             dt,
             previous,
+            self.hooks.as_ref().map(|h| &*h.0),
+            &mut self.hook_failures,
             out,
         );
     }

@@ -42,7 +42,9 @@ use crate::prediction::{
     ball_center, ball_center_at, centres_clearly_apart, prediction_distance, rotation_reach,
 };
 use crate::shape::to_parry_pose;
-use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups};
+use crate::{
+    Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups, MAX_SHAPE_COORDINATE,
+};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use parry3d::partitioning::{Bvh, BvhWorkspace};
 use rebound_dynamics::{BodyType, RigidBody};
@@ -79,9 +81,17 @@ pub(crate) fn world_aabb(collider: &Collider, body: &RigidBody) -> Aabb {
 /// here (what parry computes, without composing the poses, converting them and calling through the shape
 /// trait object: two boxes a step for every collider of a pile of balls or a chain).
 pub(crate) fn aabb_at(collider: &Collider, body_pose: Pose) -> Aabb {
-    if let ColliderShape::Ball { radius } = collider.desc.shape {
-        let (center, r) = (ball_center_at(collider, body_pose), Vec3::splat(radius));
-        return Aabb::new(center - r, center + r);
+    match collider.desc.shape {
+        ColliderShape::Ball { radius } => {
+            let (center, r) = (ball_center_at(collider, body_pose), Vec3::splat(radius));
+            return Aabb::new(center - r, center + r);
+        }
+        ColliderShape::HalfSpace { .. } => {
+            // parry's box of a half-space is ±f32::MAX/2, whose volume and merges overflow in the tree.
+            let reach = Vec3::splat(MAX_SHAPE_COORDINATE);
+            return Aabb::new(-reach, reach);
+        }
+        _ => {}
     }
     collider
         .shape

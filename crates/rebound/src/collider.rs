@@ -108,7 +108,27 @@ pub struct ColliderDesc {
     pub is_sensor: bool,
     /// A disabled collider takes no part in collisions, sensors, queries or its body's mass. Default: true.
     pub enabled: bool,
+    /// Opt-in contact force events: each step in which the total normal force of a contact of this collider
+    /// reaches this many newtons (≥ 0) reports a [`crate::Event::ContactForce`]. When both colliders of a
+    /// pair set one, the lower counts. Default: `None` (no force events).
+    pub force_event_threshold: Option<f32>,
 }
+
+/// The rotation that turns the y axis onto x (−90° about z).
+const Y_TO_X: Quat = Quat::from_xyzw(
+    0.0,
+    0.0,
+    -core::f32::consts::FRAC_1_SQRT_2,
+    core::f32::consts::FRAC_1_SQRT_2,
+);
+
+/// The rotation that turns the y axis onto z (+90° about x).
+const Y_TO_Z: Quat = Quat::from_xyzw(
+    core::f32::consts::FRAC_1_SQRT_2,
+    0.0,
+    0.0,
+    core::f32::consts::FRAC_1_SQRT_2,
+);
 
 impl Default for ColliderDesc {
     fn default() -> Self {
@@ -124,6 +144,7 @@ impl Default for ColliderDesc {
             groups: CollisionGroups::ALL,
             is_sensor: false,
             enabled: true,
+            force_event_threshold: None,
         }
     }
 }
@@ -166,6 +187,38 @@ impl ColliderDesc {
             radius,
             half_height,
         })
+    }
+
+    /// A capsule along x of `radius` whose cylindrical part spans ±`half_height` (m): the y capsule turned
+    /// onto x by the collider's local rotation (a later [`ColliderDesc::with_rotation`] replaces it).
+    #[must_use]
+    pub fn capsule_x(radius: f32, half_height: f32) -> Self {
+        Self::capsule(radius, half_height).with_rotation(Y_TO_X)
+    }
+
+    /// A capsule along z of `radius` whose cylindrical part spans ±`half_height` (m); see
+    /// [`ColliderDesc::capsule_x`].
+    #[must_use]
+    pub fn capsule_z(radius: f32, half_height: f32) -> Self {
+        Self::capsule(radius, half_height).with_rotation(Y_TO_Z)
+    }
+
+    /// A cylinder along x of `radius` spanning ±`half_height` (m); see [`ColliderDesc::capsule_x`].
+    #[must_use]
+    pub fn cylinder_x(radius: f32, half_height: f32) -> Self {
+        Self::cylinder(radius, half_height).with_rotation(Y_TO_X)
+    }
+
+    /// A cylinder along z of `radius` spanning ±`half_height` (m); see [`ColliderDesc::capsule_x`].
+    #[must_use]
+    pub fn cylinder_z(radius: f32, half_height: f32) -> Self {
+        Self::cylinder(radius, half_height).with_rotation(Y_TO_Z)
+    }
+
+    /// A half-space through the collider origin with outward `normal` (see [`ColliderShape::HalfSpace`]).
+    #[must_use]
+    pub fn half_space(normal: Vec3) -> Self {
+        Self::new(ColliderShape::HalfSpace { normal })
     }
 
     /// A cone along y: base of `radius` at −`half_height`, apex at +`half_height` (m).
@@ -303,6 +356,13 @@ impl ColliderDesc {
         self
     }
 
+    /// Sets [`ColliderDesc::force_event_threshold`] (N): contact force events from this force on.
+    #[must_use]
+    pub fn with_force_event_threshold(mut self, threshold: f32) -> Self {
+        self.force_event_threshold = Some(threshold);
+        self
+    }
+
     /// Checks every field except the shape (which [`ColliderShape::to_parry`] checks); returns the
     /// description with its rotation normalised.
     pub(crate) fn checked_material(mut self) -> Result<Self, crate::Error> {
@@ -319,6 +379,9 @@ impl ColliderDesc {
             });
         }
         check_non_negative("rolling_friction", self.rolling_friction)?;
+        if let Some(threshold) = self.force_event_threshold {
+            check_non_negative("force_event_threshold", threshold)?;
+        }
         Ok(self)
     }
 }

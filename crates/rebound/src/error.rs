@@ -51,6 +51,15 @@ pub enum ShapeError {
         /// The number of points given.
         count: usize,
     },
+    /// A shape that encloses no volume (an open or inside-out triangle mesh, a height field, a half-space)
+    /// with a density > 0 on a dynamic body: it could give the body no mass.
+    #[error(
+        "a {kind} encloses no volume, so it cannot give a dynamic body mass: put it on a fixed or kinematic body, or give it density 0 and the body its own mass"
+    )]
+    NoVolume {
+        /// The shape's kind ([`crate::ColliderShape::kind_name`]).
+        kind: &'static str,
+    },
     /// A triangle mesh has no vertices or no triangles.
     #[error(
         "a triangle mesh needs vertices and triangles, got {vertex_count} vertices and {triangle_count} triangles"

@@ -4,7 +4,7 @@
 //! (sensor, collider) order.
 
 use crate::ColliderHandle;
-use rebound_world::{BodyHandle, JointHandle};
+use rebound_world::{BodyHandle, ContactForce, JointHandle};
 use serde::{Deserialize, Serialize};
 
 /// Something that happened during the last step (or the steps of the last `advance`).
@@ -25,6 +25,16 @@ pub enum Event {
         body_a: BodyHandle,
         /// Body B of the pair.
         body_b: BodyHandle,
+    },
+    /// A contact pushed with at least the force event threshold of one of its colliders this step
+    /// ([`crate::ColliderDesc::force_event_threshold`]).
+    ContactForce {
+        /// The pair's colliders (A, on body A, the lower handle; B), or `None` for a world event converted
+        /// outside a [`crate::PhysicsWorld`] step.
+        colliders: Option<(ColliderHandle, ColliderHandle)>,
+        /// The forces: total normal impulse (N·s) and mean force (N) of the step, the normal, the point
+        /// with the largest impulse.
+        force: ContactForce,
     },
     /// A joint's impulse exceeded its break force or torque; it is now disabled.
     JointBroken {
@@ -71,6 +81,10 @@ impl From<rebound_world::Event> for Event {
                 approach_speed,
             },
             W::ContactEnded { body_a, body_b } => Self::ContactEnded { body_a, body_b },
+            W::ContactForce(force) => Self::ContactForce {
+                colliders: None,
+                force,
+            },
             W::JointBroken { joint } => Self::JointBroken { joint },
             W::BodyFellAsleep { body } => Self::BodyFellAsleep { body },
             W::BodyWoke { body } => Self::BodyWoke { body },

@@ -10,7 +10,9 @@ mod collider_handle;
 mod collider_set;
 mod error;
 mod events;
+mod hooks;
 mod narrow_phase;
+mod one_way;
 mod physics_world;
 mod prediction;
 mod query;
@@ -53,6 +55,8 @@ pub use collider_handle::ColliderHandle;
 pub use collider_set::ColliderSet;
 pub use error::{Error, ShapeError};
 pub use events::Event;
+pub use hooks::{ContactEdit, ContactHooks, ContactPair, ContactPointEdit};
+pub use one_way::OneWayPlatform;
 pub use physics_world::PhysicsWorld;
 pub use query::{PickHit, PointHit, QueryFilter, RayHit, ShapeHit};
 pub use shape::{ColliderShape, MAX_SHAPE_COORDINATE};
@@ -63,17 +67,20 @@ pub mod prelude {
     pub use crate::{
         Autostep, CharacterCollision, CharacterController, CharacterError, CharacterMove,
         CharacterPush, CharacterSettings, Collider, ColliderDesc, ColliderHandle, ColliderShape,
-        CollisionGroups, Error, Event, Ground, PhysicsSnapshot, PhysicsWorld, PickHit, PointHit,
-        Push, QueryFilter, RayHit, ShapeError, ShapeHit,
+        CollisionGroups, ContactEdit, ContactHooks, ContactPair, Error, Event, Ground,
+        OneWayPlatform, PhysicsSnapshot, PhysicsWorld, PickHit, PointHit, Push, QueryFilter,
+        RayHit, ShapeError, ShapeHit,
     };
     pub use rebound_constraints::{
         BallJoint, ConstraintError, FixedJoint, HingeJoint, Joint, JointKind, Limits, Motor,
         PrismaticJoint, Rod, Rope, SoftSpring, Spring, SpringModel, WheelJoint,
     };
-    pub use rebound_dynamics::{BodyDesc, BodyType, CombineRule, DynamicsError, MassProperties};
+    pub use rebound_dynamics::{
+        BodyDesc, BodyType, CombineRule, DynamicsError, LockedAxes, MassProperties,
+    };
     pub use rebound_math::{MathError, Pose, Quat, Vec3};
     pub use rebound_world::{
-        AdvanceReport, BodyHandle, ContactManifold, JointHandle, StepReport, WorldError,
-        WorldSettings,
+        AdvanceReport, BodyHandle, ContactForce, ContactManifold, JointHandle, StepReport,
+        WorldError, WorldSettings,
     };
 }

@@ -38,6 +38,7 @@
 
 use crate::ball_ball::ball_ball;
 use crate::box_box::box_box_manifold;
+use crate::hooks::{self, ContactHooks, ContactPair};
 use crate::prediction::prediction_distance;
 use crate::recycling::recyclable;
 use crate::seam::Seam;
@@ -93,6 +94,9 @@ pub(crate) struct NarrowPhase {
     previous: Vec<((ColliderHandle, ColliderHandle), PairCache)>,
     /// The scratch manifold of convex pairs parry generates.
     convex: ParryManifold<(), ()>,
+    /// The collider pair of each manifold of the last collide stage that reports contact forces, by manifold
+    /// key (sorted by key once the stage is done): contact force events name colliders.
+    pub(crate) force_pairs: Vec<(u64, ColliderHandle, ColliderHandle)>,
 }
 
 /// The key extension of a convex pair's manifold: parry's sub-shape ids of a convex pair (both 0), so that a
@@ -121,7 +125,12 @@ impl NarrowPhase {
 
     /// Stage *collide*, part 2: the manifolds of every candidate pair of `pairs` (the broad phase's, sorted,
     /// lower handle first) into `out`, in pair order; `reach` gives each collider's rotation reach this step
-    /// (m/s, [`crate::prediction::rotation_reach`]).
+    /// (m/s, [`crate::prediction::rotation_reach`]). With `hooks`, each pair is filtered before and its
+    /// manifolds edited after they are made ([`crate::hooks`]), and their failures counted in `failures`.
+    #[expect(
+        clippy::too_many_lines,
+        reason = "one loop over the pairs, dispatching to the generators"
+    )]
     pub(crate) fn collide(
         &mut self,
         pairs: &[(ColliderHandle, ColliderHandle)],
@@ -131,13 +140,31 @@ impl NarrowPhase {
         speculative_margin: f32,
         dt: f32,
         previous: &[ContactManifold],
+        hooks: Option<&dyn ContactHooks>,
+        failures: &mut usize,
         out: &mut Vec<ContactManifold>,
     ) {
         core::mem::swap(&mut self.pairs, &mut self.previous);
+        // The pair whose manifolds (from `out[first..]`) the hooks edit once they are all made.
+        let mut hooked: Option<(ContactPair<'_>, usize)> = None;
+        // The pair whose manifolds (from `out[first..]`) report contact forces.
+        let mut reporting: Option<(ColliderHandle, ColliderHandle, usize)> = None;
+        self.force_pairs.clear();
         self.pairs.clear();
         let mut old = self.previous.drain(..).peekable();
         let mut cursor = 0;
         for &(h1, h2) in pairs {
+            // Tested first: a world without hooks or force events pays one test per pair for each.
+            if let Some(hooks) = hooks
+                && let Some((pair, first)) = hooked.take()
+            {
+                hooks::modify(hooks, &pair, out, first, failures);
+            }
+            if reporting.is_some()
+                && let Some((a, b, first)) = reporting.take()
+            {
+                record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
+            }
             // Both lists are sorted: drop the old pairs before this one, reuse this one's cache if present.
             while old.next_if(|(key, _)| *key < (h1, h2)).is_some() {}
             let cached = old
@@ -149,6 +176,23 @@ impl NarrowPhase {
             let (Some(b1), Some(b2)) = (bodies.get(c1.body), bodies.get(c2.body)) else {
                 continue;
             };
+            if let Some(hooks) = hooks {
+                let pair = ContactPair {
+                    collider_a: h1,
+                    collider_b: h2,
+                    a: c1,
+                    b: c2,
+                    body_a: (c1.body, b1),
+                    body_b: (c2.body, b2),
+                };
+                if !hooks::filter(hooks, &pair, failures) {
+                    continue;
+                }
+                hooked = Some((pair, out.len()));
+            }
+            if c1.desc.force_event_threshold.is_some() || c2.desc.force_event_threshold.is_some() {
+                reporting = Some((h1, h2, out.len()));
+            }
             // Two balls farther apart than this were dropped by the broad phase, with the same test on the
             // same values (`centres_clearly_apart`).
             let prediction = prediction_distance(
@@ -194,8 +238,14 @@ impl NarrowPhase {
                         let key = fnv1a(key_base, &CONVEX_SUBSHAPES);
                         let seam = seam(key);
                         let relative = b1.pose().inverse().mul_pose(&b2.pose());
-                        if let Some(old) =
-                            recyclable(previous, &mut cursor, (c1.body, c2.body, key), &relative)
+                        // Not with hooks: a recycled manifold would keep the points a hook disabled.
+                        if hooks.is_none()
+                            && let Some(old) = recyclable(
+                                previous,
+                                &mut cursor,
+                                (c1.body, c2.body, key),
+                                &relative,
+                            )
                         {
                             seam.recycle(old, &relative, prediction, out);
                             continue;
@@ -272,7 +322,33 @@ impl NarrowPhase {
             }
             self.pairs.push(((h1, h2), cache));
         }
+        if let (Some(hooks), Some((pair, first))) = (hooks, hooked) {
+            hooks::modify(hooks, &pair, out, first, failures);
+        }
+        if let Some((a, b, first)) = reporting {
+            record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
+        }
+        self.force_pairs.sort_unstable_by_key(|&(key, _, _)| key);
     }
+
+    /// The collider pair of the manifold of key `key` of the last collide stage, if it reports forces.
+    pub(crate) fn force_pair(&self, key: u64) -> Option<(ColliderHandle, ColliderHandle)> {
+        let i = self
+            .force_pairs
+            .binary_search_by_key(&key, |&(k, _, _)| k)
+            .ok()?;
+        self.force_pairs.get(i).map(|&(_, a, b)| (a, b))
+    }
+}
+
+/// Records the collider pair (`a`, `b`) of each of `manifolds` (one pair's) by key.
+fn record_force_pairs(
+    pairs: &mut Vec<(u64, ColliderHandle, ColliderHandle)>,
+    a: ColliderHandle,
+    b: ColliderHandle,
+    manifolds: &[ContactManifold],
+) {
+    pairs.extend(manifolds.iter().map(|m| (m.key, a, b)));
 }
 
 /// FNV-1a over the two colliders' slot indices: the base of every manifold key of the pair.

@@ -3,6 +3,8 @@
 //! "The step pipeline and its data flow"); this type adds what happens around it: colliders' mass summed into
 //! bodies on insertion and removal, the query BVH refreshed and sensor overlaps found after each step.
 
+use crate::backend::SharedHooks;
+use crate::hooks::ContactHooks;
 use crate::sensors::update_sensors;
 use crate::{ColliderHandle, Error, Event, ParryBackend};
 use parry3d::bounding_volume::Aabb;
@@ -13,6 +15,7 @@ use rebound_world::{
     World, WorldError, WorldSettings,
 };
 use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Arc;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 mod colliders;
@@ -187,7 +190,7 @@ impl PhysicsWorld {
     /// [`World::set_kinematic_target`]).
     ///
     /// # Errors
-    /// A stale handle or an invalid pose.
+    /// A stale handle, a body that is not kinematic, or an invalid pose.
     pub fn set_kinematic_target(&mut self, handle: BodyHandle, target: Pose) -> Result<(), Error> {
         Ok(self.world.set_kinematic_target(handle, target)?)
     }
@@ -217,9 +220,17 @@ impl PhysicsWorld {
     }
 
     fn step_and_collect(&mut self, dt: f32) -> StepReport {
-        let report = self.world.step(dt);
+        let mut report = self.world.step(dt);
+        report.hook_failure_count = self.world.backend().hook_failures;
+        let narrow_phase = &self.world.backend().narrow_phase;
         self.events
-            .extend(self.world.events().iter().copied().map(Event::from));
+            .extend(self.world.events().iter().map(|&event| match event {
+                rebound_world::Event::ContactForce(force) => Event::ContactForce {
+                    colliders: narrow_phase.force_pair(force.key),
+                    force,
+                },
+                event => Event::from(event),
+            }));
         if report.broken_joint_count > 0 {
             // A broken joint no longer keeps its bodies apart.
             self.update_disabled_pairs();
@@ -228,6 +239,18 @@ impl PhysicsWorld {
             self.after_step();
         }
         report
+    }
+
+    /// Sets the contact hooks, replacing any ([`ContactHooks`]): `hooks` may drop candidate pairs and
+    /// edit every manifold before the solver sees it, each step, in pair order. A closure
+    /// `|pair: &ContactPair, contacts: &mut ContactEdit| { .. }` is a hook. Hooks are not part of a snapshot.
+    pub fn set_contact_hooks(&mut self, hooks: impl ContactHooks + 'static) {
+        self.world.backend_mut().hooks = Some(SharedHooks(Arc::new(hooks)));
+    }
+
+    /// Removes the contact hooks.
+    pub fn clear_contact_hooks(&mut self) {
+        self.world.backend_mut().hooks = None;
     }
 
     /// Refreshes the query BVH at the current poses and updates sensor overlaps.

@@ -12,7 +12,7 @@ use crate::ShapeError;
 use parry3d::math::Vector;
 use parry3d::shape::SharedShape;
 use rebound_math::validity::{check_finite_vec3, check_positive, check_rotation};
-use rebound_math::{Pose, Vec3};
+use rebound_math::{MathError, Pose, Vec3};
 use serde::{Deserialize, Serialize};
 
 /// The largest length or coordinate a shape may have (m). At 10⁶ m an `f32` position is only good to
@@ -82,6 +82,13 @@ pub enum ColliderShape {
         /// Size along x and z and the height multiplier (m; each > 0).
         scale: Vec3,
     },
+    /// A half-space: everything on the inner side of the plane through the collider origin with outward
+    /// `normal` (an infinite floor or wall). It encloses no finite volume: use it on fixed or kinematic
+    /// bodies (or with density 0). Its bounding box is clamped to ±[`MAX_SHAPE_COORDINATE`].
+    HalfSpace {
+        /// The outward normal (collider frame; any length > 0, normalised on insertion).
+        normal: Vec3,
+    },
     /// Several convex parts rigidly joined, each placed by a pose in the collider frame. Parts may not be
     /// compounds, meshes or height fields.
     Compound {
@@ -111,6 +118,7 @@ impl ColliderShape {
             Self::TriMesh { .. } => "triangle mesh",
             Self::HeightField { .. } => "height field",
             Self::Compound { .. } => "compound",
+            Self::HalfSpace { .. } => "half-space",
         }
     }
 
@@ -125,7 +133,8 @@ impl ColliderShape {
             | Self::Capsule { .. }
             | Self::Cylinder { .. }
             | Self::Cone { .. }
-            | Self::ConvexHull { .. } => true,
+            | Self::ConvexHull { .. }
+            | Self::HalfSpace { .. } => true,
             Self::TriMesh { .. } | Self::HeightField { .. } | Self::Compound { .. } => false,
         }
     }
@@ -179,6 +188,14 @@ impl ColliderShape {
                 scale,
             } => heightfield(*rows, *cols, heights, *scale),
             Self::Compound { parts } => compound(parts),
+            Self::HalfSpace { normal } => {
+                check_finite_vec3("normal", *normal)?;
+                let unit = normal.try_normalize().ok_or(MathError::ZeroLength {
+                    field: "normal",
+                    value: *normal,
+                })?;
+                Ok(SharedShape::halfspace(unit))
+            }
         }
     }
 

@@ -263,23 +263,25 @@ fn bodies_keep_their_own_mass_without_massive_colliders_and_recompute_on_every_c
 }
 
 #[test]
-fn height_fields_and_open_meshes_add_no_mass() {
+fn height_fields_and_open_meshes_give_a_dynamic_body_no_mass_only_with_density_0() {
     let own = MassProperties::new(3.0, Vec3::ZERO, Vec3::splat(0.3)).unwrap();
     let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
     let body = world
         .insert_body(BodyDesc::dynamic().with_mass_properties(own))
         .unwrap();
-    world
-        .insert_collider(
-            ColliderDesc::heightfield(2, 2, vec![0.0; 4], Vec3::new(4.0, 1.0, 4.0)),
-            body,
-        )
-        .unwrap();
-    world
-        .insert_collider(
-            ColliderDesc::trimesh(vec![Vec3::ZERO, Vec3::X, Vec3::Z], vec![[0, 2, 1]]),
-            body,
-        )
-        .unwrap();
+    let field = ColliderDesc::heightfield(2, 2, vec![0.0; 4], Vec3::new(4.0, 1.0, 4.0));
+    let sheet = ColliderDesc::trimesh(vec![Vec3::ZERO, Vec3::X, Vec3::Z], vec![[0, 2, 1]]);
+    // With a density they would have to give mass and cannot: refused, not silently massless.
+    for desc in [field.clone(), sheet.clone()] {
+        let error = world.insert_collider(desc, body).unwrap_err();
+        assert!(
+            matches!(error, Error::Shape(ShapeError::NoVolume { .. })),
+            "{error}"
+        );
+    }
+    // With density 0 they add none, and the body keeps its own mass properties.
+    for desc in [field, sheet] {
+        world.insert_collider(desc.with_density(0.0), body).unwrap();
+    }
     assert_eq!(*world.body(body).unwrap().mass_properties(), own);
 }

@@ -47,6 +47,10 @@ pub struct Contact {
     /// and spinning) is resisted by a torque of at most `rolling_friction × normal force`. Default: 0 (ideal
     /// rolling: a ball set rolling on flat ground rolls forever, as in rapier and Box2D's default).
     pub rolling_friction: f32,
+    /// The velocity (m/s, world axes) B's surface should slide at relative to A's at the contact, in the
+    /// contact plane — a conveyor belt's surface speed. Friction drives the relative tangential velocity to it
+    /// instead of to zero; the part along the normal is ignored. Default: zero (ordinary friction).
+    pub surface_velocity: Vec3,
     /// The points; only the first `point_count` are used.
     pub points: [ContactPoint; MAX_CONTACT_POINTS],
     /// How many points are in use (0 to [`MAX_CONTACT_POINTS`]).
@@ -70,6 +74,7 @@ impl Contact {
             friction,
             restitution,
             rolling_friction: 0.0,
+            surface_velocity: Vec3::ZERO,
             points: [ContactPoint::default(); MAX_CONTACT_POINTS],
             point_count: 0,
         }

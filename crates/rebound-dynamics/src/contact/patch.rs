@@ -30,6 +30,9 @@ pub(crate) struct Patch {
     /// `I_a⁻¹·n` and `I_b⁻¹·n`.
     pub(crate) twist_a: Vec3,
     pub(crate) twist_b: Vec3,
+    /// The relative tangential velocity the tangent rows drive to, along the two tangents (m/s): the
+    /// contact's surface velocity (zero for ordinary friction).
+    pub(crate) target: Vec2,
 }
 
 impl Patch {
@@ -72,6 +75,10 @@ impl Patch {
             );
         }
         patch.twist_mass = invert(normal.dot(patch.twist_a) + normal.dot(patch.twist_b));
+        if c.moving_surface {
+            let surface = input.contacts[c.source].surface_velocity;
+            patch.target = Vec2::new(surface.dot(c.tangents[0]), surface.dot(c.tangents[1]));
+        }
         if input.ctx.warm_starting {
             patch.tangent_impulse = Vec2::new(
                 warm_linear.dot(c.tangents[0]),
@@ -130,10 +137,13 @@ impl Patch {
     ) {
         let [t0, t1] = c.tangents;
         let dv = b.linear_velocity - a.linear_velocity;
+        // Relative to the surface velocity (exactly the plain relative velocity when it is zero).
         let vt0 = t0.dot(dv) + b.angular_velocity.dot(self.rt_b[0])
-            - a.angular_velocity.dot(self.rt_a[0]);
+            - a.angular_velocity.dot(self.rt_a[0])
+            - self.target.x;
         let vt1 = t1.dot(dv) + b.angular_velocity.dot(self.rt_b[1])
-            - a.angular_velocity.dot(self.rt_a[1]);
+            - a.angular_velocity.dot(self.rt_a[1])
+            - self.target.y;
         let mut x = self.tangent_impulse.x - self.tangent_mass[0] * vt0;
         let mut y = self.tangent_impulse.y - self.tangent_mass[1] * vt1;
         let limit = c.friction * total;

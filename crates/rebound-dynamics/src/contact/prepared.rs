@@ -33,6 +33,9 @@ pub(crate) struct PreparedContact {
     pub(crate) softness: Softness,
     /// Whether both bodies are moved by the solver (not fixed or kinematic).
     pub(crate) both_dynamic: bool,
+    /// Whether the contact has a surface velocity ([`Contact::surface_velocity`]): only the scalar path's
+    /// patch drives friction to one.
+    pub(crate) moving_surface: bool,
 }
 
 impl PreparedContact {
@@ -72,6 +75,7 @@ impl PreparedContact {
                 ctx.static_softness
             },
             both_dynamic,
+            moving_surface: contact.surface_velocity != Vec3::ZERO,
         }
     }
 }

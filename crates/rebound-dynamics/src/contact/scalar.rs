@@ -30,6 +30,9 @@ pub(crate) struct PreparedPoint {
     pub(crate) bounced: bool,
     pub(crate) normal_impulse: f32,
     pub(crate) max_normal_impulse: f32,
+    /// What the point pushed with at its bounce beyond its accumulated impulse (N·s; 0 until it bounces): the
+    /// bounce's impulse plus the warm-start impulse the bounce forgot (both kept out of `normal_impulse`).
+    pub(crate) bounce_impulse: f32,
     pub(crate) normal_mass: f32,
     /// The point's distance from its manifold's patch centre (m): its lever against twist.
     pub(crate) twist_radius: f32,
@@ -71,6 +74,7 @@ impl PreparedPoint {
                 0.0
             },
             max_normal_impulse: 0.0,
+            bounce_impulse: 0.0,
             normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
             twist_radius: rho.dot(rho).sqrt(),
             rn_a,
@@ -203,9 +207,11 @@ pub(crate) fn solve(
             // relax, the next substeps' warm start — see a separating contact and leave it alone
             // instead of taking the bounce back.
             p.bounced = true;
+            p.bounce_impulse = p.normal_impulse;
             p.normal_impulse = 0.0;
             let impulse = (-p.normal_mass * (vn - bounce)).max(0.0);
             p.max_normal_impulse = p.max_normal_impulse.max(impulse);
+            p.bounce_impulse += impulse;
             pushed += impulse;
             u += impulse * u_gain;
             a.angular_velocity -= p.wn_a * impulse;

@@ -179,6 +179,33 @@ impl ContactSolver {
         });
     }
 
+    /// Calls `f(source, point, normal_impulse, bounce_impulse)` for every point of every prepared manifold: the
+    /// index of its source contact, the point's index in it, its accumulated normal impulse now (N·s) and the
+    /// impulse of its bounce this step (N·s, kept out of the accumulated one; 0 if it did not bounce).
+    ///
+    /// A substep applies its accumulated impulse (the warm start applies the last one, the passes change it),
+    /// so the accumulated impulses after each substep, summed, plus the bounce, are what the point pushed with
+    /// over the step: what contact force events report.
+    pub fn for_each_normal_impulse(&self, mut f: impl FnMut(usize, usize, f32, f32)) {
+        for &index in &self.scalar {
+            let c = &self.contacts[index];
+            for (k, p) in self.points[c.first_point..][..c.point_count]
+                .iter()
+                .enumerate()
+            {
+                f(c.source, k, p.normal_impulse, p.bounce_impulse);
+            }
+        }
+        for batch in &self.batches {
+            for (index, impulses) in batch.normal_impulses(&self.slots, &self.contacts) {
+                let source = self.contacts[index].source;
+                for (k, normal) in impulses.enumerate() {
+                    f(source, k, normal, 0.0);
+                }
+            }
+        }
+    }
+
     /// Calls `f(source, point, normal_impulse, tangent_impulse, max_normal_impulse)` for every point of every
     /// prepared manifold: the index of its source contact, the point's index in it, its accumulated normal
     /// impulse (N·s), its friction impulse as a world vector (N·s) and the largest normal impulse it applied

@@ -4,7 +4,9 @@
 use super::PhysicsWorld;
 use crate::broad_phase::aabb_at;
 use crate::collider::check_solvable;
-use crate::{Collider, ColliderDesc, ColliderHandle, ColliderSet, CollisionGroups, Error};
+use crate::{
+    Collider, ColliderDesc, ColliderHandle, ColliderSet, CollisionGroups, Error, ShapeError,
+};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use rebound_dynamics::{MassProperties, RigidBody};
 use rebound_math::Pose;
@@ -15,19 +17,24 @@ impl PhysicsWorld {
     /// mass properties become the combination of its colliders'. Wakes the body.
     ///
     /// # Errors
-    /// A stale body, or an invalid description: [`Error::Shape`] for the shape, [`Error::Math`] or
-    /// [`Error::OutOfRange`] naming a material field. The world is unchanged.
+    /// A stale body, or an invalid description: [`Error::Shape`] for the shape (and
+    /// [`crate::ShapeError::NoVolume`] for a shape without volume and with density > 0 on a dynamic body:
+    /// an open mesh, a height field, a half-space), [`Error::Math`] or [`Error::OutOfRange`] naming a
+    /// material field. The world is unchanged.
     pub fn insert_collider(
         &mut self,
         desc: impl Into<ColliderDesc>,
         body: BodyHandle,
     ) -> Result<ColliderHandle, Error> {
-        let body_pose = self
-            .world
-            .body(body)
-            .ok_or(WorldError::StaleBody(body))?
-            .pose();
+        let target = self.world.body(body).ok_or(WorldError::StaleBody(body))?;
+        let (body_pose, dynamic) = (target.pose(), target.is_dynamic());
         let collider = Collider::new(desc.into(), body)?;
+        if dynamic && collider.desc.density > 0.0 && collider.mass.is_none() {
+            return Err(ShapeError::NoVolume {
+                kind: collider.desc.shape.kind_name(),
+            }
+            .into());
+        }
         let mass = self.body_mass(body, None, Some(&collider))?;
         let backend = self.world.backend_mut();
         let handle = backend.colliders.insert(collider).ok_or(Error::Full)?;

@@ -431,6 +431,25 @@ impl Batch {
         }
     }
 
+    /// For each lane: the manifold's index and its points' accumulated normal impulses (N·s).
+    pub(crate) fn normal_impulses<'a>(
+        &'a self,
+        slots: &'a [PointX4],
+        contacts: &'a [PreparedContact],
+    ) -> impl Iterator<Item = (usize, impl Iterator<Item = f32> + 'a)> + 'a {
+        let points = &slots[self.first_slot..][..self.slots];
+        self.contacts[..self.lanes]
+            .iter()
+            .enumerate()
+            .map(move |(lane, &index)| {
+                let count = contacts[index].point_count;
+                (
+                    index,
+                    points[..count].iter().map(move |w| w.normal_impulse[lane]),
+                )
+            })
+    }
+
     /// For each lane: the manifold's index, and per point its accumulated normal impulse, its share of the
     /// patch's friction (world vector, [`PatchShare`]) and its largest applied normal impulse.
     pub(crate) fn results<'a>(
@@ -487,6 +506,7 @@ const EMPTY_LANE: PreparedContact = PreparedContact {
     inv_mass_b: 0.0,
     softness: crate::Softness::RIGID,
     both_dynamic: false,
+    moving_surface: false,
 };
 
 /// What an empty lane's point reads: zeros.

@@ -19,10 +19,10 @@ pub(crate) const COLORS: usize = 24;
 /// the other, so a body may have one colour in each.
 pub(crate) const CHUNK: usize = 4096;
 
-/// Whether the wide path solves this manifold exactly as the scalar path would: no bounce (restitution 0)
-/// and no rolling block.
+/// Whether the wide path solves this manifold exactly as the scalar path would: no bounce (restitution 0),
+/// no rolling block and no surface velocity.
 pub(crate) fn is_wide(c: &PreparedContact) -> bool {
-    c.restitution == 0.0 && c.rolling.is_none() && c.point_count > 0
+    c.restitution == 0.0 && c.rolling.is_none() && !c.moving_surface && c.point_count > 0
 }
 
 /// The colouring's scratch.
