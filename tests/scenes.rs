@@ -132,6 +132,20 @@ fn chain_starts_straight_at_full_length() {
     }
 }
 
+/// Issue 28: after 10 steps the pairs keep `exp(−2ζω·t)` = 0.0357 of their energy (ζ = 0.0707, ω = 141.4
+/// rad/s, t = 1/6 s), within 10 % of the 0.036 the physical damping alone leaves — no numerical damping.
+#[test]
+fn springs_lose_energy_at_their_physical_damping_rate() {
+    let mut scene = Springs::new(SceneOptions::default()).expect("builds");
+    let e0 = scene.initial_energy();
+    for _ in 0..10 {
+        scene.step();
+    }
+    let ratio = scene.energy() / e0;
+    println!("E10/E0 = {ratio:.5}");
+    assert!((ratio / 0.036 - 1.0).abs() < 0.1, "E10/E0 = {ratio}");
+}
+
 #[test]
 fn springs_start_with_1250_joules_per_pair() {
     let scene = Springs::new(SceneOptions::default()).expect("builds");

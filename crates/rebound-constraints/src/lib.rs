@@ -42,7 +42,7 @@ pub use prismatic::PrismaticJoint;
 pub use rod::Rod;
 pub use rope::Rope;
 pub use settings::JointSettings;
-pub use soft_spring::{JointSpring, SoftSpring};
+pub use soft_spring::{JointSpring, OscillatorStep, SoftSpring};
 pub use solver::{JointSolver, KeptRows};
 pub use spring::{Spring, SpringModel};
 pub use stage::Substep;

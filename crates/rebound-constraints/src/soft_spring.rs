@@ -2,8 +2,9 @@
 //! prismatic and wheel springs), turned into [`Softness`] coefficients at *prepare* (frequency form) or in each
 //! iteration (stiffness form, which needs the current effective mass).
 //!
-//! A soft spring is a spring-damper `F = −k·C − c·Ċ` integrated with implicit Euler (Catto, "Soft
-//! Constraints", GDC 2011): stable for any stiffness and step. The two parameterisations are related through
+//! A joint's soft spring (hinge, prismatic, wheel) is a spring-damper `F = −k·C − c·Ċ` integrated with
+//! implicit Euler (Catto, "Soft Constraints", GDC 2011): stable for any stiffness and step. The distance
+//! [`crate::Spring`] instead takes the [`OscillatorStep`], which has no numerical damping. The two parameterisations are related through
 //! the row's effective mass `m_eff`: `k = m_eff·ω²`, `c = 2·m_eff·ζ·ω`, `ω = 2π·f`.
 
 use crate::error::ConstraintError;
@@ -111,6 +112,33 @@ impl SoftSpring {
         }
     }
 
+    /// The exact oscillator step ([`OscillatorStep`]) of a row of effective mass `effective_mass` (kg or
+    /// kg·m²) over the substep `h` (s). In stiffness form `ω² = k/m_eff`, `σ = c/(2·m_eff)`; an infinite
+    /// stiffness gives the rigid limit. A zero effective mass (both ends immovable) gives the step that
+    /// changes nothing.
+    #[must_use]
+    pub fn oscillator_step(&self, effective_mass: f32, h: f32) -> OscillatorStep {
+        match *self {
+            Self::Frequency {
+                frequency_hz,
+                damping_ratio,
+            } => {
+                let omega = core::f32::consts::TAU * frequency_hz;
+                OscillatorStep::new(omega * omega, damping_ratio * omega, h)
+            }
+            Self::Stiffness { stiffness, damping } => {
+                if effective_mass <= 0.0 {
+                    OscillatorStep::new(0.0, 0.0, 0.0)
+                } else if stiffness.is_infinite() {
+                    OscillatorStep::rigid(h)
+                } else {
+                    let inv_mass = 1.0 / effective_mass;
+                    OscillatorStep::new(stiffness * inv_mass, 0.5 * damping * inv_mass, h)
+                }
+            }
+        }
+    }
+
     /// The soft-constraint coefficients for a row of effective mass `effective_mass` (kg or kg·m²) and
     /// substep `h` (s). An infinite stiffness gives the rigid limit `bias_rate = 1/h`.
     #[inline]
@@ -132,6 +160,57 @@ impl SoftSpring {
                     Softness::from_stiffness(stiffness, damping, effective_mass, h)
                 }
             }
+        }
+    }
+}
+
+/// One substep of a spring row's oscillator `ẍ = −ω²·x − 2σ·ẋ` (`σ = ζ·ω`), written as the velocity update
+/// that the engine's position update `x' = x + h·v'` completes: `v' = α·v + β·x` (`docs/physics.md`,
+/// "Springs without numerical damping").
+///
+/// `β = −α·h·ω²` keeps the static stretch under a constant load exact (`k·x = F` is the fixed point, as in
+/// implicit Euler). `α`, the map's determinant, is the energy kept per substep: the physical
+/// `e^{−2σh}` while the spring is resolved (`h·ω ≤ 1`), so an undamped spring loses nothing and a damped
+/// one decays at exactly its physical rate; beyond, at most `1/(h·ω)²`, which keeps the map stable for any
+/// stiffness (its eigenvalues have modulus `√α < 1`) and tends to implicit Euler's `1/(1 + h²ω²)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OscillatorStep {
+    /// `α` (dimensionless, in `[0, 1]`): the factor on the row's velocity.
+    pub velocity_factor: f32,
+    /// `β = −α·h·ω²` (1/s): the velocity added per metre (or radian) of stretch.
+    pub position_rate: f32,
+}
+
+impl OscillatorStep {
+    /// The step for `ω²` `omega_squared` (1/s²), decay rate `sigma = ζ·ω = c/(2·m_eff)` (1/s) and substep
+    /// `h` (s); `h ≤ 0` gives the step that changes nothing.
+    #[must_use]
+    pub fn new(omega_squared: f32, sigma: f32, h: f32) -> Self {
+        if h <= 0.0 {
+            return Self {
+                velocity_factor: 1.0,
+                position_rate: 0.0,
+            };
+        }
+        let resolution = omega_squared * h * h;
+        let physical = (-2.0 * sigma * h).exp();
+        let velocity_factor = if resolution > 1.0 {
+            physical.min(1.0 / resolution)
+        } else {
+            physical
+        };
+        Self {
+            velocity_factor,
+            position_rate: -velocity_factor * h * omega_squared,
+        }
+    }
+
+    /// The rigid limit (`ω → ∞`): the stretch is closed in one substep, `v' = −x/h`.
+    #[must_use]
+    pub fn rigid(h: f32) -> Self {
+        Self {
+            velocity_factor: 0.0,
+            position_rate: if h > 0.0 { -1.0 / h } else { 0.0 },
         }
     }
 }

@@ -1,7 +1,7 @@
-//! The spring between two anchors (course items 1–3), in two models: an implicit soft constraint that is
-//! stable for any stiffness and step, and the course's explicit Hooke force. Stages: *prepare*, *apply
-//! forces* (force model, every substep after integrate velocities), *warm start* and *solve* with bias on
-//! (soft model; the relax pass leaves springs alone).
+//! The spring between two anchors (course items 1–3), in two models: the oscillator step, stable for any
+//! stiffness and step and free of numerical damping, and the course's explicit Hooke force. Stages:
+//! *prepare* and *apply forces* (both models, every substep after integrate velocities); the solve and
+//! relax passes leave springs alone.
 //!
 //! # The equation
 //!
@@ -31,29 +31,23 @@
 //! explicit spring explodes as soon as `h > 2/ω = 2·√(m_eff/k)` (for k = 1e4 N/m on 1 kg: h > 20 ms). At
 //! `h·ω = 2.1` the amplitude grows ×1.88 per substep (tested).
 //!
-//! # `SpringModel::Soft`: an implicit soft constraint
+//! # `SpringModel::Soft`: the oscillator step
 //!
-//! The same spring-damper as a soft constraint row (Catto, "Soft Constraints", GDC 2011) with the
-//! [`Softness`] from `(k, c)` or `(f, ζ)`. For one spring the solver computes, per substep,
-//!
-//! ```text
-//! λ = −m_eff·mass_scale·(Ċ₀ + bias_rate·C),   v' = v₀ + λ/m_eff
-//!   = (v₀ − h·(k/m)·C) / (1 + h·c/m + h²·k/m)          ← implicit Euler of m·ẍ = −k·x − c·ẋ
-//! ```
-//!
-//! which is unconditionally stable: its eigenvalues have modulus `1/√(1 + h²ω²) < 1` for ζ = 0, so the spring
-//! never explodes at any k and dt (k = 1e7 N/m on 1 kg at 30 Hz is tested), at the price of numerical damping
-//! that grows with h·ω. Optional force caps clamp the accumulated impulse to `[min_force·h, max_force·h]`, which
-//! makes a bungee (`max_force = 0`: pulls, never pushes).
+//! The same spring-damper, as one velocity change per substep in the same stage, from the row's effective
+//! mass: `λ = m_eff·((α − 1)·Ċ + β·C)` with the [`crate::OscillatorStep`] `(α, β)`, so that with the
+//! position update the substep is `v' = α·v + β·x`, `x' = x + h·v'`. `β = −α·h·ω²` makes the static stretch
+//! under a load exact; `α = e^{−2ζωh}` (the map's determinant) while `h·ω ≤ 1` gives no numerical damping
+//! at all — an undamped spring keeps its mean energy, a damped one decays at its physical rate — and
+//! `α ≤ 1/(h·ω)²` beyond keeps it stable at any stiffness (k = 1e9 N/m on 1 kg at dt = 1/30 is tested).
+//! `docs/physics.md`, "Springs without numerical damping", derives it. Optional force caps clamp the
+//! impulse to `[min_force·h, max_force·h]`, which makes a bungee (`max_force = 0`: pulls, never pushes).
 
 use crate::error::ConstraintError;
 use crate::error::{check_not_nan, check_ordered};
 use crate::pair::BodyPair;
-use crate::part::{AxisPart, RowTarget};
+use crate::part::AxisPart;
 use crate::soft_spring::SoftSpring;
-use crate::stage::Stage;
-use crate::state::JointState;
-use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
+use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
 
@@ -61,7 +55,8 @@ use rebound_math::validity::check_non_negative;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum SpringModel {
-    /// An implicit soft constraint: stable for any stiffness and step. The engine's choice.
+    /// The oscillator step: stable for any stiffness and step, without numerical damping. The engine's
+    /// choice.
     Soft(SoftSpring),
     /// The course's explicit Hooke force `f = −k·(|d| − L) − c·Ċ`, added as a velocity change every substep.
     /// Diverges once `h·√(k/m_eff) > 2`; here to teach and to compare.
@@ -123,7 +118,7 @@ impl SpringModel {
 /// C = |d| − L                                     (m)
 /// J = [ −nᵀ  −(r_a × n)ᵀ  nᵀ  (r_b × n)ᵀ ],  n = d/|d|
 /// m_eff = 1 / (1/m_a + 1/m_b + (r_a × n)·I_a⁻¹·(r_a × n) + (r_b × n)·I_b⁻¹·(r_b × n))
-/// Soft:  soft row with Softness::new(f, ζ, h) or Softness::from_stiffness(k, c, m_eff, h), bias pass only
+/// Soft:  λ = m_eff·((α − 1)·Ċ + β·C) per substep, (α, β) = OscillatorStep of (ω², σ, h)
 /// Force: f = −k·C − c·Ċ (N) added as Δv = f·h·n/m on both bodies every substep; diverges for h·√(k/m_eff) > 2
 /// caps: min_force·h ≤ λ ≤ max_force·h
 /// ```
@@ -238,15 +233,9 @@ impl Spring {
         pair: &BodyPair,
         a: &SolverBody,
         b: &SolverBody,
-        ctx: &StepContext,
     ) -> PreparedSpring {
-        let softness = match self.model {
-            SpringModel::Soft(spring) => spring.softness(0.0, ctx.h),
-            SpringModel::Force { .. } => Softness::RIGID,
-        };
         PreparedSpring {
             spring: *self,
-            softness,
             fallback_axis: initial_axis(pair, a, b),
         }
     }
@@ -261,17 +250,10 @@ pub(crate) fn initial_axis(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> V
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PreparedSpring {
     spring: Spring,
-    /// The soft model's coefficients in frequency form (the stiffness form is computed per iteration).
-    softness: Softness,
     fallback_axis: Vec3,
 }
 
 impl PreparedSpring {
-    /// Whether this is the soft model (whose impulse is warm-started; the force model's is only recorded).
-    pub(crate) fn is_soft(&self) -> bool {
-        matches!(self.spring.model, SpringModel::Soft(_))
-    }
-
     /// The force model's force along n (N) in the current state, capped.
     fn force(&self, part: &AxisPart, length: f32, a: &SolverBody, b: &SolverBody) -> Option<f32> {
         let SpringModel::Force { stiffness, damping } = self.spring.model else {
@@ -281,71 +263,33 @@ impl PreparedSpring {
         Some(f.max(self.spring.min_force).min(self.spring.max_force))
     }
 
-    /// Stage *apply forces* (force model only): `Δv = f·h·n/m` on both bodies.
+    /// Stage *apply forces*: the substep's impulse along n on both bodies (N·s), returned for the joint's
+    /// state. Soft model: the exact oscillator step of the row's effective mass,
+    /// `λ = m_eff·((α − 1)·Ċ + β·C)`, capped to `[min_force·h, max_force·h]`; force model: `f·h`.
     pub(crate) fn apply_forces(
         &self,
         pair: &BodyPair,
         a: &mut SolverBody,
         b: &mut SolverBody,
         h: f32,
-    ) {
-        if !matches!(self.spring.model, SpringModel::Force { .. }) {
-            return;
-        }
+    ) -> f32 {
         let dist = pair.distance(a, b, self.fallback_axis);
         let part = AxisPart::along(pair, &dist);
-        if let Some(f) = self.force(&part, dist.length, a, b) {
-            part.apply(pair, a, b, f * h);
-        }
-    }
-
-    pub(crate) fn warm_start(
-        &self,
-        pair: &BodyPair,
-        state: &JointState,
-        a: &mut SolverBody,
-        b: &mut SolverBody,
-    ) {
-        if self.is_soft() && state.axial_impulse != 0.0 {
-            let dist = pair.distance(a, b, self.fallback_axis);
-            let part = AxisPart::along(pair, &dist);
-            part.apply(pair, a, b, state.axial_impulse);
-        }
-    }
-
-    pub(crate) fn solve(
-        &mut self,
-        pair: &BodyPair,
-        state: &mut JointState,
-        a: &mut SolverBody,
-        b: &mut SolverBody,
-        stage: &Stage,
-    ) {
-        if stage.bias == Bias::Off {
-            return;
-        }
-        let dist = pair.distance(a, b, self.fallback_axis);
-        self.fallback_axis = dist.axis;
-        let part = AxisPart::along(pair, &dist);
-        match self.spring.model {
+        let impulse = match self.spring.model {
             SpringModel::Soft(spring) => {
-                let softness =
-                    spring.softness_in_iteration(self.softness, part.effective_mass(), stage.h);
+                let effective_mass = part.effective_mass();
+                let step = spring.oscillator_step(effective_mass, h);
                 let c = dist.length - self.spring.rest_length;
-                part.solve(
-                    pair,
-                    a,
-                    b,
-                    RowTarget::spring(c, softness),
-                    &mut state.axial_impulse,
-                    self.spring.min_force * stage.h,
-                    self.spring.max_force * stage.h,
-                );
+                let speed = part.velocity(a, b);
+                let impulse = effective_mass
+                    * ((step.velocity_factor - 1.0) * speed + step.position_rate * c);
+                impulse
+                    .max(self.spring.min_force * h)
+                    .min(self.spring.max_force * h)
             }
-            SpringModel::Force { .. } => {
-                // Recorded, not applied: the force of this substep as an impulse, for reporting and breaking.
-                state.axial_impulse = self.force(&part, dist.length, a, b).unwrap_or(0.0) * stage.h;
-            }
-        }
+            SpringModel::Force { .. } => self.force(&part, dist.length, a, b).unwrap_or(0.0) * h,
+        };
+        part.apply(pair, a, b, impulse);
+        impulse
     }
 }

@@ -20,10 +20,18 @@ const DT: f32 = 1.0 / 60.0;
 const SUBSTEPS: u32 = 4;
 const REST: f32 = 1.5;
 
-/// One substep of implicit Euler for `m·ẍ = −k·x − c·ẋ`: `v' = (v − h·k/m·x)/(1 + h·c/m + h²·k/m)`,
-/// `x' = x + h·v'`.
-fn implicit_euler(x: &mut f64, v: &mut f64, k: f64, c: f64, m: f64, h: f64) {
-    *v = (*v - h * k / m * *x) / (1.0 + h * c / m + h * h * k / m);
+/// One substep of the spring's closed-form map for `m·ẍ = −k·x − c·ẋ` (`docs/physics.md`, "Springs without
+/// numerical damping"): `v' = α·v − α·h·(k/m)·x`, `x' = x + h·v'`, `α = min(e^{−h·c/m}, 1/(h²·k/m))` (the
+/// cap only where `h²·k/m > 1`).
+fn exact_oscillator(x: &mut f64, v: &mut f64, k: f64, c: f64, m: f64, h: f64) {
+    let resolution = h * h * k / m;
+    let physical = (-h * c / m).exp();
+    let alpha = if resolution > 1.0 {
+        physical.min(1.0 / resolution)
+    } else {
+        physical
+    };
+    *v = alpha * (*v - h * k / m * *x);
     *x += h * *v;
 }
 
@@ -70,7 +78,7 @@ fn world_spring_matches_the_recurrence(spring: SoftSpring) -> f64 {
     for step in 0..600 {
         h.step(DT);
         for _ in 0..SUBSTEPS {
-            implicit_euler(&mut x, &mut v, k, c, f64::from(m), sub_h);
+            exact_oscillator(&mut x, &mut v, k, c, f64::from(m), sub_h);
         }
         let p = h.bodies[b].position();
         let engine = f64::from(p.x - anchor.x - REST);
@@ -86,7 +94,7 @@ fn world_spring_matches_the_recurrence(spring: SoftSpring) -> f64 {
 }
 
 #[test]
-fn soft_spring_follows_implicit_euler_in_frequency_form() {
+fn soft_spring_follows_exact_oscillator_in_frequency_form() {
     for (hz, zeta) in [(2.0, 0.3), (0.5, 0.0), (8.0, 1.0)] {
         let worst = world_spring_matches_the_recurrence(SoftSpring::frequency(hz, zeta).unwrap());
         println!("f = {hz} Hz, zeta = {zeta}: worst deviation {worst:.2e} m");
@@ -94,7 +102,7 @@ fn soft_spring_follows_implicit_euler_in_frequency_form() {
 }
 
 #[test]
-fn soft_spring_follows_implicit_euler_in_stiffness_form() {
+fn soft_spring_follows_exact_oscillator_in_stiffness_form() {
     for (k, c) in [(50.0, 3.0), (200.0, 0.0), (5000.0, 20.0)] {
         let worst = world_spring_matches_the_recurrence(SoftSpring::stiffness(k, c).unwrap());
         println!("k = {k} N/m, c = {c} N s/m: worst deviation {worst:.2e} m");
@@ -132,7 +140,7 @@ fn a_spring_between_two_free_bodies_acts_on_both_through_the_reduced_mass() {
     for step in 1..=600 {
         h.step(DT);
         for _ in 0..SUBSTEPS {
-            implicit_euler(&mut x, &mut v, f64::from(k), f64::from(c), mu, sub_h);
+            exact_oscillator(&mut x, &mut v, f64::from(k), f64::from(c), mu, sub_h);
         }
         let length = f64::from(h.bodies[b].position().x - h.bodies[a].position().x);
         assert!(

@@ -49,11 +49,8 @@ impl Prepared {
         match kind {
             JointKind::Spring(s) => {
                 keep_only(state, Keep::Axial);
-                let prepared = s.prepare(pair, sa, sb, ctx);
-                if !prepared.is_soft() {
-                    state.axial_impulse = 0.0;
-                }
-                Self::Spring(prepared)
+                state.axial_impulse = 0.0;
+                Self::Spring(s.prepare(pair, sa, sb))
             }
             JointKind::Rope(r) => {
                 keep_only(state, Keep::Upper);
@@ -74,20 +71,23 @@ impl Prepared {
         }
     }
 
-    /// Stage *apply forces*: the explicit Hooke force of a [`crate::SpringModel::Force`] spring on its
-    /// bodies over the substep `h` (s); nothing for every other joint.
+    /// Stage *apply forces*: a spring's impulse over the substep `h` (s) on its bodies, recorded in `state`
+    /// (see [`crate::spring`]); nothing for every other joint.
     #[inline]
-    pub(super) fn apply_forces(&self, pair: &BodyPair, solver_bodies: &mut [SolverBody], h: f32) {
+    pub(super) fn apply_forces(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        solver_bodies: &mut [SolverBody],
+        h: f32,
+    ) {
         let Self::Spring(spring) = self else {
             return;
         };
-        if spring.is_soft() {
-            return;
-        }
         let Some((mut a, mut b)) = pair.load(solver_bodies) else {
             return;
         };
-        spring.apply_forces(pair, &mut a, &mut b, h);
+        state.axial_impulse = spring.apply_forces(pair, &mut a, &mut b, h);
         pair.store(solver_bodies, a, b);
     }
 
@@ -101,7 +101,7 @@ impl Prepared {
         b: &mut SolverBody,
     ) {
         match self {
-            Self::Spring(p) => p.warm_start(pair, state, a, b),
+            Self::Spring(_) => {}
             Self::Rope(p) => p.warm_start(pair, state, a, b),
             Self::Rod(p) => p.warm_start(pair, state, a, b),
             Self::Ball => ball::warm_start(pair, state, a, b),
@@ -112,10 +112,11 @@ impl Prepared {
         }
     }
 
-    /// Whether the joint acts in a pass of `bias`: springs act in the bias pass only (see [`crate::spring`]).
+    /// Whether the joint acts in a pass of `bias`: springs act in neither (their whole substep is the
+    /// *apply forces* stage, see [`crate::spring`]).
     #[inline]
-    pub(super) fn acts_in(&self, bias: Bias) -> bool {
-        bias == Bias::On || !matches!(self, Self::Spring(_))
+    pub(super) fn acts_in(&self, _bias: Bias) -> bool {
+        !matches!(self, Self::Spring(_))
     }
 
     /// Whether a Gauss–Seidel pass visits the joint: a joint on no path, and a hinge on one for its limit,
@@ -139,7 +140,7 @@ impl Prepared {
         on_path: bool,
     ) {
         match self {
-            Self::Spring(p) => p.solve(pair, state, a, b, stage),
+            Self::Spring(_) => {}
             Self::Rope(p) => p.solve(pair, state, a, b, stage),
             Self::Rod(p) => p.solve(pair, state, a, b, stage),
             Self::Ball => ball::solve(pair, state, a, b, stage),

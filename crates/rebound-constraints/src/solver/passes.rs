@@ -9,11 +9,13 @@ use crate::state::{JointState, JointStates};
 use rebound_dynamics::{Bias, SolverBody, StepContext};
 
 impl JointSolver {
-    /// Stage *apply forces* (every substep, right after integrate velocities): the explicit Hooke force of
-    /// each [`crate::SpringModel::Force`] spring, `Δv = f·h·n/m` on both bodies (course items 1–2).
-    pub fn apply_forces(&self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
-        for j in &self.joints {
-            j.kind.apply_forces(&j.pair, solver_bodies, ctx.h);
+    /// Stage *apply forces* (every substep, right after integrate velocities): each spring's impulse over
+    /// the substep — the exact oscillator step of a [`crate::SpringModel::Soft`] spring, the explicit Hooke
+    /// force `Δv = f·h·n/m` of a [`crate::SpringModel::Force`] one (course items 1–2) — on both bodies.
+    pub fn apply_forces(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
+        for j in &mut self.joints {
+            j.kind
+                .apply_forces(&j.pair, &mut j.state, solver_bodies, ctx.h);
         }
     }
 
