@@ -270,7 +270,10 @@ impl Joint {
             JointKind::Rod(r) => {
                 Rod::new(r.length())?;
             }
-            JointKind::Ball(_) | JointKind::Fixed(_) => {}
+            JointKind::Ball(b) => {
+                b.validated()?;
+            }
+            JointKind::Fixed(_) => {}
             JointKind::Hinge(h) => {
                 HingeJoint::new().set_limits(limits(h.limits())?)?;
                 motor(h.motor())?;

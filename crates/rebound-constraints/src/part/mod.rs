@@ -42,12 +42,14 @@ mod angle;
 mod axis;
 mod point;
 mod rotation;
+mod swing_twist;
 
 pub use align::AlignPart;
 pub use angle::AnglePart;
 pub use axis::AxisPart;
 pub use point::PointPart;
 pub use rotation::{RotationPart, rotation_error};
+pub use swing_twist::{MIN_TWIST_DENOMINATOR, SwingTwist};
 
 use crate::pair::BodyPair;
 use rebound_dynamics::{Bias, Softness, SolverBody};

@@ -5,7 +5,7 @@
 //! *restitution* and the reaction reported at *store impulses*. The stages themselves (`prepare`,
 //! `passes`, `path_pass`, `project`) name no joint kind.
 
-use crate::ball;
+use crate::ball::{self, PreparedBall};
 use crate::coordinate::CoordinateRows;
 use crate::fixed::{FixedJoint, PreparedFixed};
 use crate::hinge::PreparedHinge;
@@ -29,6 +29,8 @@ pub(super) enum Prepared {
     Rope(PreparedRope),
     Rod(PreparedRod),
     Ball,
+    /// A ball joint with swing–twist limits or an orientation motor.
+    LimitedBall(PreparedBall),
     Hinge(PreparedHinge),
     Fixed(PreparedFixed),
     Prismatic(PreparedPrismatic),
@@ -62,6 +64,9 @@ impl Prepared {
             JointKind::Rod(r) => {
                 keep_only(state, Keep::Axial);
                 Self::Rod(r.prepare(pair, sa, sb))
+            }
+            JointKind::Ball(ball) if !ball.is_free() => {
+                Self::LimitedBall(ball.prepare(pair, (sa, sb), ctx, state))
             }
             JointKind::Ball(_) => {
                 keep_only(state, Keep::Linear);
@@ -105,6 +110,7 @@ impl Prepared {
             Self::Rope(p) => p.warm_start(pair, state, a, b),
             Self::Rod(p) => p.warm_start(pair, state, a, b),
             Self::Ball => ball::warm_start(pair, state, a, b),
+            Self::LimitedBall(p) => p.warm_start(pair, state, a, b),
             Self::Hinge(p) => p.warm_start(pair, state, a, b),
             Self::Fixed(_) => PreparedFixed::warm_start(pair, state, a, b),
             Self::Prismatic(_) => PreparedPrismatic::warm_start(pair, state, a, b),
@@ -123,6 +129,7 @@ impl Prepared {
     pub(super) fn is_iterated(&self, on_path: bool) -> bool {
         match self {
             Self::Hinge(hinge) => !on_path || !hinge.has_no_coordinate_rows(),
+            Self::LimitedBall(_) => true,
             _ => !on_path,
         }
     }
@@ -143,6 +150,7 @@ impl Prepared {
             Self::Rope(p) => p.solve(pair, state, a, b, stage),
             Self::Rod(p) => p.solve(pair, state, a, b, stage),
             Self::Ball => ball::solve(pair, state, a, b, stage),
+            Self::LimitedBall(p) => p.solve(pair, state, a, b, stage, on_path),
             Self::Hinge(p) if on_path => p.solve_coordinate(pair, state, a, b, stage),
             Self::Hinge(p) => p.solve(pair, state, a, b, stage),
             Self::Fixed(p) => p.solve(pair, state, a, b, stage),
@@ -164,7 +172,7 @@ impl Prepared {
         match self {
             Self::Rope(p) => p.direct_row(pair, a, b, stage, rows),
             Self::Rod(p) => p.direct_row(pair, a, b, stage, rows),
-            Self::Ball => ball::direct_rows(pair, a, b, stage, rows),
+            Self::Ball | Self::LimitedBall(_) => ball::direct_rows(pair, a, b, stage, rows),
             Self::Hinge(_) => PreparedHinge::direct_rows(pair, a, b, stage, rows),
             _ => return false,
         }
@@ -189,7 +197,7 @@ impl Prepared {
         match self {
             Self::Rope(p) => p.store_direct_impulses(state, lambda),
             Self::Rod(_) => PreparedRod::store_direct_impulses(state, lambda),
-            Self::Ball => ball::store_direct_impulses(state, lambda),
+            Self::Ball | Self::LimitedBall(_) => ball::store_direct_impulses(state, lambda),
             Self::Hinge(_) => PreparedHinge::store_direct_impulses(state, lambda),
             _ => {}
         }
@@ -206,7 +214,9 @@ impl Prepared {
         stage: &Stage,
     ) -> Option<f32> {
         match self {
-            Self::Ball => Some(equality_violation(&ball::direct_errors(pair, a, b), stage)),
+            Self::Ball | Self::LimitedBall(_) => {
+                Some(equality_violation(&ball::direct_errors(pair, a, b), stage))
+            }
             Self::Hinge(_) => Some(equality_violation(
                 &PreparedHinge::direct_errors(pair, a, b),
                 stage,
@@ -233,17 +243,23 @@ impl Prepared {
         solver_bodies: &mut [SolverBody],
         ctx: &StepContext,
     ) {
-        let Self::Rope(rope) = self else {
+        if !matches!(self, Self::Rope(_) | Self::LimitedBall(_)) {
             return;
-        };
+        }
         let Some((mut a, mut b)) = pair.load(solver_bodies) else {
             return;
         };
-        rope.apply_restitution(pair, state, &mut a, &mut b, ctx);
+        match self {
+            Self::Rope(rope) => rope.apply_restitution(pair, state, &mut a, &mut b, ctx),
+            Self::LimitedBall(ball) => ball.apply_restitution(pair, state, &mut a, &mut b, ctx),
+            _ => {}
+        }
         pair.store(solver_bodies, a, b);
     }
 
-    /// Whether the joint's equality rows can join a directly solved path ([`crate::path`]).
+    /// Whether the joint's equality rows can join a directly solved path ([`crate::path`]). Not a ball joint
+    /// with limits or a motor: its angular rows, solved between the path's passes, would be undone in part by
+    /// each direct solve of the point (see `crate::ball`'s limit sweeps).
     pub(super) fn is_direct_capable(&self) -> bool {
         matches!(
             self,
@@ -267,7 +283,7 @@ impl Prepared {
         match self {
             Self::Rope(p) => Some(p.max_length()),
             Self::Rod(p) => Some(p.length()),
-            Self::Ball | Self::Hinge(_) | Self::Fixed(_) => Some(0.0),
+            Self::Ball | Self::LimitedBall(_) | Self::Hinge(_) | Self::Fixed(_) => Some(0.0),
             Self::Spring(_) | Self::Prismatic(_) | Self::Wheel(_) => None,
         }
     }
@@ -323,6 +339,12 @@ pub(super) fn reaction_impulses(kind: &Prepared, s: &JointState) -> (f32, f32) {
         Prepared::Spring(_) | Prepared::Rod(_) => (s.axial_impulse.abs(), 0.0),
         Prepared::Rope(_) => (s.upper_impulse.abs(), 0.0),
         Prepared::Ball => (s.linear_impulse.length(), 0.0),
+        Prepared::LimitedBall(_) => (
+            s.linear_impulse.length(),
+            s.angular_impulse
+                .length()
+                .hypot(s.axial_impulse.hypot(s.lower_impulse + s.upper_impulse)),
+        ),
         Prepared::Hinge(_) => (
             s.linear_impulse.length(),
             hypot3(s.angular_impulse.x, s.angular_impulse.y, along),
@@ -350,7 +372,7 @@ pub(super) fn state_lambda(j: &PreparedJoint) -> [f32; MAX_ROWS] {
     match &j.kind {
         Prepared::Rope(_) => PreparedRope::direct_impulses(s),
         Prepared::Rod(_) => PreparedRod::direct_impulses(s),
-        Prepared::Ball => ball::direct_impulses(s),
+        Prepared::Ball | Prepared::LimitedBall(_) => ball::direct_impulses(s),
         Prepared::Hinge(_) => PreparedHinge::direct_impulses(s),
         _ => [0.0; MAX_ROWS],
     }
