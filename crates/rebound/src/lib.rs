@@ -61,8 +61,9 @@ pub mod prelude {
         ShapeHit,
     };
     pub use rebound_constraints::{
-        BallJoint, ConstraintError, FixedJoint, HingeJoint, Joint, JointKind, Limits, Motor,
-        PrismaticJoint, Rod, Rope, SoftSpring, Spring, SpringModel, WheelJoint,
+        AxisDrive, AxisMotion, BallJoint, ConstraintError, FixedJoint, HingeJoint, Joint,
+        JointKind, Limits, Motor, OrientationMotor, PrismaticJoint, Rod, Rope, SixDofJoint,
+        SoftSpring, Spring, SpringModel, SwingTwistLimits, WheelJoint,
     };
     pub use rebound_dynamics::{BodyDesc, BodyType, CombineRule, DynamicsError, MassProperties};
     pub use rebound_math::{MathError, Pose, Quat, Vec3};

@@ -16,11 +16,13 @@ use crate::path::{JointRows, equality_violation};
 use crate::prismatic::PreparedPrismatic;
 use crate::rod::PreparedRod;
 use crate::rope::PreparedRope;
+use crate::six_dof::PreparedSixDof;
 use crate::spring::PreparedSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
 use crate::wheel::PreparedWheel;
 use rebound_dynamics::{Bias, SolverBody, StepContext};
+use rebound_math::Vec3;
 
 /// A joint kind prepared for the substeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -35,6 +37,7 @@ pub(super) enum Prepared {
     Fixed(PreparedFixed),
     Prismatic(PreparedPrismatic),
     Wheel(PreparedWheel),
+    SixDof(PreparedSixDof),
 }
 
 impl Prepared {
@@ -76,6 +79,7 @@ impl Prepared {
             JointKind::Fixed(_) => Self::Fixed(FixedJoint::prepare(pair, state)),
             JointKind::Prismatic(p) => Self::Prismatic(p.prepare(pair, ctx, state)),
             JointKind::Wheel(w) => Self::Wheel(w.prepare(ctx, state)),
+            JointKind::SixDof(j) => Self::SixDof(j.prepare(pair, ctx, state)),
         }
     }
 
@@ -115,6 +119,7 @@ impl Prepared {
             Self::Fixed(_) => PreparedFixed::warm_start(pair, state, a, b),
             Self::Prismatic(_) => PreparedPrismatic::warm_start(pair, state, a, b),
             Self::Wheel(_) => PreparedWheel::warm_start(pair, state, a, b),
+            Self::SixDof(p) => p.warm_start(pair, state, a, b),
         }
     }
 
@@ -156,6 +161,7 @@ impl Prepared {
             Self::Fixed(p) => p.solve(pair, state, a, b, stage),
             Self::Prismatic(p) => p.solve(pair, state, a, b, stage),
             Self::Wheel(p) => p.solve(pair, state, a, b, stage),
+            Self::SixDof(p) => p.solve(pair, state, a, b, stage),
         }
     }
 
@@ -284,7 +290,7 @@ impl Prepared {
             Self::Rope(p) => Some(p.max_length()),
             Self::Rod(p) => Some(p.length()),
             Self::Ball | Self::LimitedBall(_) | Self::Hinge(_) | Self::Fixed(_) => Some(0.0),
-            Self::Spring(_) | Self::Prismatic(_) | Self::Wheel(_) => None,
+            Self::Spring(_) | Self::Prismatic(_) | Self::Wheel(_) | Self::SixDof(_) => None,
         }
     }
 }
@@ -362,6 +368,13 @@ pub(super) fn reaction_impulses(kind: &Prepared, s: &JointState) -> (f32, f32) {
             ),
             hypot3(s.angular_impulse.x, s.angular_impulse.y, s.motor_impulse),
         ),
+        Prepared::SixDof(p) => {
+            let d = p.drive_impulses();
+            (
+                (s.linear_impulse + Vec3::new(d[0], d[1], d[2])).length(),
+                (s.angular_impulse + Vec3::new(d[3], d[4], d[5])).length(),
+            )
+        }
     }
 }
 
