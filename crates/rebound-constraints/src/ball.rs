@@ -10,7 +10,7 @@ use crate::path::{JointRows, MAX_ROWS, TargetRule};
 use crate::stage::Stage;
 use crate::state::JointState;
 use crate::swing_twist::{LimitRows, PreparedLimits, SwingTwistLimits};
-use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
+use rebound_dynamics::{SolverBody, StepContext};
 use rebound_math::Vec3;
 use rebound_math::glam::Vec3A;
 
@@ -142,13 +142,6 @@ impl BallJoint {
     }
 }
 
-/// How many times one visit sweeps a limited ball joint's limit and point rows together.
-const LIMIT_SWEEPS: usize = 3;
-
-/// How many times the restitution stage sweeps a bouncing limit and the point rows together (once per
-/// step, so more than [`LIMIT_SWEEPS`]: (3/4)^12 ≈ 3 % of the bounce lost for a rod hung at its end).
-const RESTITUTION_SWEEPS: usize = 12;
-
 /// A ball joint with limits or a motor, ready for the substeps (a free one needs nothing prepared).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PreparedBall {
@@ -167,12 +160,15 @@ impl PreparedBall {
         b: &mut SolverBody,
     ) {
         let frames = pair.frames(a, b);
-        let limits = self.limit_description.map_or(Vec3::ZERO, |l| {
-            LimitRows::new(&l, frames).twist_impulse(state)
-        });
-        let twist = Vec3A::from(limits + state.angular_impulse);
         let anchors = pair.anchors(a, b);
-        let p = Vec3A::from(state.linear_impulse);
+        let (limits, carried) = self
+            .limit_description
+            .map_or((Vec3::ZERO, Vec3::ZERO), |l| {
+                let point = PointPart::new(pair, anchors.r_a, anchors.r_b);
+                LimitRows::new(&l, frames).warm_impulses(pair, &point, state)
+            });
+        let twist = Vec3A::from(limits + state.angular_impulse);
+        let p = Vec3A::from(state.linear_impulse + carried);
         let levers = (Vec3A::from(anchors.r_a), Vec3A::from(anchors.r_b));
         PointPart::apply_with_twist(pair, levers, p, twist, a, b);
     }
@@ -180,7 +176,7 @@ impl PreparedBall {
     /// Stages *solve* and *relax*: the motor and the limits, then (unless the point rows are solved on a
     /// path, `on_path`) the point.
     pub(crate) fn solve(
-        &self,
+        &mut self,
         pair: &BodyPair,
         state: &mut JointState,
         a: &mut SolverBody,
@@ -192,22 +188,15 @@ impl PreparedBall {
             let frames = pair.frames(a, b);
             motor.solve(pair, frames, &mut state.angular_impulse, a, b, stage);
         }
-        let Some(limits) = &self.limits else {
-            if !on_path {
-                solve(pair, state, a, b, stage);
-            }
-            return;
-        };
-        // An angular limit row stops the rotation about the centre of mass, which the point row then turns
-        // partly back into rotation about the pivot: one sweep leaves a share `1 − I_c/I_p` of the closing
-        // rate (3/4 for a rod hung at its end), which comes out as a bounce. Sweeping the limit and the point
-        // rows together `LIMIT_SWEEPS` times takes it to (3/4)^(2·LIMIT_SWEEPS·substeps) — under 1 %.
-        let sweeps = if on_path { 1 } else { LIMIT_SWEEPS };
-        for _ in 0..sweeps {
-            limits.solve(pair, pair.frames(a, b), state, a, b, stage);
-            if !on_path {
-                solve(pair, state, a, b, stage);
-            }
+        if let Some(limits) = &mut self.limits {
+            // Each limit row acts about the pivot (`crate::part::PivotAnglePart`), so the point rows after
+            // it, here or on a path, leave it be.
+            let anchors = pair.anchors(a, b);
+            let point = PointPart::new(pair, anchors.r_a, anchors.r_b);
+            limits.solve(pair, &point, pair.frames(a, b), state, a, b, stage);
+        }
+        if !on_path {
+            solve(pair, state, a, b, stage);
         }
     }
 
@@ -220,23 +209,10 @@ impl PreparedBall {
         b: &mut SolverBody,
         ctx: &StepContext,
     ) {
-        let Some(limits) = &self.limits else {
-            return;
-        };
-        if limits.restitution() == 0.0 {
-            return;
-        }
-        // The bounce swept with the point rows (relaxed: velocities only), as in `solve`: alone, the angular
-        // row's bounce would be turned partly back into rotation about the pivot by the next point solve.
-        let relax = Stage {
-            bias: Bias::Off,
-            h: ctx.h,
-            inv_h: ctx.inv_h,
-            joint_softness: Softness::RIGID,
-        };
-        for _ in 0..RESTITUTION_SWEEPS {
-            limits.apply_restitution(pair, pair.frames(a, b), state, a, b, ctx);
-            solve(pair, state, a, b, &relax);
+        if let Some(limits) = &self.limits {
+            let anchors = pair.anchors(a, b);
+            let point = PointPart::new(pair, anchors.r_a, anchors.r_b);
+            limits.apply_restitution(pair, &point, pair.frames(a, b), state, a, b, ctx);
         }
     }
 }

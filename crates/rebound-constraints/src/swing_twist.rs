@@ -8,14 +8,14 @@
 //! twist:  θ − θ_min ≥ 0 (λ ≥ 0),  θ − θ_max ≤ 0 (λ ≤ 0), row about j_t      → lower_impulse, upper_impulse
 //! rigid:  speculative inside (Ċ ≤ −C/h), joint softness outside, bias and relax passes
 //! soft:   inactive inside, the limit's own spring outside, bias pass only
-//! bounce: after the substeps, a limit that acted and was approached faster than the world's restitution
+//! bounce: after the substeps, a limit that acted during the step and was approached faster than the world's restitution
 //!         threshold gets Ċ = −e·Ċ⁻ (Ċ⁻ its rate at the start of the step)
 //! ```
 
 use crate::error::{ConstraintError, check_in_range};
 use crate::limits::Limits;
 use crate::pair::BodyPair;
-use crate::part::{AnglePart, Row, RowTarget, SwingTwist};
+use crate::part::{AnglePart, PivotAnglePart, PointPart, Row, RowTarget, SwingTwist};
 use crate::soft_spring::SoftSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
@@ -213,6 +213,7 @@ impl SwingTwistLimits {
                 .map_or(Softness::RIGID, |s| s.softness(0.0, ctx.h)),
             swing_rate: rate(rows.swing.map(|(_, axis)| axis)),
             twist_rate: rate(rows.twist_axis),
+            acted: [false; 3],
         }
     }
 }
@@ -248,16 +249,29 @@ impl LimitRows {
         }
     }
 
-    /// The angular impulse `Jᵀλ` (N·m·s, world) of the limit rows' impulses in `state`, for a warm start.
+    /// The angular impulse `Jᵀλ` (N·m·s, world) of the limit rows' impulses in `state` and the point impulse
+    /// (N·s) each carries with it ([`PivotAnglePart`]), for a warm start at the pivot of `point`.
     #[inline]
-    pub(crate) fn twist_impulse(&self, state: &JointState) -> Vec3 {
-        let swing = self
-            .swing
-            .map_or(Vec3::ZERO, |(_, axis)| axis * state.axial_impulse);
-        let twist = self.twist_axis.map_or(Vec3::ZERO, |axis| {
-            axis * (state.lower_impulse + state.upper_impulse)
-        });
-        swing + twist
+    pub(crate) fn warm_impulses(
+        &self,
+        pair: &BodyPair,
+        point: &PointPart,
+        state: &JointState,
+    ) -> (Vec3, Vec3) {
+        let mut twist = Vec3::ZERO;
+        let mut linear = Vec3::ZERO;
+        let rows = [
+            self.swing.map(|(_, axis)| (axis, state.axial_impulse)),
+            self.twist_axis
+                .map(|axis| (axis, state.lower_impulse + state.upper_impulse)),
+        ];
+        for (axis, impulse) in rows.into_iter().flatten() {
+            if impulse != 0.0 {
+                twist += axis * impulse;
+                linear += PivotAnglePart::new(pair, point, axis).point_impulse() * impulse;
+            }
+        }
+        (twist, linear)
     }
 }
 
@@ -271,18 +285,17 @@ pub(crate) struct PreparedLimits {
     swing_rate: f32,
     /// `θ̇` at the start of the step (rad/s).
     twist_rate: f32,
+    /// Whether the swing, lower twist and upper twist rows pushed in any pass of the step (for restitution).
+    acted: [bool; 3],
 }
 
 impl PreparedLimits {
-    /// The coefficient of restitution of the limits (dimensionless).
-    pub(crate) fn restitution(&self) -> f32 {
-        self.limits.restitution
-    }
-
-    /// Stages *solve* and *relax*: the twist rows, then the swing row, at the frames `frames` (world).
+    /// Stages *solve* and *relax*: the twist rows, then the swing row, at the frames `frames` (world), each
+    /// about the pivot of `point`.
     pub(crate) fn solve(
-        &self,
+        &mut self,
         pair: &BodyPair,
+        point: &PointPart,
         frames: (Quat, Quat),
         state: &mut JointState,
         a: &mut SolverBody,
@@ -294,7 +307,7 @@ impl PreparedLimits {
         }
         let rows = LimitRows::new(&self.limits, frames);
         if let (Some(range), Some(axis)) = (self.limits.twist, rows.twist_axis) {
-            let part = AnglePart::new(pair, axis);
+            let part = PivotAnglePart::new(pair, point, axis);
             let c_lower = rows.twist - range.lower();
             self.limit(
                 &part,
@@ -306,6 +319,7 @@ impl PreparedLimits {
                 stage,
                 &mut state.lower_impulse,
             );
+            self.acted[1] |= state.lower_impulse != 0.0;
             let c_upper = rows.twist - range.upper();
             self.limit(
                 &part,
@@ -317,9 +331,10 @@ impl PreparedLimits {
                 stage,
                 &mut state.upper_impulse,
             );
+            self.acted[2] |= state.upper_impulse != 0.0;
         }
         if let Some((c, axis)) = rows.swing {
-            let part = AnglePart::new(pair, axis);
+            let part = PivotAnglePart::new(pair, point, axis);
             self.limit(
                 &part,
                 pair,
@@ -330,13 +345,14 @@ impl PreparedLimits {
                 stage,
                 &mut state.axial_impulse,
             );
+            self.acted[0] |= state.axial_impulse != 0.0;
         }
     }
 
     /// One limit row on `part` with error `c`: rigid (speculative inside) or soft (inactive inside).
     fn limit(
         &self,
-        part: &AnglePart,
+        part: &PivotAnglePart,
         pair: &BodyPair,
         a: &mut SolverBody,
         b: &mut SolverBody,
@@ -363,7 +379,7 @@ impl PreparedLimits {
                 };
                 if !violated {
                     // Inactive: whatever was warm-started is taken back.
-                    part.apply(a, b, -*accumulated);
+                    part.apply_impulse(pair, a, b, -*accumulated);
                     *accumulated = 0.0;
                     return;
                 }
@@ -378,11 +394,12 @@ impl PreparedLimits {
         part.solve_clamped(pair, a, b, target, accumulated, lower, upper);
     }
 
-    /// Stage *restitution*: each limit that acted in the last substep and was approached faster than the
+    /// Stage *restitution*: each limit that acted during the step and was approached faster than the
     /// restitution threshold at the start of the step gets `Ċ = −e·Ċ⁻`.
     pub(crate) fn apply_restitution(
         &self,
         pair: &BodyPair,
+        point: &PointPart,
         frames: (Quat, Quat),
         state: &mut JointState,
         a: &mut SolverBody,
@@ -396,11 +413,12 @@ impl PreparedLimits {
         let rows = LimitRows::new(&self.limits, frames);
         let threshold = ctx.restitution_threshold;
         if let Some((_, axis)) = rows.swing
-            && state.axial_impulse < 0.0
+            && self.acted[0]
             && self.swing_rate > threshold
         {
             let target = RowTarget::speed(-e * self.swing_rate);
-            AnglePart::new(pair, axis).solve(
+            PivotAnglePart::new(pair, point, axis).solve_clamped(
+                pair,
                 a,
                 b,
                 target,
@@ -410,10 +428,11 @@ impl PreparedLimits {
             );
         }
         if let Some(axis) = rows.twist_axis {
-            let part = AnglePart::new(pair, axis);
+            let part = PivotAnglePart::new(pair, point, axis);
             let target = RowTarget::speed(-e * self.twist_rate);
-            if state.upper_impulse < 0.0 && self.twist_rate > threshold {
-                part.solve(
+            if self.acted[2] && self.twist_rate > threshold {
+                part.solve_clamped(
+                    pair,
                     a,
                     b,
                     target,
@@ -422,8 +441,16 @@ impl PreparedLimits {
                     0.0,
                 );
             }
-            if state.lower_impulse > 0.0 && -self.twist_rate > threshold {
-                part.solve(a, b, target, &mut state.lower_impulse, 0.0, f32::INFINITY);
+            if self.acted[1] && -self.twist_rate > threshold {
+                part.solve_clamped(
+                    pair,
+                    a,
+                    b,
+                    target,
+                    &mut state.lower_impulse,
+                    0.0,
+                    f32::INFINITY,
+                );
             }
         }
     }

@@ -13,6 +13,7 @@ mod narrow_phase;
 mod physics_world;
 mod prediction;
 mod query;
+pub mod ragdoll;
 mod recycling;
 mod seam;
 mod sensors;

@@ -40,6 +40,7 @@
 mod align;
 mod angle;
 mod axis;
+mod pivot_angle;
 mod point;
 mod rotation;
 mod swing_twist;
@@ -47,6 +48,7 @@ mod swing_twist;
 pub use align::AlignPart;
 pub use angle::AnglePart;
 pub use axis::AxisPart;
+pub use pivot_angle::PivotAnglePart;
 pub use point::PointPart;
 pub use rotation::{RotationPart, rotation_error};
 pub use swing_twist::{MIN_TWIST_DENOMINATOR, SwingTwist};

@@ -263,13 +263,11 @@ impl Prepared {
         pair.store(solver_bodies, a, b);
     }
 
-    /// Whether the joint's equality rows can join a directly solved path ([`crate::path`]). Not a ball joint
-    /// with limits or a motor: its angular rows, solved between the path's passes, would be undone in part by
-    /// each direct solve of the point (see `crate::ball`'s limit sweeps).
+    /// Whether the joint's equality rows can join a directly solved path ([`crate::path`]).
     pub(super) fn is_direct_capable(&self) -> bool {
         matches!(
             self,
-            Self::Rope(_) | Self::Rod(_) | Self::Ball | Self::Hinge(_)
+            Self::Rope(_) | Self::Rod(_) | Self::Ball | Self::LimitedBall(_) | Self::Hinge(_)
         )
     }
 
