@@ -349,7 +349,11 @@ impl Ragdoll {
         let mut joints = Vec::with_capacity(JOINT_COUNT);
         for spec in joint_specs() {
             let (a, b) = (parts[spec.parent], parts[spec.child]);
-            let pose_of = |h: BodyHandle| world.body(h).map(|b| b.pose()).unwrap_or(Pose::IDENTITY);
+            let pose_of = |h: BodyHandle| {
+                world
+                    .body(h)
+                    .map_or(Pose::IDENTITY, rebound_dynamics::RigidBody::pose)
+            };
             let (pose_a, pose_b) = (pose_of(a), pose_of(b));
             let pivot = pose.transform_point(spec.pivot);
             let (kind, rest, centre) = joint_kind(&spec.kind);
@@ -386,7 +390,7 @@ impl Ragdoll {
                 let (a, b) = world.joint_bodies(j)?;
                 let pose_a = a
                     .and_then(|a| world.body(a))
-                    .map_or(Pose::IDENTITY, |b| b.pose());
+                    .map_or(Pose::IDENTITY, rebound_dynamics::RigidBody::pose);
                 let pose_b = world.body(b)?.pose();
                 Some(
                     (pose_b.transform_point(joint.local_anchor_b())
@@ -413,7 +417,7 @@ impl Ragdoll {
             };
             let rotation_a = a
                 .and_then(|a| world.body(a))
-                .map_or(Quat::IDENTITY, |b| b.rotation());
+                .map_or(Quat::IDENTITY, rebound_dynamics::RigidBody::rotation);
             let Some(body_b) = world.body(b) else {
                 return 0.0;
             };
