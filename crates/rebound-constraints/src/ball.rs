@@ -136,7 +136,6 @@ impl BallJoint {
         }
         PreparedBall {
             limits: limits.map(|l| l.prepare(pair, bodies, ctx, state)),
-            limit_description: limits,
             motor: self.motor.map(|m| m.prepare(pair, ctx)),
         }
     }
@@ -146,7 +145,6 @@ impl BallJoint {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PreparedBall {
     limits: Option<PreparedLimits>,
-    limit_description: Option<SwingTwistLimits>,
     motor: Option<PreparedMotor>,
 }
 
@@ -161,12 +159,10 @@ impl PreparedBall {
     ) {
         let frames = pair.frames(a, b);
         let anchors = pair.anchors(a, b);
-        let (limits, carried) = self
-            .limit_description
-            .map_or((Vec3::ZERO, Vec3::ZERO), |l| {
-                let point = PointPart::new(pair, anchors.r_a, anchors.r_b);
-                LimitRows::new(&l, frames).warm_impulses(pair, &point, state)
-            });
+        let (limits, carried) = self.limits.as_ref().map_or((Vec3::ZERO, Vec3::ZERO), |l| {
+            let point = PointPart::new(pair, anchors.r_a, anchors.r_b);
+            LimitRows::new(l.limits(), frames).warm_impulses(pair, &point, state)
+        });
         let twist = Vec3A::from(limits + state.angular_impulse);
         let p = Vec3A::from(state.linear_impulse + carried);
         let levers = (Vec3A::from(anchors.r_a), Vec3A::from(anchors.r_b));

@@ -290,6 +290,11 @@ pub(crate) struct PreparedLimits {
 }
 
 impl PreparedLimits {
+    /// The limits' description.
+    pub(crate) fn limits(&self) -> &SwingTwistLimits {
+        &self.limits
+    }
+
     /// Stages *solve* and *relax*: the twist rows, then the swing row, at the frames `frames` (world), each
     /// about the pivot of `point`.
     pub(crate) fn solve(
