@@ -51,7 +51,7 @@ usage: compare [--engine both|rebound] [--rounds R] [--steps N] [--scene NAME|al
   --engine E    both (default): Rebound beside rapier; rebound: Rebound alone, rapier neither built nor run
   --rounds R    rounds of every scene in both engines (default 3); times are the median over rounds
   --steps N     steps per run (default 600); timing statistics cover steps 60..N
-  --scene NAME  balls | pyramid | chain | springs | bridge | chain_spherical | all
+  --scene NAME  balls | pyramid | chain | springs | bridge | chain_spherical | ragdolls | all
                 (repeatable; default: the five peer scenes of docs/scenes.md)
   --scaling     Rebound alone: balls at 1k, 4k, 16k and pyramid bases 20, 40, 80, with the cost-growth
                 exponent (default 180 steps, 1 round: about 3.5 minutes, most of it

@@ -13,7 +13,7 @@ const JOINT_BYTES = 40;
 const EVENT_BYTES = 16;
 const NONE = 0xffffffff;
 const BODY_KINDS = ['dynamic', 'fixed', 'kinematic'];
-const JOINT_KINDS = ['spring', 'rope', 'rod', 'ball', 'hinge', 'fixed', 'prismatic', 'wheel'];
+const JOINT_KINDS = ['spring', 'rope', 'rod', 'ball', 'hinge', 'fixed', 'prismatic', 'wheel', 'six_dof'];
 const EVENT_KINDS = 7;
 
 /** A file that is not a readable recording; the message says what is wrong and where. */

@@ -12,6 +12,7 @@ use crate::motor::Motor;
 use crate::prismatic::PrismaticJoint;
 use crate::rod::Rod;
 use crate::rope::Rope;
+use crate::six_dof::SixDofJoint;
 use crate::soft_spring::JointSpring;
 use crate::soft_spring::SoftSpring;
 use crate::spring::Spring;
@@ -40,6 +41,8 @@ pub enum JointKind {
     Prismatic(PrismaticJoint),
     /// A suspended, driven wheel ([`WheelJoint`]).
     Wheel(WheelJoint),
+    /// A generic joint, each axis free, locked, limited or driven ([`SixDofJoint`]).
+    SixDof(SixDofJoint),
 }
 
 impl JointKind {
@@ -55,6 +58,7 @@ impl JointKind {
             Self::Fixed(_) => "fixed",
             Self::Prismatic(_) => "prismatic",
             Self::Wheel(_) => "wheel",
+            Self::SixDof(_) => "six_dof",
         }
     }
 
@@ -83,7 +87,7 @@ macro_rules! kind_from {
 }
 
 kind_from!(Spring => Spring, Rope => Rope, Rod => Rod, BallJoint => Ball, HingeJoint => Hinge,
-    FixedJoint => Fixed, PrismaticJoint => Prismatic, WheelJoint => Wheel);
+    FixedJoint => Fixed, PrismaticJoint => Prismatic, WheelJoint => Wheel, SixDofJoint => SixDof);
 
 /// A joint: its kind, where it attaches to each body, how its frame is oriented on each body, and when it
 /// breaks. Body-independent: the world pairs it with two bodies ([`JointBodies`]).
@@ -270,7 +274,13 @@ impl Joint {
             JointKind::Rod(r) => {
                 Rod::new(r.length())?;
             }
-            JointKind::Ball(_) | JointKind::Fixed(_) => {}
+            JointKind::Ball(b) => {
+                b.validated()?;
+            }
+            JointKind::Fixed(_) => {}
+            JointKind::SixDof(j) => {
+                j.validated()?;
+            }
             JointKind::Hinge(h) => {
                 HingeJoint::new().set_limits(limits(h.limits())?)?;
                 motor(h.motor())?;

@@ -23,6 +23,8 @@ pub enum JointGeometry {
         /// `(lower, upper)` slide (m).
         limits: Option<(f32, f32)>,
     },
+    /// A 6-DOF joint: the three axes of A's joint frame.
+    Frame,
     /// A wheel: the axle (A's joint-frame X), the suspension axis (A's frame Y) and the travel along it (m).
     Wheel {
         /// `(lower, upper)` suspension travel (m).
@@ -61,6 +63,7 @@ impl JointView {
             JointKind::Hinge(_) => JointGeometry::Hinge { limits },
             JointKind::Prismatic(_) => JointGeometry::Slider { limits },
             JointKind::Wheel(_) => JointGeometry::Wheel { limits },
+            JointKind::SixDof(_) => JointGeometry::Frame,
         };
         Self {
             anchor_a: pose_a.transform_point(joint.local_anchor_a()),
@@ -105,6 +108,7 @@ impl DebugDraw {
         let (axes, range): (&[Vec3], Range) = match view.geometry {
             JointGeometry::Point | JointGeometry::Distance => (&[], None),
             JointGeometry::Hinge { .. } => (&[x], None),
+            JointGeometry::Frame => (&[x, y, z], None),
             JointGeometry::Slider { limits } => (&[x], limits.map(|l| (x, y, l))),
             JointGeometry::Wheel { limits } => (&[x, y], limits.map(|l| (y, x, l))),
         };

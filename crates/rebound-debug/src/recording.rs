@@ -17,6 +17,7 @@ impl JointGeometry {
             JointKindName::Hinge => Self::Hinge { limits },
             JointKindName::Prismatic => Self::Slider { limits },
             JointKindName::Wheel => Self::Wheel { limits },
+            JointKindName::SixDof => Self::Frame,
         }
     }
 }

@@ -6,7 +6,10 @@
 
 use crate::frame::{Diagnostics, JointSample};
 use rebound::dynamics::momentum::totals;
-use rebound::{Joint, JointKind, PhysicsWorld, Quat, RigidBody, SoftSpring, SpringModel, Vec3};
+use rebound::{
+    Axis, AxisMotion, Joint, JointKind, PhysicsWorld, Quat, RigidBody, SixDofJoint, SoftSpring,
+    SpringModel, Vec3,
+};
 
 /// The positional error of `joint` (m) with its anchors at the world points `anchor_a`, `anchor_b` and
 /// body A's orientation `rotation_a` (identity for a world joint):
@@ -15,6 +18,7 @@ use rebound::{Joint, JointKind, PhysicsWorld, Quat, RigidBody, SoftSpring, Sprin
 /// * rod: `| |B − A| − length |`; rope: `max(0, |B − A| − max_length)`;
 /// * prismatic: the part of `B − A` across the slide axis (A's joint-frame X);
 /// * wheel: the part of `B − A` across the suspension axis (A's joint-frame Y);
+/// * 6-DOF: the part of `B − A` along its locked linear axes and past its linear limits (A's joint frame);
 /// * spring: 0 — a spring stretches by design.
 ///
 /// Angular errors (a hinge's axes out of line, a weld's twist) are not included.
@@ -29,8 +33,28 @@ pub fn joint_error(joint: &Joint, anchor_a: Vec3, anchor_b: Vec3, rotation_a: Qu
         JointKind::Rope(rope) => (d.length() - rope.max_length()).max(0.0),
         JointKind::Prismatic(_) => across(frame_a * Vec3::X),
         JointKind::Wheel(_) => across(frame_a * Vec3::Y),
+        JointKind::SixDof(j) => six_dof_error(j, frame_a, d),
         JointKind::Spring(_) => 0.0,
     }
+}
+
+/// The linear error of a 6-DOF joint with anchor separation `d` (m) and A's joint frame `frame_a`.
+fn six_dof_error(joint: &SixDofJoint, frame_a: Quat, d: Vec3) -> f32 {
+    let axes = [Axis::LinearX, Axis::LinearY, Axis::LinearZ];
+    let squared: f32 = axes
+        .iter()
+        .zip([Vec3::X, Vec3::Y, Vec3::Z])
+        .map(|(&axis, local)| {
+            let x = d.dot(frame_a * local);
+            let past = match joint.axis(axis).motion {
+                AxisMotion::Free => 0.0,
+                AxisMotion::Locked => x,
+                AxisMotion::Limited(l) => x - x.clamp(l.lower(), l.upper()),
+            };
+            past * past
+        })
+        .sum();
+    squared.sqrt()
 }
 
 /// The elastic energy of a `Spring` joint (J): `½·k·(|B − A| − L)²`, `L` the rest length. For a soft spring

@@ -173,6 +173,9 @@ pub enum JointKindName {
     Prismatic,
     /// A suspended, driven wheel.
     Wheel,
+    /// A generic joint, each axis free, locked, limited or driven.
+    #[serde(rename = "six_dof")]
+    SixDof,
 }
 
 impl From<&JointKind> for JointKindName {
@@ -186,6 +189,7 @@ impl From<&JointKind> for JointKindName {
             JointKind::Fixed(_) => Self::Fixed,
             JointKind::Prismatic(_) => Self::Prismatic,
             JointKind::Wheel(_) => Self::Wheel,
+            JointKind::SixDof(_) => Self::SixDof,
         }
     }
 }

@@ -16,6 +16,7 @@ mod one_way;
 mod physics_world;
 mod prediction;
 mod query;
+pub mod ragdoll;
 mod recycling;
 mod seam;
 mod sensors;
@@ -72,8 +73,9 @@ pub mod prelude {
         RayHit, ShapeError, ShapeHit,
     };
     pub use rebound_constraints::{
-        BallJoint, ConstraintError, FixedJoint, HingeJoint, Joint, JointKind, Limits, Motor,
-        PrismaticJoint, Rod, Rope, SoftSpring, Spring, SpringModel, WheelJoint,
+        AxisDrive, AxisMotion, BallJoint, ConstraintError, FixedJoint, HingeJoint, Joint,
+        JointKind, Limits, Motor, OrientationMotor, PrismaticJoint, Rod, Rope, SixDofJoint,
+        SoftSpring, Spring, SpringModel, SwingTwistLimits, WheelJoint,
     };
     pub use rebound_dynamics::{
         BodyDesc, BodyType, CombineRule, DynamicsError, LockedAxes, MassProperties,

@@ -12,6 +12,7 @@ pub mod chain;
 pub mod drag_and_drop;
 pub mod newtons_cradle;
 pub mod pyramid;
+pub mod ragdoll;
 pub mod rope_bridge;
 pub mod spring_camera;
 
@@ -19,7 +20,7 @@ pub mod spring_camera;
 pub const DT: f32 = 1.0 / 60.0;
 
 /// The example scenes' names, as their files under `scenes/` and their examples are called.
-pub const DEMOS: [&str; 7] = [
+pub const DEMOS: [&str; 8] = [
     "newtons_cradle",
     "rope_bridge",
     "drag_and_drop",
@@ -27,6 +28,7 @@ pub const DEMOS: [&str; 7] = [
     "pyramid",
     "chain",
     "car",
+    "ragdoll",
 ];
 
 /// What a scene file says besides the world: its name, a sentence, how long a run lasts, where to look from.
@@ -76,6 +78,7 @@ pub fn build(name: &str) -> Result<Option<(PhysicsWorld, About)>, Error> {
         "pyramid" => (pyramid::build()?.world, pyramid::ABOUT),
         "chain" => (chain::build()?.world, chain::ABOUT),
         "car" => (car::build()?.world, car::ABOUT),
+        "ragdoll" => (ragdoll::build()?.world, ragdoll::ABOUT),
         _ => return Ok(None),
     }))
 }

@@ -17,6 +17,7 @@ pub mod bridge;
 pub mod chain;
 pub mod metrics;
 pub mod pyramid;
+pub mod ragdolls;
 pub mod springs;
 
 pub use balls::Balls;
@@ -24,6 +25,7 @@ pub use bridge::Bridge;
 pub use chain::{Chain, Link};
 pub use metrics::Value;
 pub use pyramid::Pyramid;
+pub use ragdolls::Ragdolls;
 pub use springs::Springs;
 
 /// The step every scene runs with (s).
@@ -32,14 +34,16 @@ pub const DT: f32 = 1.0 / 60.0;
 /// The five default peer scenes, in the order of docs/scenes.md.
 pub const DEFAULT_SCENES: [&str; 5] = ["balls", "pyramid", "chain", "springs", "bridge"];
 
-/// Every scene name [`build`] accepts: the five default ones and the supplementary `chain_spherical`.
-pub const ALL_SCENES: [&str; 6] = [
+/// Every scene name [`build`] accepts: the five default ones and the supplementary `chain_spherical` and
+/// `ragdolls`.
+pub const ALL_SCENES: [&str; 7] = [
     "balls",
     "pyramid",
     "chain",
     "springs",
     "bridge",
     "chain_spherical",
+    "ragdolls",
 ];
 
 /// Options shared by every scene.
@@ -112,6 +116,7 @@ pub fn build(name: &str, options: SceneOptions) -> Result<Option<Box<dyn Scene>>
         "chain_spherical" => Box::new(Chain::new(options, Link::Spherical)?),
         "springs" => Box::new(Springs::new(options)?),
         "bridge" => Box::new(Bridge::new(options)?),
+        "ragdolls" => Box::new(Ragdolls::new(options)?),
         _ => return Ok(None),
     };
     Ok(Some(scene))

@@ -13,19 +13,22 @@ pub mod balls;
 pub mod bridge;
 pub mod chain;
 pub mod pyramid;
+pub mod ragdolls;
 pub mod springs;
 
 /// The five default peer scenes, in the order of docs/scenes.md (what `--scene all` runs).
 pub const DEFAULT_SCENES: [&str; 5] = ["balls", "pyramid", "chain", "springs", "bridge"];
 
-/// Every scene name accepted by `--scene`: the five default ones and the supplementary `chain_spherical`.
-pub const ALL_SCENES: [&str; 6] = [
+/// Every scene name accepted by `--scene`: the five default ones and the supplementary `chain_spherical` and
+/// `ragdolls`.
+pub const ALL_SCENES: [&str; 7] = [
     "balls",
     "pyramid",
     "chain",
     "springs",
     "bridge",
     "chain_spherical",
+    "ragdolls",
 ];
 
 /// Options shared by every scene.
@@ -69,6 +72,7 @@ pub fn build(name: &str, options: SceneOptions) -> Option<Box<dyn Scene>> {
         "chain_spherical" => Box::new(chain::Chain::new(options, chain::Link::Spherical)),
         "springs" => Box::new(springs::Springs::new(options)),
         "bridge" => Box::new(bridge::Bridge::new(options)),
+        "ragdolls" => Box::new(ragdolls::Ragdolls::new(options)),
         _ => return None,
     };
     Some(scene)

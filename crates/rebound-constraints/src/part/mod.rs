@@ -41,15 +41,19 @@ mod align;
 mod angle;
 mod axis;
 mod distance;
+mod pivot_angle;
 mod point;
 mod rotation;
+mod swing_twist;
 
 pub use align::AlignPart;
 pub use angle::AnglePart;
 pub use axis::AxisPart;
 pub(crate) use distance::{Bound, DistanceRow};
+pub use pivot_angle::PivotAnglePart;
 pub use point::PointPart;
 pub use rotation::{RotationPart, rotation_error};
+pub use swing_twist::{MIN_TWIST_DENOMINATOR, SwingTwist};
 
 use crate::pair::BodyPair;
 use rebound_dynamics::{Bias, Softness, SolverBody};

@@ -50,6 +50,20 @@ impl PointPart {
         }
     }
 
+    /// `K⁻¹` (kg), zero when neither body can move.
+    #[inline]
+    #[must_use]
+    pub fn effective_mass(&self) -> Mat3 {
+        self.effective_mass
+    }
+
+    /// The lever arms `(r_a, r_b)` (m, world).
+    #[inline]
+    #[must_use]
+    pub fn levers(&self) -> (Vec3, Vec3) {
+        (self.r_a, self.r_b)
+    }
+
     /// `Ċ`: the relative velocity of the anchor points (m/s).
     #[inline]
     #[must_use]

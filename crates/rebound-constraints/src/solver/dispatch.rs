@@ -5,7 +5,7 @@
 //! *restitution* and the reaction reported at *store impulses*. The stages themselves (`prepare`,
 //! `passes`, `path_pass`, `project`) name no joint kind.
 
-use crate::ball;
+use crate::ball::{self, PreparedBall};
 use crate::coordinate::CoordinateRows;
 use crate::fixed::{FixedJoint, PreparedFixed};
 use crate::hinge::PreparedHinge;
@@ -16,11 +16,13 @@ use crate::path::{JointRows, equality_violation};
 use crate::prismatic::PreparedPrismatic;
 use crate::rod::PreparedRod;
 use crate::rope::PreparedRope;
+use crate::six_dof::PreparedSixDof;
 use crate::spring::PreparedSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
 use crate::wheel::PreparedWheel;
 use rebound_dynamics::{Bias, SolverBody, StepContext};
+use rebound_math::Vec3;
 
 /// A joint kind prepared for the substeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -29,10 +31,13 @@ pub(super) enum Prepared {
     Rope(PreparedRope),
     Rod(PreparedRod),
     Ball,
+    /// A ball joint with swing–twist limits or an orientation motor.
+    LimitedBall(PreparedBall),
     Hinge(PreparedHinge),
     Fixed(PreparedFixed),
     Prismatic(PreparedPrismatic),
     Wheel(PreparedWheel),
+    SixDof(PreparedSixDof),
 }
 
 impl Prepared {
@@ -60,6 +65,9 @@ impl Prepared {
                 keep_only(state, Keep::Axial);
                 Self::Rod(r.prepare(pair, sa, sb))
             }
+            JointKind::Ball(ball) if !ball.is_free() => {
+                Self::LimitedBall(ball.prepare(pair, (sa, sb), ctx, state))
+            }
             JointKind::Ball(_) => {
                 keep_only(state, Keep::Linear);
                 Self::Ball
@@ -68,6 +76,7 @@ impl Prepared {
             JointKind::Fixed(_) => Self::Fixed(FixedJoint::prepare(pair, state)),
             JointKind::Prismatic(p) => Self::Prismatic(p.prepare(pair, ctx, state)),
             JointKind::Wheel(w) => Self::Wheel(w.prepare(ctx, state)),
+            JointKind::SixDof(j) => Self::SixDof(j.prepare(pair, ctx, state)),
         }
     }
 
@@ -105,10 +114,12 @@ impl Prepared {
             Self::Rope(p) => p.warm_start(pair, state, a, b),
             Self::Rod(p) => p.warm_start(pair, state, a, b),
             Self::Ball => ball::warm_start(pair, state, a, b),
+            Self::LimitedBall(p) => p.warm_start(pair, state, a, b),
             Self::Hinge(p) => p.warm_start(pair, state, a, b),
             Self::Fixed(_) => PreparedFixed::warm_start(pair, state, a, b),
             Self::Prismatic(_) => PreparedPrismatic::warm_start(pair, state, a, b),
             Self::Wheel(_) => PreparedWheel::warm_start(pair, state, a, b),
+            Self::SixDof(p) => p.warm_start(pair, state, a, b),
         }
     }
 
@@ -124,6 +135,7 @@ impl Prepared {
     pub(super) fn is_iterated(&self, on_path: bool) -> bool {
         match self {
             Self::Hinge(hinge) => !on_path || !hinge.has_no_coordinate_rows(),
+            Self::LimitedBall(_) => true,
             _ => !on_path,
         }
     }
@@ -144,11 +156,13 @@ impl Prepared {
             Self::Rope(p) => p.solve(pair, state, a, b, stage),
             Self::Rod(p) => p.solve(pair, state, a, b, stage),
             Self::Ball => ball::solve(pair, state, a, b, stage),
+            Self::LimitedBall(p) => p.solve(pair, state, a, b, stage, on_path),
             Self::Hinge(p) if on_path => p.solve_coordinate(pair, state, a, b, stage),
             Self::Hinge(p) => p.solve(pair, state, a, b, stage),
             Self::Fixed(p) => p.solve(pair, state, a, b, stage),
             Self::Prismatic(p) => p.solve(pair, state, a, b, stage),
             Self::Wheel(p) => p.solve(pair, state, a, b, stage),
+            Self::SixDof(p) => p.solve(pair, state, a, b, stage),
         }
     }
 
@@ -165,7 +179,7 @@ impl Prepared {
         match self {
             Self::Rope(p) => p.direct_row(pair, a, b, stage, rows),
             Self::Rod(p) => p.direct_row(pair, a, b, stage, rows),
-            Self::Ball => ball::direct_rows(pair, a, b, stage, rows),
+            Self::Ball | Self::LimitedBall(_) => ball::direct_rows(pair, a, b, stage, rows),
             Self::Hinge(_) => PreparedHinge::direct_rows(pair, a, b, stage, rows),
             _ => return false,
         }
@@ -190,7 +204,7 @@ impl Prepared {
         match self {
             Self::Rope(p) => p.store_direct_impulses(state, lambda),
             Self::Rod(_) => PreparedRod::store_direct_impulses(state, lambda),
-            Self::Ball => ball::store_direct_impulses(state, lambda),
+            Self::Ball | Self::LimitedBall(_) => ball::store_direct_impulses(state, lambda),
             Self::Hinge(_) => PreparedHinge::store_direct_impulses(state, lambda),
             _ => {}
         }
@@ -207,7 +221,9 @@ impl Prepared {
         stage: &Stage,
     ) -> Option<f32> {
         match self {
-            Self::Ball => Some(equality_violation(&ball::direct_errors(pair, a, b), stage)),
+            Self::Ball | Self::LimitedBall(_) => {
+                Some(equality_violation(&ball::direct_errors(pair, a, b), stage))
+            }
             Self::Hinge(_) => Some(equality_violation(
                 &PreparedHinge::direct_errors(pair, a, b),
                 stage,
@@ -234,13 +250,17 @@ impl Prepared {
         solver_bodies: &mut [SolverBody],
         ctx: &StepContext,
     ) {
-        let Self::Rope(rope) = self else {
+        if !matches!(self, Self::Rope(_) | Self::LimitedBall(_)) {
             return;
-        };
+        }
         let Some((mut a, mut b)) = pair.load(solver_bodies) else {
             return;
         };
-        rope.apply_restitution(pair, state, &mut a, &mut b, ctx);
+        match self {
+            Self::Rope(rope) => rope.apply_restitution(pair, state, &mut a, &mut b, ctx),
+            Self::LimitedBall(ball) => ball.apply_restitution(pair, state, &mut a, &mut b, ctx),
+            _ => {}
+        }
         pair.store(solver_bodies, a, b);
     }
 
@@ -248,7 +268,7 @@ impl Prepared {
     pub(super) fn is_direct_capable(&self) -> bool {
         matches!(
             self,
-            Self::Rope(_) | Self::Rod(_) | Self::Ball | Self::Hinge(_)
+            Self::Rope(_) | Self::Rod(_) | Self::Ball | Self::LimitedBall(_) | Self::Hinge(_)
         )
     }
 
@@ -268,8 +288,8 @@ impl Prepared {
         match self {
             Self::Rope(p) => Some(p.max_length()),
             Self::Rod(p) => Some(p.length()),
-            Self::Ball | Self::Hinge(_) | Self::Fixed(_) => Some(0.0),
-            Self::Spring(_) | Self::Prismatic(_) | Self::Wheel(_) => None,
+            Self::Ball | Self::LimitedBall(_) | Self::Hinge(_) | Self::Fixed(_) => Some(0.0),
+            Self::Spring(_) | Self::Prismatic(_) | Self::Wheel(_) | Self::SixDof(_) => None,
         }
     }
 }
@@ -324,6 +344,12 @@ pub(super) fn reaction_impulses(kind: &Prepared, s: &JointState) -> (f32, f32) {
         Prepared::Spring(_) | Prepared::Rod(_) => (s.axial_impulse.abs(), 0.0),
         Prepared::Rope(_) => (s.upper_impulse.abs(), 0.0),
         Prepared::Ball => (s.linear_impulse.length(), 0.0),
+        Prepared::LimitedBall(_) => (
+            s.linear_impulse.length(),
+            s.angular_impulse
+                .length()
+                .hypot(s.axial_impulse.hypot(s.lower_impulse + s.upper_impulse)),
+        ),
         Prepared::Hinge(_) => (
             s.linear_impulse.length(),
             hypot3(s.angular_impulse.x, s.angular_impulse.y, along),
@@ -341,6 +367,13 @@ pub(super) fn reaction_impulses(kind: &Prepared, s: &JointState) -> (f32, f32) {
             ),
             hypot3(s.angular_impulse.x, s.angular_impulse.y, s.motor_impulse),
         ),
+        Prepared::SixDof(p) => {
+            let d = p.drive_impulses();
+            (
+                (s.linear_impulse + Vec3::new(d[0], d[1], d[2])).length(),
+                (s.angular_impulse + Vec3::new(d[3], d[4], d[5])).length(),
+            )
+        }
     }
 }
 
@@ -351,7 +384,7 @@ pub(super) fn state_lambda(j: &PreparedJoint) -> [f32; MAX_ROWS] {
     match &j.kind {
         Prepared::Rope(_) => PreparedRope::direct_impulses(s),
         Prepared::Rod(_) => PreparedRod::direct_impulses(s),
-        Prepared::Ball => ball::direct_impulses(s),
+        Prepared::Ball | Prepared::LimitedBall(_) => ball::direct_impulses(s),
         Prepared::Hinge(_) => PreparedHinge::direct_impulses(s),
         _ => [0.0; MAX_ROWS],
     }
