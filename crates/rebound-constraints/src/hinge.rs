@@ -52,12 +52,18 @@ use rebound_math::{Quat, Vec3};
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct HingeJoint {
     limits: Option<Limits>,
     motor: Option<Motor>,
     spring: Option<JointSpring>,
 }
+
+rebound_math::checked_serde!(HingeJoint, HingeJoint::validated);
 
 impl HingeJoint {
     /// A free hinge.
@@ -91,6 +97,19 @@ impl HingeJoint {
     pub const fn with_spring(mut self, spring: JointSpring) -> Self {
         self.spring = Some(spring);
         self
+    }
+
+    /// Returns `self` if its limits, motor and spring pass the checks of their constructors and of
+    /// [`HingeJoint::set_limits`] (for values that bypassed them: deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        let mut checked = Self::new();
+        checked.set_limits(self.limits.map(Limits::validated).transpose()?)?;
+        self.motor.map(Motor::validated).transpose()?;
+        self.spring.map(JointSpring::validated).transpose()?;
+        Ok(self)
     }
 
     /// The angle limits (rad), if any.

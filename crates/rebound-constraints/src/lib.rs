@@ -41,7 +41,7 @@ pub use pair::{Anchors, BodyPair, Distance, MIN_AXIS_LENGTH};
 pub use prismatic::PrismaticJoint;
 pub use rod::Rod;
 pub use rope::Rope;
-pub use settings::JointSettings;
+pub use settings::{JointSettings, MAX_JOINT_ITERATIONS};
 pub use soft_spring::{JointSpring, SoftSpring};
 pub use solver::{JointSolver, KeptRows};
 pub use spring::{Spring, SpringModel};

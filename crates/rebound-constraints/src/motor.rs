@@ -8,11 +8,25 @@ use rebound_math::validity::check_finite;
 
 /// A velocity motor.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct Motor {
     target_speed: f32,
+    /// +∞ (unbounded, the usual choice) is written as `null` in JSON.
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            with = "crate::bounds::unbounded",
+            default = "crate::bounds::unbounded::infinity"
+        )
+    )]
     max_force: f32,
 }
+
+rebound_math::checked_serde!(Motor, Motor::validated);
 
 impl Motor {
     /// A motor driving the joint speed to `target_speed` (rad/s for a hinge or wheel, m/s for a prismatic
@@ -27,6 +41,14 @@ impl Motor {
             target_speed,
             max_force,
         })
+    }
+
+    /// Returns `self` if it passes the checks of [`Motor::new`] (for values that bypassed it: deserialised).
+    ///
+    /// # Errors
+    /// As [`Motor::new`].
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        Self::new(self.target_speed, self.max_force)
     }
 
     /// The target speed (rad/s or m/s).

@@ -3,6 +3,7 @@
 //! *relax*.
 
 use crate::coordinate::CoordinateRows;
+use crate::error::ConstraintError;
 use crate::limits::Limits;
 use crate::motor::Motor;
 use crate::pair::BodyPair;
@@ -30,12 +31,18 @@ use rebound_math::{Quat, Vec3};
 /// Softness: the joint softness in the bias pass for the locks and limits, the spring's own for the spring.
 /// Row order: spring, motor, limits, rotation, across.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct PrismaticJoint {
     limits: Option<Limits>,
     motor: Option<Motor>,
     spring: Option<JointSpring>,
 }
+
+rebound_math::checked_serde!(PrismaticJoint, PrismaticJoint::validated);
 
 impl PrismaticJoint {
     /// A prismatic joint free along its axis.
@@ -67,6 +74,18 @@ impl PrismaticJoint {
     pub const fn with_spring(mut self, spring: JointSpring) -> Self {
         self.spring = Some(spring);
         self
+    }
+
+    /// Returns `self` if its limits, motor and spring pass the checks of their constructors (for values
+    /// that bypassed them: deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        self.limits.map(Limits::validated).transpose()?;
+        self.motor.map(Motor::validated).transpose()?;
+        self.spring.map(JointSpring::validated).transpose()?;
+        Ok(self)
     }
 
     /// The slide limits (m), if any.

@@ -12,7 +12,11 @@ use rebound_math::validity::{check_finite, check_non_negative};
 
 /// The stiffness of a soft (implicit) spring, in one of two parameterisations.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub enum SoftSpring {
     /// A natural frequency and a damping ratio: the stiffness follows the effective mass, so the spring feels
     /// the same on a pebble and a truck (Box2D, Jolt's `ESpringMode::FrequencyAndDamping`).
@@ -24,12 +28,16 @@ pub enum SoftSpring {
     },
     /// A physical stiffness and damping coefficient (Jolt's `ESpringMode::StiffnessAndDamping`).
     Stiffness {
-        /// Stiffness k (N/m; N·m/rad for an angular spring), ≥ 0 (may be +∞: rigid).
+        /// Stiffness k (N/m; N·m/rad for an angular spring), ≥ 0 (may be +∞: rigid, written as `null` in
+        /// JSON).
+        #[cfg_attr(feature = "serde", serde(with = "crate::bounds::unbounded"))]
         stiffness: f32,
         /// Damping coefficient c (N·s/m; N·m·s/rad for an angular spring), ≥ 0.
         damping: f32,
     },
 }
+
+rebound_math::checked_serde!(SoftSpring, SoftSpring::validated);
 
 impl Default for SoftSpring {
     /// 5 Hz, damping ratio 0.7: a firm, slightly under-damped spring.
@@ -131,11 +139,17 @@ fn check_non_negative_allowing_infinity(
 
 /// A soft spring on a joint coordinate (a hinge angle, a slide distance): relaxed at `target`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct JointSpring {
     target: f32,
     spring: SoftSpring,
 }
+
+rebound_math::checked_serde!(JointSpring, JointSpring::validated);
 
 impl JointSpring {
     /// A spring relaxed at `target` (m for a prismatic joint, rad for a hinge) with stiffness `spring`.
@@ -148,6 +162,15 @@ impl JointSpring {
             target,
             spring: spring.validated()?,
         })
+    }
+
+    /// Returns `self` if it passes the checks of [`JointSpring::new`] (for values that bypassed it:
+    /// deserialised).
+    ///
+    /// # Errors
+    /// As [`JointSpring::new`].
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        Self::new(self.target, self.spring)
     }
 
     /// A spring relaxed at 0 (parameters already validated).

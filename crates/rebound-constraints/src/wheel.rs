@@ -41,7 +41,11 @@ use rebound_math::Vec3;
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 pub struct WheelJoint {
     suspension: SoftSpring,
     suspension_limits: Option<Limits>,
@@ -58,6 +62,8 @@ impl Default for WheelJoint {
         }
     }
 }
+
+rebound_math::checked_serde!(WheelJoint, WheelJoint::validated);
 
 impl WheelJoint {
     /// A wheel with the suspension stiffness `suspension` (Hz/ζ, or N/m and N·s/m).
@@ -85,6 +91,18 @@ impl WheelJoint {
     pub const fn with_motor(mut self, motor: Motor) -> Self {
         self.motor = Some(motor);
         self
+    }
+
+    /// Returns `self` if its suspension, limits and motor pass the checks of their constructors (for values
+    /// that bypassed them: deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        self.suspension.validated()?;
+        self.suspension_limits.map(Limits::validated).transpose()?;
+        self.motor.map(Motor::validated).transpose()?;
+        Ok(self)
     }
 
     /// The suspension stiffness.
