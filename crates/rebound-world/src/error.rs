@@ -37,6 +37,16 @@ pub enum WorldError {
         /// The largest accepted value.
         max: f32,
     },
+    /// A step length was shorter than [`crate::MIN_STEP_DT`].
+    #[error("world setting `{field}` must be at least {min:e} s, got {value:e} s")]
+    StepTooShort {
+        /// The setting's name.
+        field: &'static str,
+        /// The value given (s).
+        value: f32,
+        /// The shortest accepted step (s).
+        min: f32,
+    },
     /// The body handle refers to no body in this world (removed, or from another world).
     #[error("stale or foreign body handle {0:?}")]
     StaleBody(BodyHandle),

@@ -115,7 +115,7 @@ impl WorldSettings {
     /// A [`WorldError`] naming the first invalid field: non-finite values, a substep count outside
     /// `1..=`[`MAX_SUBSTEPS`] or a step count outside `1..=`[`MAX_STEPS_PER_ADVANCE`]
     /// ([`WorldError::SettingOutOfRange`]), negative thresholds or damping, a fixed step shorter than
-    /// [`MIN_STEP_DT`], invalid joint settings (iterations beyond
+    /// [`MIN_STEP_DT`] ([`WorldError::StepTooShort`]), invalid joint settings (iterations beyond
     /// [`rebound_constraints::MAX_JOINT_ITERATIONS`]).
     pub fn validate(&self) -> Result<(), WorldError> {
         check_finite_vec3("gravity", self.gravity)?;
@@ -131,11 +131,10 @@ impl WorldSettings {
         check_non_negative("time_to_sleep", self.time_to_sleep)?;
         check_positive("fixed_dt", self.fixed_dt)?;
         if self.fixed_dt < MIN_STEP_DT {
-            return Err(WorldError::SettingOutOfRange {
+            return Err(WorldError::StepTooShort {
                 field: "fixed_dt",
                 value: self.fixed_dt,
                 min: MIN_STEP_DT,
-                max: f32::MAX,
             });
         }
         check_count(
