@@ -19,6 +19,7 @@ use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
 use rebound_math::glam::Vec3A;
 use rebound_math::{Quat, Vec3};
 
+rebound_math::checked_serde! { "HingeJoint", HingeJoint::validated;
 /// A hinge joint. Free by default: no limits, no motor, no spring.
 ///
 /// The hinge axis is the X axis of each body's joint frame ([`crate::Joint::local_basis_a`]); the angle θ is
@@ -52,18 +53,13 @@ use rebound_math::{Quat, Vec3};
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct HingeJoint {
     limits: Option<Limits>,
     motor: Option<Motor>,
     spring: Option<JointSpring>,
 }
-
-rebound_math::checked_serde!(HingeJoint, HingeJoint::validated);
+}
 
 impl HingeJoint {
     /// A free hinge.

@@ -116,6 +116,7 @@ macro_rules! kind_from {
 kind_from!(Spring => Spring, Rope => Rope, Rod => Rod, BallJoint => Ball, HingeJoint => Hinge,
     FixedJoint => Fixed, PrismaticJoint => Prismatic, WheelJoint => Wheel);
 
+rebound_math::checked_serde! { "Joint", Joint::validated;
 /// A joint: its kind, where it attaches to each body, how its frame is oriented on each body, and when it
 /// breaks. Body-independent: the world pairs it with two bodies ([`JointBodies`]).
 ///
@@ -147,11 +148,7 @@ kind_from!(Spring => Spring, Rope => Rope, Rod => Rod, BallJoint => Ball, HingeJ
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Joint {
     kind: JointKind,
     // Missing anchors, frames and break limits take `Joint::new`'s values, so a scene file names only the kind
@@ -181,8 +178,7 @@ pub struct Joint {
     )]
     break_torque: f32,
 }
-
-rebound_math::checked_serde!(Joint, Joint::validated);
+}
 
 impl Joint {
     /// A joint of `kind` anchored at both body origins, with identity frames, unbreakable.

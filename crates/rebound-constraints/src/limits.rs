@@ -5,19 +5,15 @@ use crate::error::ConstraintError;
 use crate::error::check_ordered;
 use rebound_math::validity::check_finite;
 
+rebound_math::checked_serde! { "Limits", Limits::validated;
 /// A closed interval `[lower, upper]` for a joint coordinate (m or rad).
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Limits {
     lower: f32,
     upper: f32,
 }
-
-rebound_math::checked_serde!(Limits, Limits::validated);
+}
 
 impl Limits {
     /// The interval `[lower, upper]` (m or rad). `lower == upper` locks the coordinate.

@@ -6,13 +6,10 @@ use crate::error::ConstraintError;
 use crate::error::check_non_negative_or_infinite as check_max_force;
 use rebound_math::validity::check_finite;
 
+rebound_math::checked_serde! { "Motor", Motor::validated;
 /// A velocity motor.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Motor {
     target_speed: f32,
     /// +∞ (unbounded, the usual choice) is written as `null` in JSON.
@@ -25,8 +22,7 @@ pub struct Motor {
     )]
     max_force: f32,
 }
-
-rebound_math::checked_serde!(Motor, Motor::validated);
+}
 
 impl Motor {
     /// A motor driving the joint speed to `target_speed` (rad/s for a hinge or wheel, m/s for a prismatic

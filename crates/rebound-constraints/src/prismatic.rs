@@ -14,6 +14,7 @@ use crate::state::JointState;
 use rebound_dynamics::{Softness, SolverBody, StepContext};
 use rebound_math::{Quat, Vec3};
 
+rebound_math::checked_serde! { "PrismaticJoint", PrismaticJoint::validated;
 /// A prismatic joint. Free along its axis by default.
 ///
 /// The slide axis is the X axis of A's joint frame; Y and Z of that frame span the locked directions. With
@@ -31,18 +32,13 @@ use rebound_math::{Quat, Vec3};
 /// Softness: the joint softness in the bias pass for the locks and limits, the spring's own for the spring.
 /// Row order: spring, motor, limits, rotation, across.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PrismaticJoint {
     limits: Option<Limits>,
     motor: Option<Motor>,
     spring: Option<JointSpring>,
 }
-
-rebound_math::checked_serde!(PrismaticJoint, PrismaticJoint::validated);
+}
 
 impl PrismaticJoint {
     /// A prismatic joint free along its axis.

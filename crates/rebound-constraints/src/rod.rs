@@ -12,6 +12,7 @@ use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 use rebound_math::validity::check_positive;
 
+rebound_math::checked_serde! { "Rod", Rod::validated;
 /// A rod of fixed length.
 ///
 /// ```text
@@ -23,16 +24,11 @@ use rebound_math::validity::check_positive;
 /// Softness: the joint softness of [`crate::JointSettings`] in the bias pass, none (velocity only) in the
 /// relax pass. The impulse is unclamped: a rod pushes and pulls.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Rod {
     length: f32,
 }
-
-rebound_math::checked_serde!(Rod, Rod::validated);
+}
 
 impl Rod {
     /// A rod of `length` (m, > 0; for zero length use a [`crate::BallJoint`]).

@@ -13,6 +13,7 @@ use rebound_dynamics::{SolverBody, StepContext};
 use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
 
+rebound_math::checked_serde! { "Rope", Rope::validated;
 /// A rope: a maximum distance between the anchors.
 ///
 /// ```text
@@ -42,17 +43,12 @@ use rebound_math::validity::check_non_negative;
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Rope {
     max_length: f32,
     restitution: f32,
 }
-
-rebound_math::checked_serde!(Rope, Rope::validated);
+}
 
 impl Rope {
     /// A rope of `max_length` (m, ≥ 0) without restitution.

@@ -63,7 +63,7 @@ fn default_true() -> bool {
 /// bound keeps one step's work finite whatever a settings file says.
 pub const MAX_JOINT_ITERATIONS: u32 = 64;
 
-rebound_math::checked_serde!(JointSettings, JointSettings::validated);
+rebound_math::checked_serde!(remote_self JointSettings, JointSettings::validated);
 
 impl Default for JointSettings {
     fn default() -> Self {

@@ -10,13 +10,10 @@ use crate::error::ConstraintError;
 use rebound_dynamics::Softness;
 use rebound_math::validity::{check_finite, check_non_negative};
 
+rebound_math::checked_serde! { "SoftSpring", SoftSpring::validated;
 /// The stiffness of a soft (implicit) spring, in one of two parameterisations.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum SoftSpring {
     /// A natural frequency and a damping ratio: the stiffness follows the effective mass, so the spring feels
     /// the same on a pebble and a truck (Box2D, Jolt's `ESpringMode::FrequencyAndDamping`).
@@ -36,8 +33,7 @@ pub enum SoftSpring {
         damping: f32,
     },
 }
-
-rebound_math::checked_serde!(SoftSpring, SoftSpring::validated);
+}
 
 impl Default for SoftSpring {
     /// 5 Hz, damping ratio 0.7: a firm, slightly under-damped spring.
@@ -137,19 +133,15 @@ fn check_non_negative_allowing_infinity(
     }
 }
 
+rebound_math::checked_serde! { "JointSpring", JointSpring::validated;
 /// A soft spring on a joint coordinate (a hinge angle, a slide distance): relaxed at `target`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct JointSpring {
     target: f32,
     spring: SoftSpring,
 }
-
-rebound_math::checked_serde!(JointSpring, JointSpring::validated);
+}
 
 impl JointSpring {
     /// A spring relaxed at `target` (m for a prismatic joint, rad for a hinge) with stiffness `spring`.

@@ -57,13 +57,10 @@ use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
 use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
 
+rebound_math::checked_serde! { "SpringModel", SpringModel::validated;
 /// How a [`Spring`] acts.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum SpringModel {
     /// An implicit soft constraint: stable for any stiffness and step. The engine's choice.
     Soft(SoftSpring),
@@ -76,8 +73,7 @@ pub enum SpringModel {
         damping: f32,
     },
 }
-
-rebound_math::checked_serde!(SpringModel, SpringModel::validated);
+}
 
 impl SpringModel {
     /// A soft spring of natural frequency `frequency_hz` (Hz) and `damping_ratio`.
@@ -123,6 +119,7 @@ impl SpringModel {
     }
 }
 
+rebound_math::checked_serde! { "Spring", Spring::validated;
 /// A spring between two anchors with a rest length.
 ///
 /// ```text
@@ -148,11 +145,7 @@ impl SpringModel {
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Spring {
     rest_length: f32,
     model: SpringModel,
@@ -174,8 +167,7 @@ pub struct Spring {
     )]
     max_force: f32,
 }
-
-rebound_math::checked_serde!(Spring, Spring::validated);
+}
 
 impl Spring {
     /// A spring of `rest_length` L (m, ≥ 0; 0 makes `f = −k·d`, a drag-and-drop spring) acting by `model`,

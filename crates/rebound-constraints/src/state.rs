@@ -5,6 +5,7 @@ use crate::error::ConstraintError;
 use rebound_math::Vec3;
 use rebound_math::validity::{check_finite, check_finite_vec3, check_non_negative};
 
+rebound_math::checked_serde! { "JointState", JointState::validated;
 /// The persistent solver state of one joint: the impulses accumulated over the last substep of the last step
 /// (for warm starting the next step), the reaction it carried, and whether it has broken. The world keeps one
 /// per joint; [`crate::JointSolver::prepare`] reads it and [`crate::JointSolver::store_impulses`] writes it.
@@ -21,11 +22,7 @@ use rebound_math::validity::{check_finite, check_finite_vec3, check_non_negative
 /// | `upper_impulse` (≤ 0) | | rope | | | limit | | limit | limit |
 /// | `motor_impulse` | | | | | motor | | motor | drive |
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct JointState {
     /// Impulse of the point block or the two rows across an axis (N·s). Default: 0.
     pub linear_impulse: Vec3,
@@ -51,8 +48,7 @@ pub struct JointState {
     /// this is reset to `false`. Default: false.
     pub broken: bool,
 }
-
-rebound_math::checked_serde!(JointState, JointState::validated);
+}
 
 impl JointState {
     /// Returns `self` if every impulse is finite and the reactions are finite and ≥ 0: what warm starting and

@@ -15,6 +15,7 @@ use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
 use rebound_math::Vec3;
 
+rebound_math::checked_serde! { "WheelJoint", WheelJoint::validated;
 /// A wheel joint.
 ///
 /// A's joint frame: X = the axle, Y = the suspension direction (from the wheel towards the chassis, usually
@@ -41,15 +42,12 @@ use rebound_math::Vec3;
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct WheelJoint {
     suspension: SoftSpring,
     suspension_limits: Option<Limits>,
     motor: Option<Motor>,
+}
 }
 
 impl Default for WheelJoint {
@@ -62,8 +60,6 @@ impl Default for WheelJoint {
         }
     }
 }
-
-rebound_math::checked_serde!(WheelJoint, WheelJoint::validated);
 
 impl WheelJoint {
     /// A wheel with the suspension stiffness `suspension` (Hz/ζ, or N/m and N·s/m).

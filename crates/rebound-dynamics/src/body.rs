@@ -101,7 +101,7 @@ impl Default for BodyDesc {
     }
 }
 
-rebound_math::checked_serde!(BodyDesc, BodyDesc::validated);
+rebound_math::checked_serde!(remote_self BodyDesc, BodyDesc::validated);
 
 impl BodyDesc {
     /// Returns `self` if [`RigidBody::new`] accepts it (the check of a deserialised description).
@@ -215,15 +215,12 @@ impl BodyDesc {
     }
 }
 
+rebound_math::checked_serde! { "RigidBody", RigidBody::validated;
 /// A rigid body's state. Built from a [`BodyDesc`] by [`RigidBody::new`], which checks every field; every
 /// setter checks its input and changes nothing on error; a deserialised body passes
 /// [`RigidBody::validated`].
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct RigidBody {
     body_type: BodyType,
     pose: Pose,
@@ -240,8 +237,7 @@ pub struct RigidBody {
     sleeping: bool,
     can_sleep: bool,
 }
-
-rebound_math::checked_serde!(RigidBody, RigidBody::validated);
+}
 
 /// `accumulated + added`, if finite.
 fn checked_sum(field: &'static str, accumulated: Vec3, added: Vec3) -> Result<Vec3, DynamicsError> {

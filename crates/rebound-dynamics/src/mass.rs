@@ -64,21 +64,17 @@ fn check_inertia(field: &'static str, inertia: Mat3) -> Result<Mat3, DynamicsErr
     Ok(inertia)
 }
 
+rebound_math::checked_serde! { "MassProperties", MassProperties::validated;
 /// Mass, centre of mass and inertia of a body. Always valid: built only through checked constructors, and
 /// checked by [`MassProperties::validated`] when deserialised.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(
-    feature = "serde",
-    derive(serde::Serialize, serde::Deserialize),
-    serde(remote = "Self")
-)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct MassProperties {
     mass: f32,
     local_center_of_mass: Vec3,
     local_inertia: Mat3,
 }
-
-rebound_math::checked_serde!(MassProperties, MassProperties::validated);
+}
 
 impl Default for MassProperties {
     /// 1 kg with the inertia of a solid ball of radius 0.5 m (2/5·1·0.5² = 0.1 kg·m² on every axis), centred

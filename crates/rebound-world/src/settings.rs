@@ -69,7 +69,7 @@ pub const MAX_STEPS_PER_ADVANCE: u32 = 1_000;
 /// keeps them exact enough (and at 1e-38 s, `1/h` overflows to ∞).
 pub const MIN_STEP_DT: f32 = 1e-6;
 
-rebound_math::checked_serde!(WorldSettings, |s: WorldSettings| s.validate().map(|()| s));
+rebound_math::checked_serde!(remote_self WorldSettings, |s: WorldSettings| s.validate().map(|()| s));
 
 /// Checks `min ≤ count ≤ max` for a count setting.
 fn check_count(field: &'static str, count: u32, min: u32, max: u32) -> Result<u32, WorldError> {

@@ -111,7 +111,7 @@ pub struct ColliderDesc {
     pub enabled: bool,
 }
 
-rebound_math::checked_serde!(always ColliderDesc, ColliderDesc::validated);
+rebound_math::checked_serde!(remote_self always ColliderDesc, ColliderDesc::validated);
 
 impl Default for ColliderDesc {
     fn default() -> Self {
