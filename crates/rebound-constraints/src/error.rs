@@ -17,6 +17,15 @@ pub enum ConstraintError {
         /// The name of the offending field or argument.
         field: &'static str,
     },
+    /// A bound that may be infinite only away from the interval it bounds was infinite towards it (a lower
+    /// force cap of +∞, an upper one of −∞): no value would pass.
+    #[error("`{field}` may be infinite only as no bound at all, got {value}")]
+    InfiniteTowardsTheRange {
+        /// The name of the offending field or argument.
+        field: &'static str,
+        /// The value that was given.
+        value: f32,
+    },
     /// A lower bound exceeded its upper bound.
     #[error("`{lower_field}` ({lower}) must not exceed `{upper_field}` ({upper})")]
     InvertedRange {

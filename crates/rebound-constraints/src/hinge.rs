@@ -19,6 +19,7 @@ use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
 use rebound_math::glam::Vec3A;
 use rebound_math::{Quat, Vec3};
 
+rebound_math::checked_serde! { "HingeJoint", HingeJoint::validated;
 /// A hinge joint. Free by default: no limits, no motor, no spring.
 ///
 /// The hinge axis is the X axis of each body's joint frame ([`crate::Joint::local_basis_a`]); the angle θ is
@@ -52,11 +53,12 @@ use rebound_math::{Quat, Vec3};
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct HingeJoint {
     limits: Option<Limits>,
     motor: Option<Motor>,
     spring: Option<JointSpring>,
+}
 }
 
 impl HingeJoint {
@@ -91,6 +93,19 @@ impl HingeJoint {
     pub const fn with_spring(mut self, spring: JointSpring) -> Self {
         self.spring = Some(spring);
         self
+    }
+
+    /// Returns `self` if its limits, motor and spring pass the checks of their constructors and of
+    /// [`HingeJoint::set_limits`] (for values that bypassed them: deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        let mut checked = Self::new();
+        checked.set_limits(self.limits.map(Limits::validated).transpose()?)?;
+        self.motor.map(Motor::validated).transpose()?;
+        self.spring.map(JointSpring::validated).transpose()?;
+        Ok(self)
     }
 
     /// The angle limits (rad), if any.

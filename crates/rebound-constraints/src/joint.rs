@@ -62,6 +62,43 @@ impl JointKind {
         }
     }
 
+    /// Returns `self` if the kind's parameters pass the checks of its constructors and setters (each kind's
+    /// `validated`): for values that bypassed them (deserialised, or a kind given to [`Joint::new`] whose
+    /// parts were built by hand).
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        match self {
+            Self::Spring(s) => {
+                s.validated()?;
+            }
+            Self::Rope(r) => {
+                r.validated()?;
+            }
+            Self::Rod(r) => {
+                r.validated()?;
+            }
+            Self::Ball(b) => {
+                b.validated()?;
+            }
+            Self::SixDof(j) => {
+                j.validated()?;
+            }
+            Self::Fixed(_) => {}
+            Self::Hinge(h) => {
+                h.validated()?;
+            }
+            Self::Prismatic(p) => {
+                p.validated()?;
+            }
+            Self::Wheel(w) => {
+                w.validated()?;
+            }
+        }
+        Ok(self)
+    }
+
     fn unsupported(&self, feature: &'static str) -> ConstraintError {
         ConstraintError::Unsupported {
             kind: self.name(),
@@ -89,6 +126,7 @@ macro_rules! kind_from {
 kind_from!(Spring => Spring, Rope => Rope, Rod => Rod, BallJoint => Ball, HingeJoint => Hinge,
     FixedJoint => Fixed, PrismaticJoint => Prismatic, WheelJoint => Wheel, SixDofJoint => SixDof);
 
+rebound_math::checked_serde! { "Joint", Joint::validated;
 /// A joint: its kind, where it attaches to each body, how its frame is oriented on each body, and when it
 /// breaks. Body-independent: the world pairs it with two bodies ([`JointBodies`]).
 ///
@@ -120,7 +158,7 @@ kind_from!(Spring => Spring, Rope => Rope, Rod => Rod, BallJoint => Ball, HingeJ
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Joint {
     kind: JointKind,
     // Missing anchors, frames and break limits take `Joint::new`'s values, so a scene file names only the kind
@@ -149,6 +187,7 @@ pub struct Joint {
         )
     )]
     break_torque: f32,
+}
 }
 
 impl Joint {
@@ -254,49 +293,7 @@ impl Joint {
     /// # Errors
     /// The first invalid field, as the constructor or setter of that field would report it.
     pub fn validated(self) -> Result<Self, ConstraintError> {
-        let limits = |l: Option<Limits>| l.map(|l| Limits::new(l.lower(), l.upper())).transpose();
-        let motor = |m: Option<Motor>| {
-            m.map(|m| Motor::new(m.target_speed(), m.max_force()))
-                .transpose()
-        };
-        let spring = |s: Option<JointSpring>| {
-            s.map(|s| JointSpring::new(s.target(), s.spring()))
-                .transpose()
-        };
-        match self.kind {
-            JointKind::Spring(s) => {
-                let (min, max) = s.force_range();
-                Spring::new(s.rest_length(), s.model())?.with_force_range(min, max)?;
-            }
-            JointKind::Rope(r) => {
-                Rope::new(r.max_length())?.with_restitution(r.restitution())?;
-            }
-            JointKind::Rod(r) => {
-                Rod::new(r.length())?;
-            }
-            JointKind::Ball(b) => {
-                b.validated()?;
-            }
-            JointKind::Fixed(_) => {}
-            JointKind::SixDof(j) => {
-                j.validated()?;
-            }
-            JointKind::Hinge(h) => {
-                HingeJoint::new().set_limits(limits(h.limits())?)?;
-                motor(h.motor())?;
-                spring(h.spring())?;
-            }
-            JointKind::Prismatic(p) => {
-                limits(p.limits())?;
-                motor(p.motor())?;
-                spring(p.spring())?;
-            }
-            JointKind::Wheel(w) => {
-                WheelJoint::new(w.suspension())?;
-                limits(w.suspension_limits())?;
-                motor(w.motor())?;
-            }
-        }
+        self.kind.validated()?;
         let mut checked = Self::new(self.kind);
         checked.set_local_anchors(self.local_anchor_a, self.local_anchor_b)?;
         checked.set_local_bases(self.local_basis_a, self.local_basis_b)?;

@@ -45,7 +45,7 @@ pub use pair::{Anchors, BodyPair, Distance, MIN_AXIS_LENGTH};
 pub use prismatic::PrismaticJoint;
 pub use rod::Rod;
 pub use rope::Rope;
-pub use settings::JointSettings;
+pub use settings::{JointSettings, MAX_JOINT_ITERATIONS};
 pub use six_dof::{Axis, AxisDrive, AxisMotion, AxisSettings, SixDofJoint};
 pub use soft_spring::{JointSpring, OscillatorStep, SoftSpring};
 pub use solver::{JointSolver, KeptRows};

@@ -5,12 +5,14 @@ use crate::error::ConstraintError;
 use crate::error::check_ordered;
 use rebound_math::validity::check_finite;
 
+rebound_math::checked_serde! { "Limits", Limits::validated;
 /// A closed interval `[lower, upper]` for a joint coordinate (m or rad).
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Limits {
     lower: f32,
     upper: f32,
+}
 }
 
 impl Limits {
@@ -23,6 +25,14 @@ impl Limits {
         check_finite("upper", upper)?;
         check_ordered("lower", lower, "upper", upper)?;
         Ok(Self { lower, upper })
+    }
+
+    /// Returns `self` if it passes the checks of [`Limits::new`] (for values that bypassed it: deserialised).
+    ///
+    /// # Errors
+    /// As [`Limits::new`].
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        Self::new(self.lower, self.upper)
     }
 
     /// The lower bound (m or rad).

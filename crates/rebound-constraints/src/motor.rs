@@ -6,12 +6,22 @@ use crate::error::ConstraintError;
 use crate::error::check_non_negative_or_infinite as check_max_force;
 use rebound_math::validity::check_finite;
 
+rebound_math::checked_serde! { "Motor", Motor::validated;
 /// A velocity motor.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Motor {
     target_speed: f32,
+    /// +∞ (unbounded, the usual choice) is written as `null` in JSON.
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            with = "crate::bounds::unbounded",
+            default = "crate::bounds::unbounded::infinity"
+        )
+    )]
     max_force: f32,
+}
 }
 
 impl Motor {
@@ -27,6 +37,14 @@ impl Motor {
             target_speed,
             max_force,
         })
+    }
+
+    /// Returns `self` if it passes the checks of [`Motor::new`] (for values that bypassed it: deserialised).
+    ///
+    /// # Errors
+    /// As [`Motor::new`].
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        Self::new(self.target_speed, self.max_force)
     }
 
     /// The target speed (rad/s or m/s).

@@ -3,6 +3,7 @@
 //! *relax*.
 
 use crate::coordinate::CoordinateRows;
+use crate::error::ConstraintError;
 use crate::limits::Limits;
 use crate::motor::Motor;
 use crate::pair::BodyPair;
@@ -13,6 +14,7 @@ use crate::state::JointState;
 use rebound_dynamics::{Softness, SolverBody, StepContext};
 use rebound_math::{Quat, Vec3};
 
+rebound_math::checked_serde! { "PrismaticJoint", PrismaticJoint::validated;
 /// A prismatic joint. Free along its axis by default.
 ///
 /// The slide axis is the X axis of A's joint frame; Y and Z of that frame span the locked directions. With
@@ -30,11 +32,12 @@ use rebound_math::{Quat, Vec3};
 /// Softness: the joint softness in the bias pass for the locks and limits, the spring's own for the spring.
 /// Row order: spring, motor, limits, rotation, across.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PrismaticJoint {
     limits: Option<Limits>,
     motor: Option<Motor>,
     spring: Option<JointSpring>,
+}
 }
 
 impl PrismaticJoint {
@@ -67,6 +70,18 @@ impl PrismaticJoint {
     pub const fn with_spring(mut self, spring: JointSpring) -> Self {
         self.spring = Some(spring);
         self
+    }
+
+    /// Returns `self` if its limits, motor and spring pass the checks of their constructors (for values
+    /// that bypassed them: deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        self.limits.map(Limits::validated).transpose()?;
+        self.motor.map(Motor::validated).transpose()?;
+        self.spring.map(JointSpring::validated).transpose()?;
+        Ok(self)
     }
 
     /// The slide limits (m), if any.

@@ -12,6 +12,7 @@ use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 use rebound_math::validity::check_positive;
 
+rebound_math::checked_serde! { "Rod", Rod::validated;
 /// A rod of fixed length.
 ///
 /// ```text
@@ -23,9 +24,10 @@ use rebound_math::validity::check_positive;
 /// Softness: the joint softness of [`crate::JointSettings`] in the bias pass, none (velocity only) in the
 /// relax pass. The impulse is unclamped: a rod pushes and pulls.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Rod {
     length: f32,
+}
 }
 
 impl Rod {
@@ -37,6 +39,15 @@ impl Rod {
         Ok(Self {
             length: check_positive("length", length)?,
         })
+    }
+
+    /// Returns `self` if its length passes the check of [`Rod::new`] (for values that bypassed it:
+    /// deserialised).
+    ///
+    /// # Errors
+    /// As [`Rod::new`].
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        Self::new(self.length)
     }
 
     /// The length (m).

@@ -13,6 +13,7 @@ use rebound_dynamics::{SolverBody, StepContext};
 use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
 
+rebound_math::checked_serde! { "Rope", Rope::validated;
 /// A rope: a maximum distance between the anchors.
 ///
 /// ```text
@@ -42,10 +43,11 @@ use rebound_math::validity::check_non_negative;
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Rope {
     max_length: f32,
     restitution: f32,
+}
 }
 
 impl Rope {
@@ -88,6 +90,15 @@ impl Rope {
     pub fn set_max_length(&mut self, max_length: f32) -> Result<(), ConstraintError> {
         self.max_length = check_non_negative("max_length", max_length)?;
         Ok(())
+    }
+
+    /// Returns `self` if every parameter passes the checks of [`Rope::new`] and [`Rope::set_restitution`]:
+    /// for values that bypassed them (deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        Self::new(self.max_length)?.with_restitution(self.restitution)
     }
 
     /// Changes the coefficient of restitution; nothing changes on error.

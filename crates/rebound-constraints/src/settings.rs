@@ -19,7 +19,11 @@ use rebound_math::validity::{check_non_negative, check_positive};
 /// would stretch by its weight over the stiffness of a single link; the long-range tethers (on by default,
 /// [`crate::path::tether`]) carry such loads straight to the fixed anchor instead.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 // Missing fields take their defaults, so a scene file names only what differs.
 #[cfg_attr(feature = "serde", serde(default))]
 pub struct JointSettings {
@@ -31,9 +35,10 @@ pub struct JointSettings {
     /// Cap on `frequency_hz` as a fraction of the substep rate `1/h` (dimensionless), > 0: a stiffer correction
     /// than about half the substep rate overshoots. Default: 0.5.
     pub max_frequency_ratio: f32,
-    /// Gauss–Seidel passes over all joints per bias (solve) call. Default: 1.
+    /// Gauss–Seidel passes over all joints per bias (solve) call, at most [`MAX_JOINT_ITERATIONS`] (64).
+    /// Default: 1.
     pub solve_iterations: u32,
-    /// Gauss–Seidel passes over all joints per relax call. Default: 1.
+    /// Gauss–Seidel passes over all joints per relax call, at most [`MAX_JOINT_ITERATIONS`] (64). Default: 1.
     pub relax_iterations: u32,
     /// Whether bodies hanging from fixed bodies through chains of ropes, rods, ball, hinge or fixed joints get
     /// long-range tethers ([`crate::path::tether`]; not those whose whole chain is one path solved directly, see
@@ -51,6 +56,14 @@ pub struct JointSettings {
 fn default_true() -> bool {
     true
 }
+
+/// The most Gauss–Seidel passes per solve or relax call ([`JointSettings::solve_iterations`],
+/// [`JointSettings::relax_iterations`]): 64. With the default 4 substeps that is 512 passes over every joint
+/// per step, far past where more passes stop paying (stiff chains are solved directly, [`crate::path`]); the
+/// bound keeps one step's work finite whatever a settings file says.
+pub const MAX_JOINT_ITERATIONS: u32 = 64;
+
+rebound_math::checked_serde!(remote_self JointSettings, JointSettings::validated);
 
 impl Default for JointSettings {
     fn default() -> Self {
@@ -70,11 +83,25 @@ impl JointSettings {
     /// Returns `self` if every field is valid.
     ///
     /// # Errors
-    /// `frequency_hz` and `max_frequency_ratio` must be finite and > 0; `damping_ratio` finite and ≥ 0.
+    /// `frequency_hz` and `max_frequency_ratio` must be finite and > 0; `damping_ratio` finite and ≥ 0; the
+    /// iteration counts at most [`MAX_JOINT_ITERATIONS`] ([`ConstraintError::OutOfRange`]).
     pub fn validated(self) -> Result<Self, ConstraintError> {
         check_positive("frequency_hz", self.frequency_hz)?;
         check_non_negative("damping_ratio", self.damping_ratio)?;
         check_positive("max_frequency_ratio", self.max_frequency_ratio)?;
+        for (field, count) in [
+            ("solve_iterations", self.solve_iterations),
+            ("relax_iterations", self.relax_iterations),
+        ] {
+            if count > MAX_JOINT_ITERATIONS {
+                return Err(ConstraintError::OutOfRange {
+                    field,
+                    value: count as f32,
+                    min: 0.0,
+                    max: MAX_JOINT_ITERATIONS as f32,
+                });
+            }
+        }
         Ok(self)
     }
 

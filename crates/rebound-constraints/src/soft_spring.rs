@@ -11,9 +11,10 @@ use crate::error::ConstraintError;
 use rebound_dynamics::Softness;
 use rebound_math::validity::{check_finite, check_non_negative};
 
+rebound_math::checked_serde! { "SoftSpring", SoftSpring::validated;
 /// The stiffness of a soft (implicit) spring, in one of two parameterisations.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum SoftSpring {
     /// A natural frequency and a damping ratio: the stiffness follows the effective mass, so the spring feels
     /// the same on a pebble and a truck (Box2D, Jolt's `ESpringMode::FrequencyAndDamping`).
@@ -25,11 +26,14 @@ pub enum SoftSpring {
     },
     /// A physical stiffness and damping coefficient (Jolt's `ESpringMode::StiffnessAndDamping`).
     Stiffness {
-        /// Stiffness k (N/m; N·m/rad for an angular spring), ≥ 0 (may be +∞: rigid).
+        /// Stiffness k (N/m; N·m/rad for an angular spring), ≥ 0 (may be +∞: rigid, written as `null` in
+        /// JSON).
+        #[cfg_attr(feature = "serde", serde(with = "crate::bounds::unbounded"))]
         stiffness: f32,
         /// Damping coefficient c (N·s/m; N·m·s/rad for an angular spring), ≥ 0.
         damping: f32,
     },
+}
 }
 
 impl Default for SoftSpring {
@@ -226,12 +230,14 @@ fn check_non_negative_allowing_infinity(
     }
 }
 
+rebound_math::checked_serde! { "JointSpring", JointSpring::validated;
 /// A soft spring on a joint coordinate (a hinge angle, a slide distance): relaxed at `target`.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct JointSpring {
     target: f32,
     spring: SoftSpring,
+}
 }
 
 impl JointSpring {
@@ -245,6 +251,15 @@ impl JointSpring {
             target,
             spring: spring.validated()?,
         })
+    }
+
+    /// Returns `self` if it passes the checks of [`JointSpring::new`] (for values that bypassed it:
+    /// deserialised).
+    ///
+    /// # Errors
+    /// As [`JointSpring::new`].
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        Self::new(self.target, self.spring)
     }
 
     /// A spring relaxed at 0 (parameters already validated).

@@ -51,9 +51,10 @@ use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
 
+rebound_math::checked_serde! { "SpringModel", SpringModel::validated;
 /// How a [`Spring`] acts.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub enum SpringModel {
     /// The oscillator step: stable for any stiffness and step, without numerical damping. The engine's
     /// choice.
@@ -66,6 +67,7 @@ pub enum SpringModel {
         /// Damping c along the line (N·s/m), ≥ 0.
         damping: f32,
     },
+}
 }
 
 impl SpringModel {
@@ -112,6 +114,7 @@ impl SpringModel {
     }
 }
 
+rebound_math::checked_serde! { "Spring", Spring::validated;
 /// A spring between two anchors with a rest length.
 ///
 /// ```text
@@ -137,12 +140,28 @@ impl SpringModel {
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Spring {
     rest_length: f32,
     model: SpringModel,
+    // The default caps, ±∞ (none), are written as `null` in JSON, and missing caps are none.
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            with = "crate::bounds::unbounded_below",
+            default = "crate::bounds::unbounded_below::negative_infinity"
+        )
+    )]
     min_force: f32,
+    #[cfg_attr(
+        feature = "serde",
+        serde(
+            with = "crate::bounds::unbounded",
+            default = "crate::bounds::unbounded::infinity"
+        )
+    )]
     max_force: f32,
+}
 }
 
 impl Spring {
@@ -173,6 +192,15 @@ impl Spring {
     ) -> Result<Self, ConstraintError> {
         self.set_force_range(min_force, max_force)?;
         Ok(self)
+    }
+
+    /// Returns `self` if it passes the checks of [`Spring::new`] and [`Spring::set_force_range`] (for values
+    /// that bypassed them: deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        Self::new(self.rest_length, self.model)?.with_force_range(self.min_force, self.max_force)
     }
 
     /// The rest length L (m).
@@ -214,7 +242,8 @@ impl Spring {
     /// Changes the force caps (N); nothing changes on error.
     ///
     /// # Errors
-    /// NaN bounds; `min_force > max_force`.
+    /// NaN bounds; `min_force = +∞` or `max_force = −∞`
+    /// ([`ConstraintError::InfiniteTowardsTheRange`]); `min_force > max_force`.
     pub fn set_force_range(
         &mut self,
         min_force: f32,
@@ -222,6 +251,18 @@ impl Spring {
     ) -> Result<(), ConstraintError> {
         check_not_nan("min_force", min_force)?;
         check_not_nan("max_force", max_force)?;
+        if min_force.is_infinite() && min_force > 0.0 {
+            return Err(ConstraintError::InfiniteTowardsTheRange {
+                field: "min_force",
+                value: min_force,
+            });
+        }
+        if max_force.is_infinite() && max_force < 0.0 {
+            return Err(ConstraintError::InfiniteTowardsTheRange {
+                field: "max_force",
+                value: max_force,
+            });
+        }
         check_ordered("min_force", min_force, "max_force", max_force)?;
         self.min_force = min_force;
         self.max_force = max_force;

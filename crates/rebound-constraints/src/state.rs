@@ -1,8 +1,11 @@
 //! A joint's persistent solver state ([`JointState`]): the impulses it carried in the last step, its reaction
 //! and whether it broke. Read at *prepare* (warm starting), written at *store impulses*.
 
+use crate::error::ConstraintError;
 use rebound_math::Vec3;
+use rebound_math::validity::{check_finite, check_finite_vec3, check_non_negative};
 
+rebound_math::checked_serde! { "JointState", JointState::validated;
 /// The persistent solver state of one joint: the impulses accumulated over the last substep of the last step
 /// (for warm starting the next step), the reaction it carried, and whether it has broken. The world keeps one
 /// per joint; [`crate::JointSolver::prepare`] reads it and [`crate::JointSolver::store_impulses`] writes it.
@@ -19,7 +22,7 @@ use rebound_math::Vec3;
 /// | `upper_impulse` (≤ 0) | | rope | | | limit | | limit | limit |
 /// | `motor_impulse` | | | | | motor | | motor | drive |
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct JointState {
     /// Impulse of the point block or the two rows across an axis (N·s). Default: 0.
     pub linear_impulse: Vec3,
@@ -44,6 +47,31 @@ pub struct JointState {
     /// Whether the joint has broken (exceeded its break force or torque). A broken joint is skipped until
     /// this is reset to `false`. Default: false.
     pub broken: bool,
+}
+}
+
+impl JointState {
+    /// Returns `self` if every impulse is finite and the reactions are finite and ≥ 0: what warm starting and
+    /// the break check trust (for values from outside the solver: deserialised, or restored).
+    ///
+    /// # Errors
+    /// The first non-finite or negative field, by name.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        check_finite_vec3("linear_impulse", self.linear_impulse)?;
+        check_finite_vec3("angular_impulse", self.angular_impulse)?;
+        for (field, value) in [
+            ("axial_impulse", self.axial_impulse),
+            ("lower_impulse", self.lower_impulse),
+            ("upper_impulse", self.upper_impulse),
+            ("motor_impulse", self.motor_impulse),
+            ("tether_impulse", self.tether_impulse),
+        ] {
+            check_finite(field, value)?;
+        }
+        check_non_negative("reaction_force", self.reaction_force)?;
+        check_non_negative("reaction_torque", self.reaction_torque)?;
+        Ok(self)
+    }
 }
 
 /// Where [`crate::JointSolver::store_impulses_to`] writes the joints' states back: joint `i` of the step (in

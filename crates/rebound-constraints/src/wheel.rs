@@ -14,6 +14,7 @@ use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
 
+rebound_math::checked_serde! { "WheelJoint", WheelJoint::validated;
 /// A wheel joint.
 ///
 /// A's joint frame: X = the axle, Y = the suspension direction (from the wheel towards the chassis, usually
@@ -40,11 +41,12 @@ use rebound_dynamics::{SolverBody, StepContext};
 /// # Ok::<(), rebound_constraints::ConstraintError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct WheelJoint {
     suspension: SoftSpring,
     suspension_limits: Option<Limits>,
     motor: Option<Motor>,
+}
 }
 
 impl Default for WheelJoint {
@@ -84,6 +86,18 @@ impl WheelJoint {
     pub const fn with_motor(mut self, motor: Motor) -> Self {
         self.motor = Some(motor);
         self
+    }
+
+    /// Returns `self` if its suspension, limits and motor pass the checks of their constructors (for values
+    /// that bypassed them: deserialised).
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, ConstraintError> {
+        self.suspension.validated()?;
+        self.suspension_limits.map(Limits::validated).transpose()?;
+        self.motor.map(Motor::validated).transpose()?;
+        Ok(self)
     }
 
     /// The suspension stiffness.

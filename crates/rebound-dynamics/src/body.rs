@@ -43,7 +43,11 @@ pub enum Integrator {
 /// # Ok::<(), rebound_dynamics::DynamicsError>(())
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 // Missing fields take their defaults, so a scene file names only what differs.
 #[cfg_attr(feature = "serde", serde(default))]
 pub struct BodyDesc {
@@ -101,7 +105,18 @@ impl Default for BodyDesc {
     }
 }
 
+rebound_math::checked_serde!(remote_self BodyDesc, BodyDesc::validated);
+
 impl BodyDesc {
+    /// Returns `self` if [`RigidBody::new`] accepts it (the check of a deserialised description).
+    ///
+    /// # Errors
+    /// As [`RigidBody::new`].
+    pub fn validated(self) -> Result<Self, DynamicsError> {
+        RigidBody::new(&self)?;
+        Ok(self)
+    }
+
     /// A dynamic body with the defaults.
     #[must_use]
     pub fn dynamic() -> Self {
@@ -211,10 +226,12 @@ impl BodyDesc {
     }
 }
 
+rebound_math::checked_serde! { "RigidBody", RigidBody::validated;
 /// A rigid body's state. Built from a [`BodyDesc`] by [`RigidBody::new`], which checks every field; every
-/// setter checks its input and changes nothing on error.
+/// setter checks its input and changes nothing on error; a deserialised body passes
+/// [`RigidBody::validated`].
 #[derive(Debug, Clone, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct RigidBody {
     body_type: BodyType,
     pose: Pose,
@@ -233,14 +250,30 @@ pub struct RigidBody {
     #[cfg_attr(feature = "serde", serde(default))]
     locked_axes: LockedAxes,
 }
+}
+
+/// `accumulated + added`, if finite.
+fn checked_sum(field: &'static str, accumulated: Vec3, added: Vec3) -> Result<Vec3, DynamicsError> {
+    let sum = accumulated + added;
+    if sum.is_finite() {
+        Ok(sum)
+    } else {
+        Err(DynamicsError::AccumulatedNotFinite {
+            field,
+            accumulated,
+            added,
+        })
+    }
+}
 
 impl RigidBody {
     /// A body from its description.
     ///
     /// # Errors
-    /// Non-finite position, velocities or gravity scale; a non-unit rotation; negative or non-finite damping —
-    /// each as a [`DynamicsError`] naming the field.
+    /// Non-finite position, velocities or gravity scale; a non-unit rotation; negative or non-finite damping;
+    /// invalid mass properties ([`MassProperties::validated`]) — each as a [`DynamicsError`] naming the field.
     pub fn new(desc: &BodyDesc) -> Result<Self, DynamicsError> {
+        desc.mass_properties.validated()?;
         check_finite_vec3("position", desc.position)?;
         check_rotation("rotation", desc.rotation)?;
         check_finite_vec3("linear_velocity", desc.linear_velocity)?;
@@ -275,6 +308,27 @@ impl RigidBody {
             can_sleep: desc.can_sleep,
             locked_axes: locks,
         })
+    }
+
+    /// Returns `self` if every field passes the checks of [`RigidBody::new`] and the setters — a finite pose
+    /// with a unit rotation, finite velocities, force and torque, valid mass properties, a finite gravity
+    /// scale, finite non-negative damping: the one check of a body from outside the constructors
+    /// (deserialised, or a snapshot being restored).
+    ///
+    /// # Errors
+    /// The first invalid field, by name.
+    pub fn validated(self) -> Result<Self, DynamicsError> {
+        self.mass_properties.validated()?;
+        check_finite_vec3("position", self.pose.position)?;
+        check_rotation("rotation", self.pose.rotation)?;
+        check_finite_vec3("linear_velocity", self.linear_velocity)?;
+        check_finite_vec3("angular_velocity", self.angular_velocity)?;
+        check_finite_vec3("force", self.force)?;
+        check_finite_vec3("torque", self.torque)?;
+        check_finite("gravity_scale", self.gravity_scale)?;
+        check_non_negative("linear_damping", self.linear_damping)?;
+        check_non_negative("angular_damping", self.angular_damping)?;
+        Ok(self)
     }
 
     /// The body type.
@@ -575,9 +629,11 @@ impl RigidBody {
     /// body. Only dynamic bodies respond.
     ///
     /// # Errors
-    /// Non-finite `force`.
+    /// Non-finite `force`; a sum with the force accumulated so far that is not finite
+    /// ([`DynamicsError::AccumulatedNotFinite`]). Nothing is added on error.
     pub fn apply_force(&mut self, force: Vec3) -> Result<(), DynamicsError> {
-        self.force += check_finite_vec3("force", force)?;
+        check_finite_vec3("force", force)?;
+        self.force = checked_sum("force", self.force, force)?;
         self.sleeping = false;
         Ok(())
     }
@@ -585,7 +641,8 @@ impl RigidBody {
     /// Adds a force (N) applied at `world_point` (m): the force plus the torque `τ = (p − c) × F`.
     ///
     /// # Errors
-    /// Non-finite `force` or `world_point`.
+    /// Non-finite `force` or `world_point`; a torque `(p − c) × F` or a sum with what was accumulated so far
+    /// that is not finite ([`DynamicsError::AccumulatedNotFinite`]). Nothing is added on error.
     pub fn apply_force_at_point(
         &mut self,
         force: Vec3,
@@ -593,8 +650,10 @@ impl RigidBody {
     ) -> Result<(), DynamicsError> {
         check_finite_vec3("force", force)?;
         check_finite_vec3("world_point", world_point)?;
-        self.force += force;
-        self.torque += (world_point - self.center_of_mass()).cross(force);
+        let torque = (world_point - self.center_of_mass()).cross(force);
+        let total_force = checked_sum("force", self.force, force)?;
+        let total_torque = checked_sum("torque", self.torque, torque)?;
+        (self.force, self.torque) = (total_force, total_torque);
         self.sleeping = false;
         Ok(())
     }
@@ -602,9 +661,11 @@ impl RigidBody {
     /// Adds a torque (N·m, world space) for the next step.
     ///
     /// # Errors
-    /// Non-finite `torque`.
+    /// Non-finite `torque`; a sum with the torque accumulated so far that is not finite
+    /// ([`DynamicsError::AccumulatedNotFinite`]). Nothing is added on error.
     pub fn apply_torque(&mut self, torque: Vec3) -> Result<(), DynamicsError> {
-        self.torque += check_finite_vec3("torque", torque)?;
+        check_finite_vec3("torque", torque)?;
+        self.torque = checked_sum("torque", self.torque, torque)?;
         self.sleeping = false;
         Ok(())
     }

@@ -1,7 +1,7 @@
 //! Typed errors for invalid dynamics input (checked where values enter: body creation, setters, mass
 //! properties). Not part of any step stage; the step trusts validated data.
 
-use rebound_math::{Mat3, MathError};
+use rebound_math::{Mat3, MathError, Vec3};
 
 /// An invalid input to a body, mass-property or impulse function. Nothing is changed when one is returned.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
@@ -30,6 +30,19 @@ pub enum DynamicsError {
         value: f32,
         /// The smallest accepted mass (kg).
         min: f32,
+    },
+    /// Adding a force or torque to what the body has accumulated for the next step would make the sum
+    /// non-finite (each increment finite, their sum overflowing `f32`).
+    #[error(
+        "adding {added} to the accumulated `{field}` {accumulated} would make it non-finite; nothing was added"
+    )]
+    AccumulatedNotFinite {
+        /// `"force"` (N) or `"torque"` (N·m).
+        field: &'static str,
+        /// What had been accumulated before the call.
+        accumulated: Vec3,
+        /// What the call would have added.
+        added: Vec3,
     },
     /// [`crate::MassProperties::combine`] was given no parts, or parts whose masses sum to zero.
     #[error("mass parts must have a positive total mass, got {total_mass} kg from {count} parts")]

@@ -25,13 +25,55 @@ fn check_mass(mass: f32) -> Result<f32, DynamicsError> {
     }
 }
 
-/// Mass, centre of mass and inertia of a body. Always valid: built only through checked constructors.
+/// Checks an inertia tensor about the centre of mass (kg·m²): finite, symmetric (to 1e-5 relative),
+/// positive semi-definite, and with finite inverse moments (a moment below about 3e-39 kg·m² has an inverse
+/// that overflows; a zero moment locks its axis and is accepted).
+fn check_inertia(field: &'static str, inertia: Mat3) -> Result<Mat3, DynamicsError> {
+    let invalid = DynamicsError::InvalidInertia {
+        field,
+        value: inertia,
+    };
+    if !inertia.is_finite() {
+        return Err(invalid);
+    }
+    let scale = inertia
+        .abs()
+        .to_cols_array()
+        .into_iter()
+        .fold(0.0f32, f32::max);
+    if !inertia.abs_diff_eq(inertia.transpose(), 1e-5 * scale) {
+        return Err(invalid);
+    }
+    // Sylvester's criterion for semi-definiteness, on all principal minors (with a tolerance).
+    let tol = -1e-5 * scale;
+    let m = inertia;
+    let minors_1 = [m.x_axis.x, m.y_axis.y, m.z_axis.z];
+    let minors_2 = [
+        m.x_axis.x * m.y_axis.y - m.y_axis.x * m.x_axis.y,
+        m.x_axis.x * m.z_axis.z - m.z_axis.x * m.x_axis.z,
+        m.y_axis.y * m.z_axis.z - m.z_axis.y * m.y_axis.z,
+    ];
+    let overflows = |v: f32| v > 0.0 && !v.recip().is_finite();
+    if minors_1.iter().any(|v| *v < tol)
+        || minors_1.into_iter().any(overflows)
+        || minors_2.iter().any(|v| *v < tol * scale)
+        || m.determinant() < tol * scale * scale
+    {
+        return Err(invalid);
+    }
+    Ok(inertia)
+}
+
+rebound_math::checked_serde! { "MassProperties", MassProperties::validated;
+/// Mass, centre of mass and inertia of a body. Always valid: built only through checked constructors, and
+/// checked by [`MassProperties::validated`] when deserialised.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct MassProperties {
     mass: f32,
     local_center_of_mass: Vec3,
     local_inertia: Mat3,
+}
 }
 
 impl Default for MassProperties {
@@ -83,43 +125,26 @@ impl MassProperties {
         local_center_of_mass: Vec3,
         inertia: Mat3,
     ) -> Result<Self, DynamicsError> {
-        check_mass(mass)?;
-        check_finite_vec3("local_center_of_mass", local_center_of_mass)?;
-        let invalid = DynamicsError::InvalidInertia {
-            field: "inertia",
-            value: inertia,
-        };
-        if !inertia.is_finite() {
-            return Err(invalid);
-        }
-        let scale = inertia
-            .abs()
-            .to_cols_array()
-            .into_iter()
-            .fold(0.0f32, f32::max);
-        if !inertia.abs_diff_eq(inertia.transpose(), 1e-5 * scale) {
-            return Err(invalid);
-        }
-        // Sylvester's criterion for semi-definiteness, on all principal minors (with a tolerance).
-        let tol = -1e-5 * scale;
-        let m = inertia;
-        let minors_1 = [m.x_axis.x, m.y_axis.y, m.z_axis.z];
-        let minors_2 = [
-            m.x_axis.x * m.y_axis.y - m.y_axis.x * m.x_axis.y,
-            m.x_axis.x * m.z_axis.z - m.z_axis.x * m.x_axis.z,
-            m.y_axis.y * m.z_axis.z - m.z_axis.y * m.y_axis.z,
-        ];
-        if minors_1.iter().any(|v| *v < tol)
-            || minors_2.iter().any(|v| *v < tol * scale)
-            || m.determinant() < tol * scale * scale
-        {
-            return Err(invalid);
-        }
-        Ok(Self {
+        Self {
             mass,
             local_center_of_mass,
             local_inertia: inertia,
-        })
+        }
+        .validated()
+    }
+
+    /// Returns `self` if it passes the checks of [`MassProperties::from_inertia_tensor`] — mass finite, > 0
+    /// and with a finite inverse (`mass`), finite centre (`local_center_of_mass`), a symmetric positive
+    /// semi-definite tensor with finite inverse moments (`inertia`): the one check behind every constructor,
+    /// [`MassProperties::transformed`], [`MassProperties::combine`] and deserialisation.
+    ///
+    /// # Errors
+    /// The first invalid field.
+    pub fn validated(self) -> Result<Self, DynamicsError> {
+        check_mass(self.mass)?;
+        check_finite_vec3("local_center_of_mass", self.local_center_of_mass)?;
+        check_inertia("inertia", self.local_inertia)?;
+        Ok(self)
     }
 
     /// A solid ball of `density` (kg/m³) and `radius` (m), centred at the body origin.
@@ -183,13 +208,18 @@ impl MassProperties {
     }
 
     /// The same solid placed at `pose` in the body frame: its centre moves, its tensor rotates.
-    #[must_use]
-    pub fn transformed(self, pose: Pose) -> Self {
+    ///
+    /// # Errors
+    /// A pose that is not finite with a unit rotation (fields `position`, `rotation`); a result the solver
+    /// could not use (a centre beyond `f32`, see [`MassProperties::validated`]).
+    pub fn transformed(self, pose: Pose) -> Result<Self, DynamicsError> {
+        let pose = Pose::try_new(pose.position, pose.rotation)?;
         Self {
             mass: self.mass,
             local_center_of_mass: pose.transform_point(self.local_center_of_mass),
             local_inertia: inertia::rotate_inertia(pose.rotation, self.local_inertia),
         }
+        .validated()
     }
 
     /// The mass properties of a rigid union of `parts` (each already placed in the body frame):
@@ -199,7 +229,8 @@ impl MassProperties {
     /// ```
     ///
     /// # Errors
-    /// [`DynamicsError::NoMass`] for an empty list.
+    /// [`DynamicsError::NoMass`] for an empty list or a total mass that is not finite; a result the solver
+    /// could not use (a centre or tensor that overflows, see [`MassProperties::validated`]).
     pub fn combine(parts: &[Self]) -> Result<Self, DynamicsError> {
         let total_mass: f32 = parts.iter().map(|p| p.mass).sum();
         if parts.is_empty() || !(total_mass > 0.0 && total_mass.is_finite()) {
@@ -216,11 +247,12 @@ impl MassProperties {
         let local_inertia = parts.iter().fold(Mat3::ZERO, |acc, p| {
             acc + inertia::parallel_axis(p.local_inertia, p.mass, p.local_center_of_mass - center)
         });
-        Ok(Self {
+        Self {
             mass: total_mass,
             local_center_of_mass: center,
             local_inertia,
-        })
+        }
+        .validated()
     }
 
     /// Builds from parts the caller guarantees valid (used for constants).
@@ -382,8 +414,12 @@ mod tests {
     fn two_balls_on_a_rod_combine_by_the_parallel_axis_theorem() {
         // Two 1 kg point-like balls at x = ±1: I_yy = I_zz = 2·(I_ball + 1·1²), I_xx = 2·I_ball.
         let ball = MassProperties::new(1.0, Vec3::ZERO, Vec3::splat(0.01)).unwrap();
-        let left = ball.transformed(Pose::from_position(Vec3::new(-1.0, 0.0, 0.0)));
-        let right = ball.transformed(Pose::from_position(Vec3::new(1.0, 0.0, 0.0)));
+        let left = ball
+            .transformed(Pose::from_position(Vec3::new(-1.0, 0.0, 0.0)))
+            .unwrap();
+        let right = ball
+            .transformed(Pose::from_position(Vec3::new(1.0, 0.0, 0.0)))
+            .unwrap();
         let both = MassProperties::combine(&[left, right]).unwrap();
         assert!((both.mass() - 2.0).abs() < 1e-6);
         assert!(both.local_center_of_mass().length() < 1e-6);
@@ -395,8 +431,12 @@ mod tests {
         );
         // Two halves of a box combine to the whole box.
         let half = MassProperties::cuboid(1.0, Vec3::new(0.5, 0.5, 0.5)).unwrap();
-        let a = half.transformed(Pose::from_position(Vec3::new(-0.5, 0.0, 0.0)));
-        let b = half.transformed(Pose::from_position(Vec3::new(0.5, 0.0, 0.0)));
+        let a = half
+            .transformed(Pose::from_position(Vec3::new(-0.5, 0.0, 0.0)))
+            .unwrap();
+        let b = half
+            .transformed(Pose::from_position(Vec3::new(0.5, 0.0, 0.0)))
+            .unwrap();
         let whole = MassProperties::cuboid(1.0, Vec3::new(1.0, 0.5, 0.5)).unwrap();
         let combined = MassProperties::combine(&[a, b]).unwrap();
         assert!(
@@ -405,7 +445,9 @@ mod tests {
                 .abs_diff_eq(whole.local_inertia(), 1e-5)
         );
         // A rotated part stays valid as a full tensor and inverts as a matrix.
-        let rotated = whole.transformed(Pose::new(Vec3::ZERO, Quat::from_rotation_z(0.4)));
+        let rotated = whole
+            .transformed(Pose::new(Vec3::ZERO, Quat::from_rotation_z(0.4)))
+            .unwrap();
         let product = rotated.local_inertia() * rotated.local_inv_inertia();
         assert!(product.abs_diff_eq(Mat3::IDENTITY, 1e-4));
         assert!(

@@ -8,6 +8,7 @@ pub mod rotation2d;
 pub mod transform;
 pub mod validity;
 
+mod checked_serde;
 mod error;
 
 /// The glam this crate is built on, re-exported so downstream crates and users share one version — the same

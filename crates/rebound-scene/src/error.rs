@@ -98,6 +98,15 @@ pub enum SceneError {
         #[source]
         source: Box<rebound::Error>,
     },
+    /// A value its description's own check refused while the file was read (the message is that check's,
+    /// naming the field and the value): a rope of negative length, settings above their bounds, a zero mass.
+    #[error("{place}: {message}")]
+    Refused {
+        /// The item and where the field is.
+        place: Place,
+        /// What the check said.
+        message: String,
+    },
     /// A body's mass properties are not a positive mass with a finite centre and inertia.
     #[error("{place}: `{field}` must be finite{positive}, got {value}", positive = if *field == "mass" { " and > 0" } else { "" })]
     InvalidMass {
@@ -141,6 +150,7 @@ impl SceneError {
         match self {
             Self::Read { .. } | Self::Syntax { .. } => None,
             Self::Invalid { place, .. }
+            | Self::Refused { place, .. }
             | Self::UnknownField { place, .. }
             | Self::InvalidMass { place, .. }
             | Self::UnknownBody { place, .. }
@@ -161,6 +171,7 @@ impl SceneError {
         match self {
             Self::Read { .. } | Self::Syntax { .. } => None,
             Self::Invalid { place, .. }
+            | Self::Refused { place, .. }
             | Self::UnknownField { place, .. }
             | Self::InvalidMass { place, .. }
             | Self::UnknownBody { place, .. }
@@ -175,18 +186,21 @@ impl SceneError {
             | Self::UnknownBody { field, .. }
             | Self::InvalidRun { field, .. } => Some((*field).to_owned()),
             Self::UnknownField { field, .. } => Some(field.clone()),
-            Self::Invalid { source, .. } => {
-                let text = source.to_string();
-                let start = text.find('`')? + 1;
-                let len = text[start..].find('`')?;
-                // `points[3]`, `heights × scale.y`: the field is the leading identifier.
-                let field: String = text[start..start + len]
-                    .chars()
-                    .take_while(|c| c.is_alphanumeric() || *c == '_')
-                    .collect();
-                (!field.is_empty()).then_some(field)
-            }
+            Self::Invalid { source, .. } => quoted_field(&source.to_string()),
+            Self::Refused { message, .. } => quoted_field(message),
             Self::Read { .. } | Self::Syntax { .. } => None,
         }
     }
+}
+
+/// The first field an engine error quotes between backticks: its leading identifier (`points[3]`,
+/// `heights × scale.y` give `points`, `heights`).
+fn quoted_field(text: &str) -> Option<String> {
+    let start = text.find('`')? + 1;
+    let len = text[start..].find('`')?;
+    let field: String = text[start..start + len]
+        .chars()
+        .take_while(|c| c.is_alphanumeric() || *c == '_')
+        .collect();
+    (!field.is_empty()).then_some(field)
 }

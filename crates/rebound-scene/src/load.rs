@@ -6,6 +6,9 @@
 //! joint starts. A value the parser accepts but the engine refuses (a negative radius, a `NaN`, a joint to a
 //! body that does not exist) is then found by building the scene, and placed at its item's field: the field
 //! the error names, looked up inside that item's text, or the item's start when it cannot be told.
+//! A value that its own type's check refuses while it is read (`Rope` with a negative length, settings above
+//! their bounds: the engine's descriptions check themselves when deserialised) stops the first pass; it is
+//! placed the same way, its item being the one whose text holds the place where the parser stopped.
 
 use crate::error::{Location, Place};
 use crate::{BuiltScene, Scene, SceneError};
@@ -62,12 +65,19 @@ pub fn load_str(source: &str) -> Result<(Scene, BuiltScene), SceneError> {
     let mut ignored = Vec::new();
     let scene = ron_options()
         .from_str_seed(source, Tracking(&mut ignored))
-        .map_err(|e| SceneError::Syntax {
-            location: Location {
+        .map_err(|e| {
+            let location = Location {
                 line: e.span.start.line,
                 column: e.span.start.col,
-            },
-            message: e.code.to_string(),
+            };
+            match e.code {
+                // A description's own check refused a value it read (serde's custom error).
+                ron::Error::Message(message) => refused(source, location, message),
+                code => SceneError::Syntax {
+                    location,
+                    message: code.to_string(),
+                },
+            }
         })?;
     if let Some(path) = ignored.into_iter().next() {
         let mut error = unknown_field(&path);
@@ -81,6 +91,84 @@ pub fn load_str(source: &str) -> Result<(Scene, BuiltScene), SceneError> {
             Err(error)
         }
     }
+}
+
+/// The error for a value refused while it was read, the parser having stopped at `stopped`: placed at the
+/// field it names inside the deepest item whose text holds `stopped`, else where the parser stopped.
+fn refused(source: &str, stopped: Location, message: String) -> SceneError {
+    let offset = offset_of(source, stopped);
+    let item = ron_options()
+        .from_str::<Outline<'_>>(source)
+        .ok()
+        .and_then(|outline| item_at(source, &outline, offset))
+        .unwrap_or_else(|| "scene".to_owned());
+    let mut error = SceneError::Refused {
+        place: Place {
+            item,
+            location: None,
+        },
+        message,
+    };
+    locate(source, &mut error);
+    if let Some(place) = error.place_mut()
+        && place.location.is_none()
+    {
+        place.location = Some(stopped);
+    }
+    error
+}
+
+/// The byte offset of a line and column (both from 1, columns in characters), clamped to the text.
+fn offset_of(source: &str, location: Location) -> usize {
+    let line_start: usize = source
+        .split_inclusive('\n')
+        .take(location.line.saturating_sub(1))
+        .map(str::len)
+        .sum();
+    let line = &source[line_start.min(source.len())..];
+    let within = line
+        .char_indices()
+        .nth(location.column.saturating_sub(1))
+        .map_or(line.len(), |(i, _)| i);
+    line_start + within
+}
+
+/// The path of the deepest item (`bodies[3].colliders[0]`, `bodies[3].body`, `joints[2]`, `settings`) whose
+/// text holds byte `offset` of `source`.
+fn item_at(source: &str, outline: &Outline<'_>, offset: usize) -> Option<String> {
+    let holds = |raw: &RawValue| {
+        let text = raw.get_ron();
+        (text.as_ptr() as usize)
+            .checked_sub(source.as_ptr() as usize)
+            .is_some_and(|start| (start..=start + text.len()).contains(&offset))
+    };
+    for (i, body) in outline.bodies.iter().enumerate() {
+        if !holds(body) {
+            continue;
+        }
+        let Ok(parts) = ron_options().from_str::<BodyOutline<'_>>(body.get_ron()) else {
+            return Some(format!("bodies[{i}]"));
+        };
+        if parts.body.is_some_and(holds) {
+            return Some(format!("bodies[{i}].body"));
+        }
+        let collider = parts.colliders.iter().position(|c| holds(c));
+        return Some(collider.map_or_else(
+            || format!("bodies[{i}]"),
+            |j| format!("bodies[{i}].colliders[{j}]"),
+        ));
+    }
+    if let Some(k) = outline.joints.iter().position(|j| holds(j)) {
+        return Some(format!("joints[{k}]"));
+    }
+    [
+        ("settings", outline.settings),
+        ("run", outline.run),
+        ("camera", outline.camera),
+    ]
+    .into_iter()
+    .find(|(_, raw)| raw.is_some_and(holds))
+    .map(|(name, _)| name.to_owned())
 }
 
 /// Reads a [`Scene`] and collects the path of every field serde skipped.

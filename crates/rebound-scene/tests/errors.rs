@@ -125,11 +125,13 @@ fn bad_settings_and_run_lengths_are_refused() {
 fn a_bad_mass_is_refused() {
     let text = "Scene(bodies: [(body: (mass_properties: (mass: -1.0, local_center_of_mass: (0.0, 0.0, 0.0), local_inertia: (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0))))])";
     let error = error_of(text);
-    assert!(
-        matches!(error, SceneError::InvalidMass { field: "mass", .. }),
-        "{error:?}"
-    );
+    // Mass properties check themselves as they are read.
+    assert!(matches!(error, SceneError::Refused { .. }), "{error:?}");
     assert_eq!(error.location(), at(1, 42), "{error}");
+    assert_eq!(
+        error.to_string(),
+        "line 1, column 42: bodies[0].body: `mass` must be > 0, got -1"
+    );
 }
 
 #[test]
@@ -152,4 +154,54 @@ fn a_missing_file_is_a_read_error() {
     let error = Scene::from_file("no/such/scene.ron").unwrap_err();
     assert!(matches!(error, SceneError::Read { .. }), "{error:?}");
     assert!(error.to_string().contains("no/such/scene.ron"), "{error}");
+}
+
+#[test]
+fn a_description_that_checks_itself_is_refused_at_its_field() {
+    // A rope of −5 m: refused while it is read, placed at its `max_length`.
+    let text = "Scene(\n    bodies: [(), ()],\n    joints: [(body_a: 0, body_b: 1, joint: (kind: Rope((max_length: -5.0, restitution: 0.0)))),\n    ],\n)\n";
+    let error = error_of(text);
+    assert!(matches!(error, SceneError::Refused { .. }), "{error:?}");
+    assert_eq!(error.location(), at(3, 57), "{error}");
+    assert_eq!(
+        error.to_string(),
+        "line 3, column 57: joints[0]: `max_length` must be >= 0, got -5"
+    );
+    // Settings above their bounds: the count that would hang the step is refused.
+    for (text, field) in [
+        (
+            "Scene(settings: (substep_count: 4294967295))",
+            "substep_count",
+        ),
+        (
+            "Scene(settings: (max_steps_per_advance: 1000000, fixed_dt: 1e-30))",
+            "fixed_dt",
+        ),
+        (
+            "Scene(settings: (joints: (solve_iterations: 4294967295)))",
+            "solve_iterations",
+        ),
+    ] {
+        let error = error_of(text);
+        assert!(matches!(error, SceneError::Refused { .. }), "{error:?}");
+        assert!(error.to_string().contains("settings: "), "{error}");
+        assert!(error.to_string().contains(field), "{error}");
+    }
+}
+
+#[test]
+fn infinite_bounds_read_as_numbers_or_strings() {
+    // RON's bare `inf` and the "inf" the engine writes both mean no cap.
+    for bound in ["inf", "\"inf\""] {
+        let text = format!(
+            "Scene(bodies: [(), ()], joints: [(body_a: 0, body_b: 1, joint: (kind: Spring((rest_length: 1.0, model: Soft(Frequency(frequency_hz: 2.0, damping_ratio: 0.5)), max_force: {bound})), break_force: {bound}))])"
+        );
+        let scene = Scene::from_ron(&text).unwrap();
+        let joint = &scene.joints[0].joint;
+        assert!(joint.break_force().is_infinite());
+        let rebound::JointKind::Spring(spring) = joint.kind() else {
+            panic!("{joint:?}");
+        };
+        assert_eq!(spring.force_range(), (f32::NEG_INFINITY, f32::INFINITY));
+    }
 }

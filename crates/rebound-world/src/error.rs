@@ -25,6 +25,28 @@ pub enum WorldError {
         /// The value given (converted to f32).
         value: f32,
     },
+    /// A count or rate setting lay outside its documented bounds.
+    #[error("world setting `{field}` must lie in [{min}, {max}], got {value}")]
+    SettingOutOfRange {
+        /// The setting's name.
+        field: &'static str,
+        /// The value given (converted to f32).
+        value: f32,
+        /// The smallest accepted value.
+        min: f32,
+        /// The largest accepted value.
+        max: f32,
+    },
+    /// A step length was shorter than [`crate::MIN_STEP_DT`].
+    #[error("world setting `{field}` must be at least {min:e} s, got {value:e} s")]
+    StepTooShort {
+        /// The setting's name.
+        field: &'static str,
+        /// The value given (s).
+        value: f32,
+        /// The shortest accepted step (s).
+        min: f32,
+    },
     /// The body handle refers to no body in this world (removed, or from another world).
     #[error("stale or foreign body handle {0:?}")]
     StaleBody(BodyHandle),
@@ -46,7 +68,16 @@ pub enum WorldError {
     /// A world cannot hold more objects of this kind (2³² − 1).
     #[error("the world is full: no more {0} can be inserted")]
     Full(&'static str),
-    /// A snapshot could not be restored (made by an incompatible version).
+    /// A snapshot could not be restored (made by an incompatible version, or with inconsistent tables).
     #[error("snapshot cannot be restored: {0}")]
     BadSnapshot(&'static str),
+    /// A snapshot held a value its constructors would have refused, or a handle that resolves to nothing in
+    /// it: `item` says where (`body 3`, `manifold 0, point 1`), `source` what (naming the field and value).
+    #[error("snapshot cannot be restored: {item}: {source}")]
+    InvalidSnapshot {
+        /// Where in the snapshot.
+        item: String,
+        /// The error its constructor, setter or handle lookup would have returned.
+        source: Box<WorldError>,
+    },
 }

@@ -13,6 +13,7 @@ mod prepare;
 mod report;
 mod scratch;
 mod settings;
+mod snapshot_check;
 mod solve;
 mod sorted_walk;
 mod state;
@@ -39,5 +40,5 @@ pub use manifold::{
     LEVER_ARM_TOLERANCE, MAX_MANIFOLD_POINTS, ManifoldPoint, NoCollision,
 };
 pub use report::{AdvanceReport, Profile, StepReport, StepSkipped};
-pub use settings::WorldSettings;
+pub use settings::{MAX_STEPS_PER_ADVANCE, MAX_SUBSTEPS, MIN_STEP_DT, WorldSettings};
 pub use world::{RemovedBody, World, WorldSnapshot};

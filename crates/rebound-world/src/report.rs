@@ -31,6 +31,9 @@ pub enum StepSkipped {
     NonPositiveDt(f32),
     /// `dt` was NaN or infinite: nothing moves.
     NonFiniteDt(f32),
+    /// `dt` was positive but shorter than [`crate::MIN_STEP_DT`] (1 µs): nothing moves, rather than the
+    /// solver dividing by a substep too short for `f32`.
+    DtTooSmall(f32),
 }
 
 /// The outcome of [`crate::World::step`].

@@ -10,13 +10,17 @@ use rebound_math::validity::{check_finite, check_finite_vec3, check_non_negative
 /// How a world steps. Public fields with [`Default`]; [`crate::World::new`] and
 /// [`crate::World::set_settings`] check them.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(remote = "Self")
+)]
 // Missing fields take their defaults, so a scene file names only what differs.
 #[cfg_attr(feature = "serde", serde(default))]
 pub struct WorldSettings {
     /// Gravity (m/s²). Default: (0, −9.81, 0).
     pub gravity: Vec3,
-    /// Soft substeps per step (each `dt / substep_count` long). Default: 4. Must be ≥ 1.
+    /// Soft substeps per step (each `dt / substep_count` long), from 1 to [`MAX_SUBSTEPS`] (64). Default: 4.
     pub substep_count: u32,
     /// Contact stiffness as a natural frequency (Hz), capped at a quarter of the substep rate. Default: 30 Hz.
     pub contact_frequency_hz: f32,
@@ -39,15 +43,46 @@ pub struct WorldSettings {
     pub angular_sleep_threshold: f32,
     /// How long (s) every body of an island must rest before the island sleeps. Default: 0.5 s.
     pub time_to_sleep: f32,
-    /// The step length [`crate::World::advance`] uses (s). Default: 1/60 s.
+    /// The step length [`crate::World::advance`] uses (s), at least [`MIN_STEP_DT`] (1 µs). Default: 1/60 s.
     pub fixed_dt: f32,
     /// The most steps one [`crate::World::advance`] call runs (the rest of the time is dropped, so a slow
-    /// frame cannot snowball). Default: 8.
+    /// frame cannot snowball), from 1 to [`MAX_STEPS_PER_ADVANCE`] (1,000). Default: 8.
     pub max_steps_per_advance: u32,
     /// Joint solver settings: the softness of hard joint parts, iteration counts, long-range tethers for
     /// hanging chains. Default: [`JointSettings::default`] (60 Hz, ζ = 2, one solve and one relax pass,
     /// tethers on).
     pub joints: JointSettings,
+}
+
+/// The most substeps per step ([`WorldSettings::substep_count`]): 64. At 60 Hz that is a substep of 1/3,840 s,
+/// past which more substeps buy no visible accuracy; the bound keeps one step's work finite whatever a
+/// settings file says.
+pub const MAX_SUBSTEPS: u32 = 64;
+
+/// The most steps one [`crate::World::advance`] call may run ([`WorldSettings::max_steps_per_advance`]):
+/// 1,000, about 17 s of simulated time at 60 Hz in one call.
+pub const MAX_STEPS_PER_ADVANCE: u32 = 1_000;
+
+/// The shortest step (s): 1 µs. [`crate::World::step`] with a shorter `dt` moves nothing and reports
+/// [`crate::StepSkipped::DtTooSmall`]; [`WorldSettings::fixed_dt`] may not be shorter. Below it, with
+/// [`MAX_SUBSTEPS`] substeps, the rates `1/h` and `1/h²` the solver forms would leave the range where `f32`
+/// keeps them exact enough (and at 1e-38 s, `1/h` overflows to ∞).
+pub const MIN_STEP_DT: f32 = 1e-6;
+
+rebound_math::checked_serde!(remote_self WorldSettings, |s: WorldSettings| s.validate().map(|()| s));
+
+/// Checks `min ≤ count ≤ max` for a count setting.
+fn check_count(field: &'static str, count: u32, min: u32, max: u32) -> Result<u32, WorldError> {
+    if (min..=max).contains(&count) {
+        Ok(count)
+    } else {
+        Err(WorldError::SettingOutOfRange {
+            field,
+            value: count as f32,
+            min: min as f32,
+            max: max as f32,
+        })
+    }
 }
 
 impl Default for WorldSettings {
@@ -77,16 +112,14 @@ impl WorldSettings {
     /// Checks every field.
     ///
     /// # Errors
-    /// A [`WorldError`] naming the first invalid field: non-finite values, a zero substep count, negative
-    /// thresholds or damping, a non-positive fixed step.
+    /// A [`WorldError`] naming the first invalid field: non-finite values, a substep count outside
+    /// `1..=`[`MAX_SUBSTEPS`] or a step count outside `1..=`[`MAX_STEPS_PER_ADVANCE`]
+    /// ([`WorldError::SettingOutOfRange`]), negative thresholds or damping, a fixed step shorter than
+    /// [`MIN_STEP_DT`] ([`WorldError::StepTooShort`]), invalid joint settings (iterations beyond
+    /// [`rebound_constraints::MAX_JOINT_ITERATIONS`]).
     pub fn validate(&self) -> Result<(), WorldError> {
         check_finite_vec3("gravity", self.gravity)?;
-        if self.substep_count == 0 {
-            return Err(WorldError::InvalidSetting {
-                field: "substep_count",
-                value: 0.0,
-            });
-        }
+        check_count("substep_count", self.substep_count, 1, MAX_SUBSTEPS)?;
         check_positive("contact_frequency_hz", self.contact_frequency_hz)?;
         check_non_negative("contact_damping_ratio", self.contact_damping_ratio)?;
         check_positive("max_push_out_speed", self.max_push_out_speed)?;
@@ -97,12 +130,19 @@ impl WorldSettings {
         check_finite("time_to_sleep", self.time_to_sleep)?;
         check_non_negative("time_to_sleep", self.time_to_sleep)?;
         check_positive("fixed_dt", self.fixed_dt)?;
-        if self.max_steps_per_advance == 0 {
-            return Err(WorldError::InvalidSetting {
-                field: "max_steps_per_advance",
-                value: 0.0,
+        if self.fixed_dt < MIN_STEP_DT {
+            return Err(WorldError::StepTooShort {
+                field: "fixed_dt",
+                value: self.fixed_dt,
+                min: MIN_STEP_DT,
             });
         }
+        check_count(
+            "max_steps_per_advance",
+            self.max_steps_per_advance,
+            1,
+            MAX_STEPS_PER_ADVANCE,
+        )?;
         self.joints.validated()?;
         Ok(())
     }

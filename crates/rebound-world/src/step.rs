@@ -24,6 +24,7 @@
 use crate::manifold::CollisionBackend;
 use crate::report::{Profile, StepReport, StepSkipped};
 use crate::scratch::Scratch;
+use crate::settings::MIN_STEP_DT;
 use crate::world::World;
 use crate::{collide, events, islands, kinematic, prepare, solve, store};
 use rebound_dynamics::StepContext;
@@ -32,7 +33,8 @@ use std::time::Instant;
 impl<B: CollisionBackend> World<B> {
     /// Advances the simulation by `dt` seconds with `settings.substep_count` soft substeps.
     ///
-    /// Never fails: a `dt` that is not a positive finite number moves nothing, and the report says so. The
+    /// Never fails: a `dt` that is not a positive finite number, or is shorter than [`crate::MIN_STEP_DT`],
+    /// moves nothing, and the report says so. The
     /// events of the step replace those of the previous one.
     pub fn step(&mut self, dt: f32) -> StepReport {
         self.events.clear();
@@ -41,6 +43,9 @@ impl<B: CollisionBackend> World<B> {
         }
         if dt <= 0.0 {
             return StepReport::skipped(StepSkipped::NonPositiveDt(dt), &self.state.bodies);
+        }
+        if dt < MIN_STEP_DT {
+            return StepReport::skipped(StepSkipped::DtTooSmall(dt), &self.state.bodies);
         }
         let start = Instant::now();
         let mut report = StepReport::default();

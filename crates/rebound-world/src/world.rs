@@ -11,6 +11,7 @@ use crate::manifold::{CollisionBackend, ContactManifold, NoCollision};
 use crate::report::AdvanceReport;
 use crate::scratch::Scratch;
 use crate::settings::WorldSettings;
+use crate::snapshot_check;
 use crate::state::{JointEntry, WorldState};
 use rebound_constraints::{Joint, JointState, KeptRows};
 use rebound_dynamics::{BodyDesc, BodyType, RigidBody};
@@ -39,6 +40,18 @@ pub struct WorldSnapshot {
 const SNAPSHOT_VERSION: u32 = 2;
 
 impl WorldSnapshot {
+    /// The bodies the snapshot holds (to check what refers to them before restoring).
+    #[must_use]
+    pub fn bodies(&self) -> &BodySet {
+        &self.state.bodies
+    }
+
+    /// Whether the snapshot holds the joint `handle`.
+    #[must_use]
+    pub fn contains_joint(&self, handle: JointHandle) -> bool {
+        self.state.joints.contains(handle.0)
+    }
+
     /// The joint solver's rows kept for the next step (see [`KeptRows`]).
     #[must_use]
     pub fn kept_joint_rows(&self) -> &KeptRows {
@@ -319,7 +332,8 @@ impl<B: CollisionBackend> World<B> {
     /// Connects two bodies with `joint` (its anchor A on `body_a`, anchor B on `body_b`). Wakes both.
     ///
     /// # Errors
-    /// A stale handle, or the same body twice. Nothing changes on error.
+    /// An invalid joint ([`Joint::validated`]: a description that bypassed its constructors, deserialised),
+    /// a stale handle, or the same body twice. Nothing changes on error.
     pub fn insert_joint(
         &mut self,
         joint: Joint,
@@ -339,7 +353,7 @@ impl<B: CollisionBackend> World<B> {
     /// point (m), anchor B is on `body`. Drag and drop, a camera boom, a pendulum. Wakes the body.
     ///
     /// # Errors
-    /// A stale handle.
+    /// An invalid joint ([`Joint::validated`]) or a stale handle. Nothing changes on error.
     pub fn insert_world_joint(
         &mut self,
         joint: Joint,
@@ -354,6 +368,7 @@ impl<B: CollisionBackend> World<B> {
         body_a: Option<BodyHandle>,
         body_b: BodyHandle,
     ) -> Result<JointHandle, WorldError> {
+        let joint = joint.validated()?;
         if !self.state.bodies.contains(body_b) {
             return Err(WorldError::StaleBody(body_b));
         }
@@ -529,33 +544,16 @@ impl<B: CollisionBackend> World<B> {
     /// stale. Pending events are cleared.
     ///
     /// # Errors
-    /// [`WorldError::BadSnapshot`] for a snapshot of another format version or with invalid settings; the
-    /// world is unchanged.
+    /// [`WorldError::BadSnapshot`] for a snapshot of another format version or with inconsistent handle
+    /// tables; [`WorldError::InvalidSnapshot`] naming the first item, field and value that its constructor
+    /// would have refused, or a handle that resolves to nothing in the snapshot (a joint or manifold on a
+    /// body that does not exist). The whole snapshot is refused and the world is unchanged.
     pub fn restore(&mut self, snapshot: &WorldSnapshot) -> Result<(), WorldError> {
         if snapshot.version != SNAPSHOT_VERSION {
             return Err(WorldError::BadSnapshot("format version differs"));
         }
-        if snapshot.state.settings.validate().is_err() {
-            return Err(WorldError::BadSnapshot("invalid settings"));
-        }
         // A deserialised snapshot bypassed every constructor: check what the step will trust.
-        if !snapshot.state.bodies.arena.is_consistent() || !snapshot.state.joints.is_consistent() {
-            return Err(WorldError::BadSnapshot("inconsistent handle tables"));
-        }
-        if snapshot
-            .state
-            .joints
-            .iter()
-            .any(|(_, j)| j.joint.validated().is_err())
-        {
-            return Err(WorldError::BadSnapshot("invalid joint"));
-        }
-        if snapshot.state.bodies.iter().any(|(_, b)| !body_is_valid(b)) {
-            return Err(WorldError::BadSnapshot("invalid body"));
-        }
-        if !snapshot.joint_rows.is_valid() {
-            return Err(WorldError::BadSnapshot("invalid kept joint rows"));
-        }
+        snapshot_check::check_state(&snapshot.state, &snapshot.joint_rows)?;
         self.state = snapshot.state.clone();
         self.scratch
             .solver
@@ -599,19 +597,6 @@ impl<B: CollisionBackend> World<B> {
     fn wake_island_of(&mut self, handle: BodyHandle) {
         islands::wake_island_of(&mut self.state, &mut self.woken, handle);
     }
-}
-
-/// Whether a body (from a deserialised snapshot) passes the checks its constructor and setters make.
-fn body_is_valid(body: &RigidBody) -> bool {
-    let pose = body.pose();
-    Pose::try_new(pose.position, pose.rotation).is_ok()
-        && body.linear_velocity().is_finite()
-        && body.angular_velocity().is_finite()
-        && body.gravity_scale().is_finite()
-        && body.linear_damping() >= 0.0
-        && body.angular_damping() >= 0.0
-        && body.mass_properties().mass() > 0.0
-        && body.mass_properties().mass().is_finite()
 }
 
 /// 64-bit FNV-1a.

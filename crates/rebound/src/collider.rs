@@ -8,7 +8,7 @@ use crate::shape::{ColliderShape, check_pose};
 use parry3d::shape::SharedShape;
 use rebound_dynamics::{CombineRule, DynamicsError, MassProperties};
 use rebound_math::validity::{check_finite, check_non_negative};
-use rebound_math::{MathError, Pose, Quat, Vec3};
+use rebound_math::{Pose, Quat, Vec3};
 use rebound_world::BodyHandle;
 use serde::{Deserialize, Serialize};
 
@@ -77,6 +77,7 @@ impl CollisionGroups {
 /// assert!(trigger.is_sensor);
 /// ```
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(remote = "Self")]
 // Missing fields take their defaults, so a scene file names only what differs.
 #[serde(default)]
 pub struct ColliderDesc {
@@ -129,6 +130,8 @@ const Y_TO_Z: Quat = Quat::from_xyzw(
     0.0,
     core::f32::consts::FRAC_1_SQRT_2,
 );
+
+rebound_math::checked_serde!(remote_self always ColliderDesc, ColliderDesc::validated);
 
 impl Default for ColliderDesc {
     fn default() -> Self {
@@ -363,6 +366,18 @@ impl ColliderDesc {
         self
     }
 
+    /// Returns `self` if its pose and material pass the checks of [`crate::PhysicsWorld::insert_collider`]
+    /// (the check of a deserialised description). The shape is checked where it is built, on insertion and
+    /// on restore ([`ColliderShape::validate`] builds it): checking it here too would build a large mesh
+    /// twice.
+    ///
+    /// # Errors
+    /// The first invalid field, by name.
+    pub fn validated(self) -> Result<Self, crate::Error> {
+        self.clone().checked_material()?;
+        Ok(self)
+    }
+
     /// Checks every field except the shape (which [`ColliderShape::to_parry`] checks); returns the
     /// description with its rotation normalised.
     pub(crate) fn checked_material(mut self) -> Result<Self, crate::Error> {
@@ -515,26 +530,17 @@ pub(crate) fn mass_of(
     let inertia = (inertia + inertia.transpose()) * 0.5;
     let properties = MassProperties::from_inertia_tensor(volume * density, unit.local_com, inertia)
         .map_err(|source| ShapeError::MassProperties { density, source })?;
-    let placed = properties.transformed(local_pose);
-    check_solvable(&placed).map_err(|source| ShapeError::MassProperties { density, source })?;
+    let placed = properties
+        .transformed(local_pose)
+        .map_err(|source| ShapeError::MassProperties { density, source })?;
     Ok(Some(placed))
 }
 
-/// Checks that the solver can use `mass`: finite centre and tensor, and finite inverses (a mass below
-/// ~3e-39 kg, or a moment that small, has an inverse that overflows to ∞).
+/// Checks that the solver can use `mass` ([`MassProperties::validated`]: finite centre and tensor, finite
+/// inverses), and that its inverse tensor as the solver computes it is finite.
 pub(crate) fn check_solvable(mass: &MassProperties) -> Result<(), DynamicsError> {
-    let inv_mass = mass.inv_mass();
-    if !inv_mass.is_finite() {
-        return Err(MathError::NonFinite {
-            field: "inverse mass",
-            value: inv_mass,
-        }
-        .into());
-    }
-    if !(mass.local_center_of_mass().is_finite()
-        && mass.local_inertia().is_finite()
-        && mass.local_inv_inertia().is_finite())
-    {
+    mass.validated()?;
+    if !mass.local_inv_inertia().is_finite() {
         return Err(DynamicsError::InvalidInertia {
             field: "inertia",
             value: mass.local_inertia(),

@@ -180,7 +180,16 @@ pub enum Error {
     /// The world cannot hold more colliders (2³² − 1).
     #[error("the world is full: no more colliders can be inserted")]
     Full,
-    /// A snapshot could not be restored.
+    /// A snapshot could not be restored (another format version, an inconsistent table).
     #[error("snapshot cannot be restored: {0}")]
     BadSnapshot(String),
+    /// A snapshot held a value its constructors would have refused, or a handle that resolves to nothing in
+    /// it (a collider on a body that does not exist): `item` says where (`collider 2`), `source` what.
+    #[error("snapshot cannot be restored: {item}: {source}")]
+    InvalidSnapshot {
+        /// Where in the snapshot.
+        item: String,
+        /// The error its constructor, setter or handle lookup would have returned.
+        source: Box<Error>,
+    },
 }

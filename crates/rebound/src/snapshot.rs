@@ -11,8 +11,9 @@
 
 use crate::{Collider, ColliderDesc, ColliderHandle, ColliderSet, Error, PhysicsWorld};
 use rebound_dynamics::MassProperties;
+use rebound_math::validity::check_non_negative;
 use rebound_world::arena::Arena;
-use rebound_world::{BodyHandle, JointHandle, WorldSnapshot};
+use rebound_world::{BodyHandle, JointHandle, WorldError, WorldSnapshot};
 use serde::{Deserialize, Serialize};
 
 const SNAPSHOT_VERSION: u32 = 1;
@@ -54,14 +55,54 @@ impl PhysicsWorld {
     /// snapshot resolve again; pending events are cleared; parry shapes are rebuilt from the descriptions.
     ///
     /// # Errors
-    /// [`Error::BadSnapshot`] for a snapshot of another format version, with inconsistent handle tables or
-    /// invalid colliders, or that the world refuses; the world is unchanged.
+    /// [`Error::BadSnapshot`] for a snapshot of another format version or with inconsistent handle tables;
+    /// [`Error::InvalidSnapshot`] naming the first invalid item (a collider's shape or material, a collider,
+    /// mass, joint or sensor pair that refers to nothing in the snapshot) and the field and value;
+    /// [`Error::World`] with the world's [`WorldError::InvalidSnapshot`] for its own part. The whole snapshot
+    /// is refused and the world is unchanged.
     pub fn restore(&mut self, snapshot: &PhysicsSnapshot) -> Result<(), Error> {
         snapshot.restore_into(self)
     }
 }
 
 impl PhysicsSnapshot {
+    /// Checks that every handle the facade's part holds resolves within the snapshot: each collider's body,
+    /// each body with its own mass, each joint without contacts, each sensor pair's colliders.
+    fn check_references(&self) -> Result<(), Error> {
+        let invalid = |item: String, source: Error| Error::InvalidSnapshot {
+            item,
+            source: Box::new(source),
+        };
+        let bodies = self.world.bodies();
+        for (index, record) in self.colliders.iter() {
+            if !bodies.contains(record.body) {
+                let item = format!("collider {}", index.index);
+                return Err(invalid(item, WorldError::StaleBody(record.body).into()));
+            }
+        }
+        for &(body, _) in &self.own_mass {
+            if !bodies.contains(body) {
+                let item = "own mass properties".to_owned();
+                return Err(invalid(item, WorldError::StaleBody(body).into()));
+            }
+        }
+        for &joint in &self.joints_without_contacts {
+            if !self.world.contains_joint(joint) {
+                let item = "joints without contacts".to_owned();
+                return Err(invalid(item, WorldError::StaleJoint(joint).into()));
+            }
+        }
+        for &(a, b) in &self.sensor_overlaps {
+            for collider in [a, b] {
+                if !self.colliders.contains(collider.0) {
+                    let item = "sensor overlaps".to_owned();
+                    return Err(invalid(item, Error::StaleCollider(collider)));
+                }
+            }
+        }
+        Ok(())
+    }
+
     pub(crate) fn capture(world: &PhysicsWorld) -> Self {
         let colliders = world
             .world
@@ -107,21 +148,29 @@ impl PhysicsSnapshot {
                 "the collider table is inconsistent".into(),
             ));
         }
-        if !(self.accumulator.is_finite() && self.accumulator >= 0.0) {
-            return Err(Error::BadSnapshot(format!(
-                "the advance accumulator is {}",
-                self.accumulator
-            )));
-        }
+        self.check_references()?;
+        let invalid = |item: String, source: Error| Error::InvalidSnapshot {
+            item,
+            source: Box::new(source),
+        };
+        let accumulator = check_non_negative("accumulator", self.accumulator);
+        accumulator.map_err(|e| invalid("world".into(), e.into()))?;
         // Build every parry shape first: nothing changes unless all of them are valid.
+        // `try_map` visits the colliders in slot order, as `iter` does.
+        let slots: Vec<u32> = self.colliders.iter().map(|(i, _)| i.index).collect();
+        let mut visited = 0;
         let arena: Arena<Collider> = self
             .colliders
-            .try_map(|record| Collider::new(record.desc.clone(), record.body))
-            .map_err(|e| Error::BadSnapshot(format!("a collider is invalid: {e}")))?;
-        target
-            .world
-            .restore(&self.world)
-            .map_err(|e| Error::BadSnapshot(e.to_string()))?;
+            .try_map(|record| {
+                visited += 1;
+                Collider::new(record.desc.clone(), record.body)
+            })
+            .map_err(|e| {
+                let slot = slots.get(visited - 1).copied().unwrap_or_default();
+                invalid(format!("collider {slot}"), e)
+            })?;
+        // The world checks its own part, and changes nothing unless all of it is valid; after it nothing fails.
+        target.world.restore(&self.world)?;
 
         let backend = target.world.backend_mut();
         backend.colliders = ColliderSet::from_arena(arena);

@@ -1,6 +1,7 @@
 //! Bad component values are typed errors, not panics, and the world keeps what it had: a NaN position, a
 //! negative radius, a joint naming an entity without a body, a NaN velocity edit, a non-unit rotation.
-//! The world is paused while the bad edits arrive, so "unchanged" is checked with the state digest.
+//! Settings past their upper bounds are refused too. The world is paused while the bad edits arrive, so
+//! "unchanged" is checked with the state digest.
 
 use crate::support::{app, physics, take_errors};
 use bevy_transform::components::Transform;
@@ -119,4 +120,34 @@ fn refused_values_are_reported_and_change_nothing() {
         "{errors:?}"
     );
     assert_eq!(*physics(&app).world().settings(), before);
+
+    // So are counts and rates past their upper bounds, which would make one step never return.
+    let mut joints = before.joints;
+    joints.solve_iterations = u32::MAX;
+    for world in [
+        WorldSettings {
+            substep_count: u32::MAX,
+            ..before
+        },
+        WorldSettings { joints, ..before },
+        WorldSettings {
+            fixed_dt: 1e-30,
+            max_steps_per_advance: u32::MAX,
+            ..before
+        },
+    ] {
+        app.world_mut().resource_mut::<PhysicsSettings>().world = world;
+        app.update();
+        let errors = take_errors(&mut app);
+        assert!(
+            matches!(errors.as_slice(), [PhysicsError::Settings(_)]),
+            "{errors:?}"
+        );
+        assert_eq!(*physics(&app).world().settings(), before);
+    }
+    assert_eq!(
+        physics(&app).state_digest(),
+        digest,
+        "the world is unchanged"
+    );
 }

@@ -13,7 +13,8 @@ impl PhysicsWorld {
     /// Wakes both.
     ///
     /// # Errors
-    /// A stale handle, or the same body twice. Nothing changes on error.
+    /// An invalid joint ([`Joint::validated`]), a stale handle, or the same body twice. Nothing changes on
+    /// error.
     pub fn insert_joint(
         &mut self,
         joint: impl Into<Joint>,
@@ -27,7 +28,7 @@ impl PhysicsWorld {
     /// body.
     ///
     /// # Errors
-    /// A stale handle.
+    /// An invalid joint ([`Joint::validated`]) or a stale handle. Nothing changes on error.
     pub fn insert_world_joint(
         &mut self,
         joint: impl Into<Joint>,
