@@ -239,7 +239,7 @@ impl Tracker {
         frame.events.clear();
         frame
             .events
-            .extend(world.events().iter().map(|e| self.event(e)));
+            .extend(world.events().iter().filter_map(|e| self.event(e)));
         frame.diagnostics = diagnostics(world, springs, &frame.joints, &frame.contacts);
     }
 
@@ -283,10 +283,11 @@ impl Tracker {
         })
     }
 
-    /// An engine event with handles as indices.
-    fn event(&self, event: &Event) -> RecordedEvent {
+    /// An engine event with handles as indices; `None` for a quarantine, which the format does not record
+    /// (a quarantined body shows in the frames as a body at rest).
+    fn event(&self, event: &Event) -> Option<RecordedEvent> {
         let collider = |h: ColliderHandle| self.collider_index.get(h.into_raw_parts());
-        match *event {
+        Some(match *event {
             Event::ContactBegan {
                 body_a,
                 body_b,
@@ -323,7 +324,8 @@ impl Tracker {
                 sensor: collider(sensor),
                 collider: collider(c),
             },
-        }
+            Event::BodyQuarantined { .. } => return None,
+        })
     }
 }
 

@@ -47,7 +47,7 @@ pub(crate) struct Solver {
 
 /// Stage *prepare*, part 1: the dense solver arrays. Awake moving bodies in handle order get indices
 /// first; fixed bodies are added when a contact or joint needs them; the world anchor (a fixed body at the
-/// origin) last, if a world joint exists.
+/// origin) last, if a world joint exists. Quarantined bodies get none, so their joints are skipped.
 pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
     s.solver_index.clear();
     s.solver_index.resize(bodies.slot_count(), NO_INDEX);
@@ -56,7 +56,7 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
     s.params.clear();
     for (index, entry) in bodies.arena.iter() {
         let body = &entry.body;
-        if body.is_sleeping() || body.body_type() == BodyType::Fixed {
+        if body.is_sleeping() || body.body_type() == BodyType::Fixed || entry.quarantined {
             continue;
         }
         s.solver_index[index.index as usize] = s.states.len() as u32;

@@ -31,6 +31,9 @@ pub enum StepSkipped {
     NonPositiveDt(f32),
     /// `dt` was NaN or infinite: nothing moves.
     NonFiniteDt(f32),
+    /// `dt` was so small that the inverse of the substep length, squared, overflows `f32` (below about
+    /// 10⁻¹⁹ s): the solver's softness and bias terms would not be finite, so nothing moves.
+    DtTooSmall(f32),
 }
 
 /// The outcome of [`crate::World::step`].
@@ -55,6 +58,12 @@ pub struct StepReport {
     /// Manifolds the backend reported that could not be used (a stale handle, a body against itself, a
     /// non-finite normal or separation). Should be 0; anything else is a backend bug.
     pub rejected_contact_count: usize,
+    /// Bodies quarantined this step (see [`crate::Event::BodyQuarantined`]).
+    pub quarantined_body_count: usize,
+    /// Candidate pairs the collision backend left out because of [`crate::StepLimits::max_candidate_pairs`].
+    pub capped_pair_count: usize,
+    /// Manifolds left out because of [`crate::StepLimits::max_contact_points`].
+    pub capped_manifold_count: usize,
     /// Phase timings.
     pub profile: Profile,
 }

@@ -2,6 +2,7 @@
 //! the step (the step context) and by the sleep stage.
 
 use crate::WorldError;
+use crate::limits::StepLimits;
 use rebound_constraints::JointSettings;
 use rebound_dynamics::SolverSettings;
 use rebound_math::Vec3;
@@ -48,6 +49,9 @@ pub struct WorldSettings {
     /// hanging chains. Default: [`JointSettings::default`] (60 Hz, ζ = 2, one solve and one relax pass,
     /// tethers on).
     pub joints: JointSettings,
+    /// The physical bounds beyond which a body is quarantined and the caps on a step's work. Default:
+    /// [`StepLimits::default`] (10⁴ m/s, 10⁴ rad/s, 10⁶ m; 2¹⁸ candidate pairs, 2²⁰ contact points).
+    pub limits: StepLimits,
 }
 
 impl Default for WorldSettings {
@@ -69,6 +73,7 @@ impl Default for WorldSettings {
             fixed_dt: 1.0 / 60.0,
             max_steps_per_advance: 8,
             joints: JointSettings::default(),
+            limits: StepLimits::default(),
         }
     }
 }
@@ -104,6 +109,7 @@ impl WorldSettings {
             });
         }
         self.joints.validated()?;
+        self.limits.validate()?;
         Ok(())
     }
 
