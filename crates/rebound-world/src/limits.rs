@@ -33,10 +33,11 @@ pub struct StepLimits {
     pub max_angular_speed: f32,
     /// The farthest a body's position may be from the origin along any axis (m). Default: 10⁶ m.
     pub max_position: f32,
-    /// The most candidate pairs the broad phase hands the narrow phase in one step. Default: 262,144
-    /// (2¹⁸; the 4,096-ball peer scene has about 20,000).
+    /// The most candidate pairs the broad phase hands the narrow phase in one step. Default: 131,072
+    /// (2¹⁷; the 4,096-ball peer scene has about 20,000, a pile of 16,384 balls about 100,000).
     pub max_candidate_pairs: u32,
-    /// The most contact points the solver receives in one step. Default: 1,048,576 (2²⁰).
+    /// The most contact points the solver receives in one step. Default: 524,288 (2¹⁹: four points for
+    /// each of the most candidate pairs).
     pub max_contact_points: u32,
 }
 
@@ -46,8 +47,8 @@ impl Default for StepLimits {
             max_speed: 1.0e4,
             max_angular_speed: 1.0e4,
             max_position: 1.0e6,
-            max_candidate_pairs: 1 << 18,
-            max_contact_points: 1 << 20,
+            max_candidate_pairs: 1 << 17,
+            max_contact_points: 1 << 19,
         }
     }
 }

@@ -50,7 +50,7 @@ pub struct WorldSettings {
     /// tethers on).
     pub joints: JointSettings,
     /// The physical bounds beyond which a body is quarantined and the caps on a step's work. Default:
-    /// [`StepLimits::default`] (10⁴ m/s, 10⁴ rad/s, 10⁶ m; 2¹⁸ candidate pairs, 2²⁰ contact points).
+    /// [`StepLimits::default`] (10⁴ m/s, 10⁴ rad/s, 10⁶ m; 2¹⁷ candidate pairs, 2¹⁹ contact points).
     pub limits: StepLimits,
 }
 

@@ -75,6 +75,7 @@ impl CollisionBackend for ParryBackend {
             &self.disabled_pairs,
             settings.speculative_margin,
             dt,
+            settings.limits.max_candidate_pairs as usize,
         );
         let broad_phase = &self.broad_phase;
         self.narrow_phase.collide(
@@ -87,5 +88,9 @@ impl CollisionBackend for ParryBackend {
             previous,
             out,
         );
+    }
+
+    fn capped_pair_count(&self) -> usize {
+        self.broad_phase.capped_pair_count()
     }
 }

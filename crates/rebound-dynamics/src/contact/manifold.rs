@@ -47,6 +47,11 @@ pub struct Contact {
     /// and spinning) is resisted by a torque of at most `rolling_friction × normal force`. Default: 0 (ideal
     /// rolling: a ball set rolling on flat ground rolls forever, as in rapier and Box2D's default).
     pub rolling_friction: f32,
+    /// The fastest this manifold pushes its overlapping bodies apart (m/s); the step's
+    /// `max_push_out_speed` if that is lower. A body in `k` overlaps gets `max_push_out_speed / k` on each
+    /// from the world, so that it leaves them all at no more than `max_push_out_speed` together. Default: ∞
+    /// (the step's).
+    pub push_out_speed: f32,
     /// The points; only the first `point_count` are used.
     pub points: [ContactPoint; MAX_CONTACT_POINTS],
     /// How many points are in use (0 to [`MAX_CONTACT_POINTS`]).
@@ -70,6 +75,7 @@ impl Contact {
             friction,
             restitution,
             rolling_friction: 0.0,
+            push_out_speed: f32::INFINITY,
             points: [ContactPoint::default(); MAX_CONTACT_POINTS],
             point_count: 0,
         }
