@@ -113,9 +113,8 @@ fn random_joint(rng: &mut TestRng, world: &PhysicsWorld, a: BodyHandle, b: BodyH
     let mid = 0.5 * (pa.position + pb.position);
     let length = (pa.position.distance(pb.position) * range(rng, 0.8, 1.2)).max(0.1);
     let at_mid = |kind: JointKind| Joint::from_world(kind, pa, pb, mid, mid, Quat::IDENTITY);
-    let at_ends = |kind: JointKind| {
-        Joint::from_world(kind, pa, pb, pa.position, pb.position, Quat::IDENTITY)
-    };
+    let at_ends =
+        |kind: JointKind| Joint::from_world(kind, pa, pb, pa.position, pb.position, Quat::IDENTITY);
     match rng.random_range(0..8u32) {
         0 => at_mid(BallJoint::new().into()),
         1 => at_mid(HingeJoint::new().with_limits(-1.0, 1.0).unwrap().into()),
@@ -270,7 +269,11 @@ impl Soak {
             4 if n > 0 => {
                 let i = pick(&mut self.rng);
                 let to = point(&mut self.rng, 8.0, (1.0, 5.0));
-                let _ = self.world.body_mut(self.bodies[i]).unwrap().set_position(to);
+                let _ = self
+                    .world
+                    .body_mut(self.bodies[i])
+                    .unwrap()
+                    .set_position(to);
             }
             5 if n > 1 => {
                 let (i, j) = (pick(&mut self.rng), pick(&mut self.rng));
@@ -298,8 +301,10 @@ impl Soak {
                     .filter(|(_, c)| c.body() == self.bodies[i])
                     .map(|(h, _)| h)
                     .collect();
-                let (friction, density) =
-                    (range(&mut self.rng, 0.0, 1.2), range(&mut self.rng, 0.2, 3.0));
+                let (friction, density) = (
+                    range(&mut self.rng, 0.0, 1.2),
+                    range(&mut self.rng, 0.2, 3.0),
+                );
                 let enabled = self.rng.random_bool(0.8);
                 for c in colliders {
                     self.world.set_collider_friction(c, friction).unwrap();
@@ -327,8 +332,11 @@ impl Soak {
     /// One step: the paddle's target, an edit now and then, bodies that left the scene removed.
     fn step(&mut self) {
         let t = self.figures.steps as f32 * DT;
-        let target = Pose::from_position(Vec3::new(3.0 * (0.5 * t).cos(), 0.4, 3.0 * (0.5 * t).sin()));
-        self.world.set_kinematic_target(self.paddle, target).unwrap();
+        let target =
+            Pose::from_position(Vec3::new(3.0 * (0.5 * t).cos(), 0.4, 3.0 * (0.5 * t).sin()));
+        self.world
+            .set_kinematic_target(self.paddle, target)
+            .unwrap();
         if self.rng.random_bool(0.05) {
             self.edit();
         }
@@ -408,7 +416,10 @@ fn assert_finite(world: &PhysicsWorld, step: u64) {
     }
     for (handle, _) in world.world().joints() {
         let state = world.joint_state(handle).unwrap();
-        assert!(joint_state_is_finite(state), "step {step}: {handle:?} {state:?}");
+        assert!(
+            joint_state_is_finite(state),
+            "step {step}: {handle:?} {state:?}"
+        );
     }
 }
 
@@ -417,7 +428,7 @@ fn assert_finite(world: &PhysicsWorld, step: u64) {
 fn soak(seed: u64, steps: u64) -> (Figures, Vec<(u64, QuarantineReason)>) {
     let mut soak = Soak::new(seed);
     while soak.figures.steps < steps {
-        if soak.figures.steps % 500 == 0 {
+        if soak.figures.steps.is_multiple_of(500) {
             let snapshot = soak.world.snapshot();
             let quarantines = soak.quarantines.clone();
             let (rng, bodies, joints, figures) = (
@@ -443,7 +454,12 @@ fn soak(seed: u64, steps: u64) -> (Figures, Vec<(u64, QuarantineReason)>) {
             for _ in 0..100 {
                 replay.step();
             }
-            assert_eq!(replay.world.state_digest(), digest, "replay from step {}", figures.steps);
+            assert_eq!(
+                replay.world.state_digest(),
+                digest,
+                "replay from step {}",
+                figures.steps
+            );
             assert_eq!(replay.figures, after);
             assert_eq!(replay.quarantines, soak.quarantines);
         } else {
@@ -460,7 +476,10 @@ fn ten_thousand_steps_of_a_mixed_scene_under_random_edits_stay_finite_and_replay
     // The edits did happen: bodies came and went, joints were added, snapshots restored.
     assert!(figures.edits > 300, "{figures:?}");
     assert!(figures.spawned > 24 && figures.removed > 0 && figures.joints_added > 0);
-    assert!(figures.restores > 0 && figures.contacts_seen > 0, "{figures:?}");
+    assert!(
+        figures.restores > 0 && figures.contacts_seen > 0,
+        "{figures:?}"
+    );
     // Each quarantine was reported once, by event and count.
     assert_eq!(quarantines.len() as u64, figures.quarantined);
 }
