@@ -116,7 +116,13 @@ impl Pass<'_> {
                 }
             }
         } else {
+            // Too many to try one by one, or a pass that never came clean: all of them, and what the last
+            // pass still found.
+            for &(body, _) in &found {
+                quarantine::set_excluded(state, body, true);
+            }
             guilty.extend_from_slice(suspects);
+            guilty.append(&mut found);
         }
         quarantine::quarantine(state, &guilty, events);
         self.collision.drop_quarantined(&state.bodies);
