@@ -17,6 +17,7 @@
 )]
 
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 use rebound::prelude::*;
 
 /// Mostly ordinary values, sometimes the ones that break things.
@@ -611,13 +612,21 @@ fn run(ops: &[Op]) -> u64 {
     world.step_count()
 }
 
-/// How many random sequences to run: `API_FUZZ_CASES`, else 512.
+/// How many random sequences to run: `API_FUZZ_CASES`, else 512; from a fixed seed, so that CI runs the
+/// same sequences every time (`PROPTEST_RNG_SEED` picks another).
 fn config() -> ProptestConfig {
     let cases = std::env::var("API_FUZZ_CASES")
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(512);
-    ProptestConfig::with_cases(cases)
+    let seed = std::env::var("PROPTEST_RNG_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(30);
+    ProptestConfig {
+        rng_seed: RngSeed::Fixed(seed),
+        ..ProptestConfig::with_cases(cases)
+    }
 }
 
 proptest! {
