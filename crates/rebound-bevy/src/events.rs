@@ -49,6 +49,11 @@ pub enum PhysicsEvent {
         /// The body entity.
         entity: Entity,
     },
+    /// A body left the engine's bounds (`rebound::StepLimits`) and was taken out of the steps.
+    BodyQuarantined {
+        /// The body entity.
+        entity: Entity,
+    },
     /// A joint exceeded its break force or torque and is now disabled.
     JointBroken {
         /// The entity holding the [`crate::PhysicsJoint`].

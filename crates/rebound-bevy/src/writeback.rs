@@ -135,6 +135,9 @@ impl Physics {
             Event::BodyWoke { body: handle } => PhysicsEvent::BodyWoke {
                 entity: body(handle)?,
             },
+            Event::BodyQuarantined { body: handle, .. } => PhysicsEvent::BodyQuarantined {
+                entity: body(handle)?,
+            },
             Event::SensorEntered {
                 sensor,
                 collider: other,

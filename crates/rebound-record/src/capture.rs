@@ -271,8 +271,8 @@ impl Tracker {
         })
     }
 
-    /// An engine event with handles as indices; `None` for contact force events, which recordings do not
-    /// hold.
+    /// An engine event with handles as indices; `None` for contact force events and quarantines, which the
+    /// format does not record (a quarantined body shows in the frames as a body at rest).
     fn event(&self, event: &Event) -> Option<RecordedEvent> {
         let collider = |h: ColliderHandle| self.collider_index.get(h.into_raw_parts());
         Some(match *event {
@@ -313,6 +313,7 @@ impl Tracker {
                 sensor: collider(sensor),
                 collider: collider(c),
             },
+            Event::BodyQuarantined { .. } => return None,
         })
     }
 }

@@ -7,7 +7,7 @@
 
 use crate::{RunSettings, Scene, SceneBody, SceneCamera, SceneJoint};
 use rebound::prelude::*;
-use rebound::{Integrator, JointSettings};
+use rebound::{Integrator, JointSettings, StepLimits};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -181,6 +181,33 @@ fn world_settings(s: &WorldSettings) -> String {
     if joints != "()" {
         f.raw("joints", &joints);
     }
+    let limits = step_limits(&s.limits);
+    if limits != "()" {
+        f.raw("limits", &limits);
+    }
+    f.finish()
+}
+
+fn step_limits(s: &StepLimits) -> String {
+    let d = StepLimits::default();
+    let mut f = Fields::new();
+    f.differ("max_speed", &s.max_speed, &d.max_speed);
+    f.differ(
+        "max_angular_speed",
+        &s.max_angular_speed,
+        &d.max_angular_speed,
+    );
+    f.differ("max_position", &s.max_position, &d.max_position);
+    f.differ(
+        "max_candidate_pairs",
+        &s.max_candidate_pairs,
+        &d.max_candidate_pairs,
+    );
+    f.differ(
+        "max_contact_points",
+        &s.max_contact_points,
+        &d.max_contact_points,
+    );
     f.finish()
 }
 

@@ -132,6 +132,11 @@ fn full_scene() -> Result<Scene, Error> {
     settings.joints.relax_iterations = 3;
     settings.joints.tethers = false;
     settings.joints.direct_chains = false;
+    settings.limits.max_speed = 500.0;
+    settings.limits.max_angular_speed = 300.0;
+    settings.limits.max_position = 2.0e4;
+    settings.limits.max_candidate_pairs = 1_000;
+    settings.limits.max_contact_points = 3_000;
     let body = BodyDesc {
         body_type: BodyType::Kinematic,
         position: Vec3::new(1.0, 2.0, -3.0),

@@ -21,6 +21,9 @@ pub(crate) struct BodyEntry {
     pub(crate) island: u32,
     /// Where a kinematic body should be at the end of the next step.
     pub(crate) kinematic_target: Option<Pose>,
+    /// Whether the body is quarantined: out of every step until released (see `quarantine.rs`).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub(crate) quarantined: bool,
 }
 
 /// The bodies of a world. Iteration is in handle-slot order, which is deterministic.
@@ -41,6 +44,13 @@ impl BodySet {
     #[must_use]
     pub fn contains(&self, handle: BodyHandle) -> bool {
         self.arena.contains(handle.0)
+    }
+
+    /// Whether the body behind `handle` is quarantined (taken out of every step after its state left the
+    /// bounds of [`crate::StepLimits`]); `false` for a stale handle. A collision backend skips such bodies.
+    #[must_use]
+    pub fn is_quarantined(&self, handle: BodyHandle) -> bool {
+        self.arena.get(handle.0).is_some_and(|e| e.quarantined)
     }
 
     /// The number of bodies.

@@ -32,13 +32,14 @@ pub(crate) struct Collision {
 
 /// The backend's manifolds for the current poses into `c.manifolds`, sorted, validated and warm-started
 /// (impulses, and the lever arms each point's solver contact will use), with their approach speeds
-/// (`c.approach_speeds`). Returns how many manifolds were unusable and dropped.
+/// (`c.approach_speeds`); manifolds with a quarantined body are dropped, and those past the cap on contact
+/// points. Returns how many were dropped, by cause.
 pub(crate) fn collide<B: CollisionBackend>(
     backend: &mut B,
     state: &WorldState,
     dt: f32,
     c: &mut Collision,
-) -> usize {
+) -> Dropped {
     let mut manifolds = core::mem::take(&mut c.manifolds);
     manifolds.clear();
     backend.collide(
@@ -92,14 +93,29 @@ pub(crate) fn collide<B: CollisionBackend>(
     };
     let mut previous = state.manifolds.iter().peekable();
     let mut kept = 0;
+    let mut counts = Dropped::default();
+    let (mut points, max_points) = (0, state.settings.limits.max_contact_points as usize);
     for index in 0..manifolds.len() {
         let (body_a, body_b) = (manifolds[index].body_a, manifolds[index].body_b);
-        let (Some(body_a), Some(body_b)) = (bodies.get(body_a), bodies.get(body_b)) else {
+        let (Some(entry_a), Some(entry_b)) = (bodies.entry(body_a), bodies.entry(body_b)) else {
             continue;
         };
+        // A quarantined body is in no step (a backend may not know it); not a fault of the backend.
+        if entry_a.quarantined || entry_b.quarantined {
+            counts.quarantined += 1;
+            continue;
+        }
         if !is_usable(&manifolds[index]) {
             continue;
         }
+        // The cap on contact points: whole manifolds, in order, until the next would exceed it.
+        let point_count = manifolds[index].point_count;
+        if counts.capped > 0 || points + point_count > max_points {
+            counts.capped += 1;
+            continue;
+        }
+        points += point_count;
+        let (body_a, body_b) = (&entry_a.body, &entry_b.body);
         if kept != index {
             manifolds.swap(kept, index);
         }
@@ -145,13 +161,43 @@ pub(crate) fn collide<B: CollisionBackend>(
             }
         }
     }
-    let rejected = manifolds.len() - kept;
+    counts.rejected = manifolds.len() - kept - counts.quarantined - counts.capped;
     manifolds.truncate(kept);
     c.rotations = rotations;
     c.approach_speeds = speeds;
     c.pushed = pushed;
     c.manifolds = manifolds;
-    rejected
+    counts
+}
+
+/// The backend's manifolds *collide* left out, by cause.
+#[derive(Debug, Default, Clone, Copy)]
+pub(crate) struct Dropped {
+    /// Unusable: a stale handle, a body against itself, a non-finite or non-unit normal, a non-finite point.
+    pub(crate) rejected: usize,
+    /// With a quarantined body.
+    pub(crate) quarantined: usize,
+    /// Beyond the cap on contact points ([`crate::StepLimits::max_contact_points`]).
+    pub(crate) capped: usize,
+}
+
+impl Collision {
+    /// Drops this step's manifolds with a body quarantined after the solver passes (and their approach
+    /// speeds), before the passes run again.
+    pub(crate) fn drop_quarantined(&mut self, bodies: &BodySet) {
+        let mut kept = 0;
+        for index in 0..self.manifolds.len() {
+            let m = &self.manifolds[index];
+            if bodies.is_quarantined(m.body_a) || bodies.is_quarantined(m.body_b) {
+                continue;
+            }
+            self.manifolds.swap(kept, index);
+            self.approach_speeds.swap(kept, index);
+            kept += 1;
+        }
+        self.manifolds.truncate(kept);
+        self.approach_speeds.truncate(kept);
+    }
 }
 
 /// Whether a body moves this step and so has its contacts found by the backend: awake and not fixed.

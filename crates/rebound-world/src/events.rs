@@ -2,11 +2,12 @@
 //! begin and end come from this step's touching pairs against last step's; broken joints (stage *store*)
 //! and bodies falling asleep (stage *islands and sleep*) are already in the list; the bodies woken since
 //! the last events stage close it. Produced in a deterministic order: contact events in body-pair order,
-//! then broken joints, then contact forces (manifold order, pushed after write-back), then sleep changes,
-//! each sorted by handle.
+//! then quarantined bodies, broken joints, then contact forces (manifold order, pushed after write-back),
+//! then sleep changes, each sorted by handle.
 
 use crate::handles::{BodyHandle, JointHandle};
 use crate::prepare::Solver;
+use crate::quarantine::QuarantineReason;
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
 use rebound_math::Vec3;
@@ -48,6 +49,14 @@ pub enum Event {
     BodyWoke {
         /// The body.
         body: BodyHandle,
+    },
+    /// A body left the bounds of [`crate::StepLimits`] (or its solver result was not finite) and was taken
+    /// out of the steps until [`crate::World::release_quarantine`]; see [`crate::QuarantineReason`].
+    BodyQuarantined {
+        /// The body.
+        body: BodyHandle,
+        /// What was out of bounds.
+        reason: QuarantineReason,
     },
 }
 

@@ -8,8 +8,10 @@ mod events;
 mod handles;
 mod islands;
 mod kinematic;
+mod limits;
 mod manifold;
 mod prepare;
+mod quarantine;
 mod report;
 mod scratch;
 mod settings;
@@ -35,10 +37,12 @@ pub use body_set::BodySet;
 pub use error::WorldError;
 pub use events::{ContactForce, Event};
 pub use handles::{BodyHandle, JointHandle};
+pub use limits::{MAX_BOUND, StepLimits};
 pub use manifold::{
     CollisionBackend, ContactBasis, ContactManifold, LEVER_ARM_RELATIVE_TOLERANCE,
     LEVER_ARM_TOLERANCE, MAX_MANIFOLD_POINTS, ManifoldPoint, NoCollision,
 };
+pub use quarantine::QuarantineReason;
 pub use report::{AdvanceReport, Profile, StepReport, StepSkipped};
 pub use settings::{MAX_STEPS_PER_ADVANCE, MAX_SUBSTEPS, MIN_STEP_DT, WorldSettings};
 pub use world::{RemovedBody, World, WorldSnapshot};

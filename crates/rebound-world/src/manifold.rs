@@ -237,6 +237,9 @@ pub trait CollisionBackend {
     ///
     /// `dt` is the step about to be taken (s); a backend adds `|v|·dt` to
     /// [`WorldSettings::speculative_margin`] so fast bodies get their contacts before they arrive.
+    ///
+    /// A backend may skip the bodies [`BodySet::is_quarantined`] names (the world drops their manifolds
+    /// anyway) and should keep at most [`crate::StepLimits::max_candidate_pairs`] candidate pairs.
     fn collide(
         &mut self,
         bodies: &BodySet,
@@ -245,6 +248,13 @@ pub trait CollisionBackend {
         previous: &[ContactManifold],
         out: &mut Vec<ContactManifold>,
     );
+
+    /// How many candidate pairs the last [`CollisionBackend::collide`] left out because of
+    /// [`crate::StepLimits::max_candidate_pairs`] (reported in [`crate::StepReport::capped_pair_count`]).
+    /// Default: 0, for a backend without such a cap.
+    fn capped_pair_count(&self) -> usize {
+        0
+    }
 }
 
 /// A backend that finds nothing: for worlds of joints only.

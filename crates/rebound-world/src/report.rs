@@ -62,6 +62,12 @@ pub struct StepReport {
     /// left its pair or manifold as if no hook were set (`rebound::ContactHooks`). 0 in a world without
     /// hooks.
     pub hook_failure_count: usize,
+    /// Bodies quarantined this step (see [`crate::Event::BodyQuarantined`]).
+    pub quarantined_body_count: usize,
+    /// Candidate pairs the collision backend left out because of [`crate::StepLimits::max_candidate_pairs`].
+    pub capped_pair_count: usize,
+    /// Manifolds left out because of [`crate::StepLimits::max_contact_points`].
+    pub capped_manifold_count: usize,
     /// Phase timings.
     pub profile: Profile,
 }

@@ -4,8 +4,10 @@
 
 use crate::collide::Collision;
 use crate::events::EventBuffers;
+use crate::handles::BodyHandle;
 use crate::islands::SleepBuffers;
 use crate::prepare::Solver;
+use crate::quarantine::QuarantineReason;
 
 /// Buffers reused from step to step (no allocation in a steady-state step). Not part of the state.
 #[derive(Debug, Default)]
@@ -18,4 +20,6 @@ pub(crate) struct Scratch {
     pub(crate) sleep: SleepBuffers,
     /// The buffers of stage *events*.
     pub(crate) events: EventBuffers,
+    /// Bodies the solver's result put out of bounds (the quarantine's suspects).
+    pub(crate) suspects: Vec<(BodyHandle, QuarantineReason)>,
 }

@@ -2,6 +2,7 @@
 //! the step (the step context) and by the sleep stage.
 
 use crate::WorldError;
+use crate::limits::StepLimits;
 use rebound_constraints::JointSettings;
 use rebound_dynamics::SolverSettings;
 use rebound_math::Vec3;
@@ -52,6 +53,9 @@ pub struct WorldSettings {
     /// hanging chains. Default: [`JointSettings::default`] (60 Hz, ζ = 2, one solve and one relax pass,
     /// tethers on).
     pub joints: JointSettings,
+    /// The physical bounds beyond which a body is quarantined and the caps on a step's work. Default:
+    /// [`StepLimits::default`] (10⁴ m/s, 10⁴ rad/s, 10⁶ m; 2¹⁷ candidate pairs, 2¹⁹ contact points).
+    pub limits: StepLimits,
 }
 
 /// The most substeps per step ([`WorldSettings::substep_count`]): 64. At 60 Hz that is a substep of 1/3,840 s,
@@ -104,6 +108,7 @@ impl Default for WorldSettings {
             fixed_dt: 1.0 / 60.0,
             max_steps_per_advance: 8,
             joints: JointSettings::default(),
+            limits: StepLimits::default(),
         }
     }
 }
@@ -144,6 +149,7 @@ impl WorldSettings {
             MAX_STEPS_PER_ADVANCE,
         )?;
         self.joints.validated()?;
+        self.limits.validate()?;
         Ok(())
     }
 

@@ -12,6 +12,7 @@ use crate::prepare::Solver;
 use crate::report::StepReport;
 use crate::state::{JointEntry, WorldState};
 use rebound_constraints::{JointState, JointStates};
+use rebound_math::Vec3;
 
 /// The world's joints as the joint solver writes their states back: joint `i` of the step is the one of
 /// handle `handles[i]`.
@@ -47,8 +48,11 @@ pub(crate) fn store_impulses(
                 return;
             };
             if let Some(point) = manifolds[source].points.get_mut(k) {
-                point.normal_impulse = normal;
-                point.tangent_impulse = tangent;
+                // Never a non-finite impulse into the state (the next step would warm start from it): the
+                // quarantine reruns a step whose bodies went non-finite, so this guards a fault only.
+                let finite = normal.is_finite() && tangent.is_finite();
+                point.normal_impulse = if finite { normal } else { 0.0 };
+                point.tangent_impulse = if finite { tangent } else { Vec3::ZERO };
             }
             pushed[source] |= max > 0.0;
         });
@@ -58,6 +62,17 @@ pub(crate) fn store_impulses(
         handles: &s.joint_handles,
     };
     s.joint_solver.store_impulses_to(&mut stored, &mut s.broken);
+    // Likewise no non-finite joint impulse is kept (checked where it is stored, for the joints of the step).
+    for handle in &s.joint_handles {
+        if let Some(entry) = state.joints.get_mut(handle.0)
+            && !is_finite(&entry.state)
+        {
+            entry.state = JointState {
+                broken: entry.state.broken,
+                ..JointState::default()
+            };
+        }
+    }
     report.broken_joint_count = s.broken.len();
     for &i in &s.broken {
         if let Some(handle) = s.joint_handles.get(i) {
@@ -77,4 +92,21 @@ pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver) {
             let _accepted = params.write_back(state, &mut entry.body);
         }
     }
+}
+
+/// Whether every number of a joint's state is finite.
+fn is_finite(state: &JointState) -> bool {
+    state.linear_impulse.is_finite()
+        && state.angular_impulse.is_finite()
+        && [
+            state.axial_impulse,
+            state.lower_impulse,
+            state.upper_impulse,
+            state.motor_impulse,
+            state.tether_impulse,
+            state.reaction_force,
+            state.reaction_torque,
+        ]
+        .iter()
+        .all(|x| x.is_finite())
 }

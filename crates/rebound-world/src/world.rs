@@ -195,6 +195,7 @@ impl<B: CollisionBackend> World<B> {
             sleep_time: 0.0,
             island: NO_ISLAND,
             kinematic_target: None,
+            quarantined: false,
         };
         let index = self
             .state
@@ -319,6 +320,28 @@ impl<B: CollisionBackend> World<B> {
     #[must_use]
     pub fn has_sleeping_bodies(&self) -> bool {
         !self.state.islands.is_empty()
+    }
+
+    /// Whether the body is quarantined: taken out of every step because its state left the bounds of
+    /// [`crate::StepLimits`] (`None` for a stale handle). See [`crate::Event::BodyQuarantined`].
+    #[must_use]
+    pub fn is_quarantined(&self, handle: BodyHandle) -> Option<bool> {
+        self.state.bodies.entry(handle).map(|e| e.quarantined)
+    }
+
+    /// Puts a quarantined body back into the steps (at rest where it is, unless its state was changed since);
+    /// the next step checks it again. A body that is not quarantined is left as it is.
+    ///
+    /// # Errors
+    /// [`WorldError::StaleBody`].
+    pub fn release_quarantine(&mut self, handle: BodyHandle) -> Result<(), WorldError> {
+        let entry = self
+            .state
+            .bodies
+            .entry_mut(handle)
+            .ok_or(WorldError::StaleBody(handle))?;
+        entry.quarantined = false;
+        Ok(())
     }
 
     /// Whether the body is asleep (`None` for a stale handle).

@@ -91,6 +91,7 @@ impl CollisionBackend for ParryBackend {
             &self.disabled_pairs,
             settings.speculative_margin,
             dt,
+            settings.limits.max_candidate_pairs as usize,
         );
         let broad_phase = &self.broad_phase;
         self.hook_failures = 0;
@@ -106,5 +107,9 @@ impl CollisionBackend for ParryBackend {
             &mut self.hook_failures,
             out,
         );
+    }
+
+    fn capped_pair_count(&self) -> usize {
+        self.broad_phase.capped_pair_count()
     }
 }

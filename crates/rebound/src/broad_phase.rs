@@ -182,6 +182,8 @@ pub(crate) struct BroadPhase {
     any_mover: bool,
     /// Scratch of the pair sort (reused: no allocation per step).
     sort_scratch: Vec<(ColliderHandle, ColliderHandle)>,
+    /// Candidate pairs the last pair search left out because of its cap.
+    capped: usize,
 }
 
 impl core::fmt::Debug for BroadPhase {
@@ -203,8 +205,10 @@ impl BroadPhase {
         disabled_pairs: &BTreeSet<(BodyHandle, BodyHandle)>,
         speculative_margin: f32,
         dt: f32,
+        max_pairs: usize,
     ) {
         self.any_mover = false;
+        self.capped = 0;
         self.candidates.clear();
         let mut changed = 0;
         for (handle, collider) in colliders.iter() {
@@ -283,32 +287,51 @@ impl BroadPhase {
         if self.overlaps_current || changed * KEEP_OVERLAPS_BELOW <= self.bvh.leaf_count() as usize
         {
             if !self.overlaps_current {
-                find_overlaps(
+                // More overlaps than the cap allows pairs: not kept (the traversal below caps them).
+                self.overlaps_current = find_overlaps(
                     &mut self.bvh,
                     &mut self.workspace,
                     colliders,
                     &mut self.overlaps,
                     &mut self.sort_scratch,
+                    max_pairs,
                 );
-                self.overlaps_current = true;
             }
-            self.pairs.extend(
-                self.overlaps
-                    .iter()
-                    .copied()
-                    .filter(|&(h1, h2)| filter.keeps(h1, h2)),
-            );
-            return;
+            if self.overlaps_current {
+                self.pairs.extend(
+                    self.overlaps
+                        .iter()
+                        .copied()
+                        .filter(|&(h1, h2)| filter.keeps(h1, h2)),
+                );
+                return;
+            }
         }
-        let pairs = &mut self.pairs;
+        let (pairs, scratch, capped) = (&mut self.pairs, &mut self.sort_scratch, &mut self.capped);
+        // Once the cap has been reached, a pair not below the highest kept one cannot be kept.
+        let mut highest_kept = None;
         self.bvh
             .traverse_bvtt_single_tree::<false>(&mut self.workspace, &mut |slot1, slot2| {
-                pairs.extend(filter.keeps_leaves(slot1, slot2));
+                if let Some(pair) = filter.keeps_leaves(slot1, slot2) {
+                    if highest_kept.is_some_and(|highest| pair >= highest) {
+                        *capped += 1;
+                        return;
+                    }
+                    pairs.push(pair);
+                    if pairs.len() >= 2 * max_pairs {
+                        *capped += keep_lowest(pairs, scratch, max_pairs);
+                        highest_kept = pairs.last().copied();
+                    }
+                }
             });
         // Sorted by the two slot indices: the same order as the handles' (live colliders have distinct
         // slots, and a handle orders by slot first).
-        radix_sort_pairs(&mut self.pairs, &mut self.sort_scratch);
-        self.pairs.dedup();
+        self.capped += keep_lowest(&mut self.pairs, &mut self.sort_scratch, max_pairs);
+    }
+
+    /// How many candidate pairs the last [`BroadPhase::find_pairs`] left out because of its cap.
+    pub(crate) fn capped_pair_count(&self) -> usize {
+        self.capped
     }
 
     /// Makes every leaf of the tree hold the box of its collider at its body's current pose (end of a step,
@@ -507,19 +530,51 @@ fn leaf_pair(
 /// One traversal of `bvh` against itself: every pair of overlapping leaves into `overlaps` (cleared first),
 /// sorted by the two slot indices — the same order as the handles' (live colliders have distinct slots, and
 /// a handle orders by slot first) — whatever the tree's shape.
+///
+/// Returns `false`, with `overlaps` left incomplete, once they exceed `cap`: a pile that dense is left to the
+/// capped pair search, whose result does not depend on whether overlaps were kept.
 fn find_overlaps(
     bvh: &mut Bvh,
     workspace: &mut BvhWorkspace,
     colliders: &ColliderSet,
     overlaps: &mut Vec<(ColliderHandle, ColliderHandle)>,
     scratch: &mut Vec<(ColliderHandle, ColliderHandle)>,
-) {
+    cap: usize,
+) -> bool {
     overlaps.clear();
+    let mut complete = true;
     bvh.traverse_bvtt_single_tree::<false>(workspace, &mut |slot1, slot2| {
-        overlaps.extend(leaf_pair(colliders, slot1, slot2));
+        if complete {
+            overlaps.extend(leaf_pair(colliders, slot1, slot2));
+            complete = overlaps.len() <= 2 * cap;
+        }
     });
+    if !complete {
+        overlaps.clear();
+        return false;
+    }
     radix_sort_pairs(overlaps, scratch);
     overlaps.dedup();
+    if overlaps.len() > cap {
+        overlaps.clear();
+        return false;
+    }
+    true
+}
+
+/// Sorts and deduplicates `pairs` and keeps the `cap` lowest; returns how many were left out. Called
+/// whenever the pair search has gathered twice the cap, and at its end, it bounds the memory of the search at
+/// `2·cap` pairs and keeps the same pairs whatever order the tree yields them in: the `cap` lowest of all.
+fn keep_lowest(
+    pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
+    scratch: &mut Vec<(ColliderHandle, ColliderHandle)>,
+    cap: usize,
+) -> usize {
+    radix_sort_pairs(pairs, scratch);
+    pairs.dedup();
+    let dropped = pairs.len().saturating_sub(cap);
+    pairs.truncate(cap);
+    dropped
 }
 
 /// Bits per digit of the pair sort, at most: 2,048 buckets, so a pile of 16,384 colliders (28-bit keys) sorts

@@ -4,7 +4,7 @@
 //! (sensor, collider) order.
 
 use crate::ColliderHandle;
-use rebound_world::{BodyHandle, ContactForce, JointHandle};
+use rebound_world::{BodyHandle, ContactForce, JointHandle, QuarantineReason};
 use serde::{Deserialize, Serialize};
 
 /// Something that happened during the last step (or the steps of the last `advance`).
@@ -51,6 +51,14 @@ pub enum Event {
         /// The body.
         body: BodyHandle,
     },
+    /// A body left the bounds of [`rebound_world::StepLimits`] (or its solver result was not finite) and was
+    /// taken out of the steps until [`crate::PhysicsWorld::release_quarantine`].
+    BodyQuarantined {
+        /// The body.
+        body: BodyHandle,
+        /// What was out of bounds.
+        reason: QuarantineReason,
+    },
     /// A collider started overlapping a sensor (at the poses after the step).
     SensorEntered {
         /// The sensor collider.
@@ -88,6 +96,7 @@ impl From<rebound_world::Event> for Event {
             W::JointBroken { joint } => Self::JointBroken { joint },
             W::BodyFellAsleep { body } => Self::BodyFellAsleep { body },
             W::BodyWoke { body } => Self::BodyWoke { body },
+            W::BodyQuarantined { body, reason } => Self::BodyQuarantined { body, reason },
         }
     }
 }

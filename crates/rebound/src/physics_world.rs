@@ -209,6 +209,20 @@ impl PhysicsWorld {
         self.world.is_sleeping(handle)
     }
 
+    /// Whether the body is quarantined (`None` for a stale handle; see [`World::is_quarantined`]).
+    #[must_use]
+    pub fn is_quarantined(&self, handle: BodyHandle) -> Option<bool> {
+        self.world.is_quarantined(handle)
+    }
+
+    /// Puts a quarantined body back into the steps (see [`World::release_quarantine`]).
+    ///
+    /// # Errors
+    /// [`WorldError::StaleBody`].
+    pub fn release_quarantine(&mut self, handle: BodyHandle) -> Result<(), Error> {
+        Ok(self.world.release_quarantine(handle)?)
+    }
+
     // ---- time ----
 
     /// Advances the simulation by `dt` seconds (see [`World::step`]): never fails; a `dt` that is not a

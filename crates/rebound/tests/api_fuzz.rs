@@ -1,6 +1,15 @@
-//! Random sequences of API calls — bodies, colliders of every shape, joints, steps, setters, queries,
-//! snapshots — with random and partly invalid values (NaN, ±∞, zero, negative, huge). After every call:
-//! no panic, and every body's pose and velocities are finite; query results are finite too.
+//! Random sequences of API calls — bodies, colliders of every shape, joints of every kind (motors and
+//! explicit springs included), steps, advances, setters, forces, kinematic targets, mass properties,
+//! settings, quarantine release, queries, snapshots — with random and partly hostile values (NaN, ±∞, zero,
+//! negative, 10³⁰, `f32::MAX`). After every call: no panic; every body's pose and velocities, every contact
+//! impulse and joint state finite; query results finite; a call that returns an error leaves the world's
+//! snapshot (everything a world holds) unchanged; a step or advance returns within a time budget (no hang).
+//!
+//! CI runs 512 cases of up to 80 calls; the long run sets the count:
+//!
+//! ```sh
+//! API_FUZZ_CASES=20000 cargo test --release -p rebound --test api_fuzz
+//! ```
 
 #![allow(
     clippy::unwrap_used,
@@ -8,6 +17,7 @@
 )]
 
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 use rebound::prelude::*;
 
 /// Mostly ordinary values, sometimes the ones that break things.
@@ -20,6 +30,9 @@ fn scalar() -> impl Strategy<Value = f32> {
         1 => Just(0.0f32),
         1 => Just(1.0e30f32),
         1 => Just(-1.0e-30f32),
+        1 => Just(f32::MAX),
+        1 => Just(-f32::MAX),
+        1 => Just(1.0e-38f32),
     ]
 }
 
@@ -124,6 +137,23 @@ enum Op {
     Pick(Vec3, Vec3),
     Snapshot,
     Restore,
+    SetAngularVelocity(usize, Vec3),
+    KinematicTarget(usize, Vec3, f32),
+    SetMass(usize, f32, f32),
+    Motor(usize, f32, f32),
+    ExplicitSpring(usize, usize, f32),
+    OtherJoint(usize, usize, u8, f32),
+    Force(usize, Vec3, Vec3),
+    SetRestitution(usize, f32),
+    Settings {
+        substeps: u32,
+        max_push_out_speed: f32,
+        max_speed: f32,
+        fixed_dt: f32,
+        gravity: Vec3,
+    },
+    Release(usize),
+    Wake(usize),
 }
 
 fn op() -> impl Strategy<Value = Op> {
@@ -161,6 +191,18 @@ fn op() -> impl Strategy<Value = Op> {
         1 => (vec3(), vec3()).prop_map(|(o, d)| Op::Pick(o, d)),
         1 => Just(Op::Snapshot),
         1 => Just(Op::Restore),
+        1 => (any::<usize>(), vec3()).prop_map(|(b, w)| Op::SetAngularVelocity(b, w)),
+        1 => (any::<usize>(), vec3(), scalar()).prop_map(|(b, p, a)| Op::KinematicTarget(b, p, a)),
+        1 => (any::<usize>(), scalar(), scalar()).prop_map(|(b, m, i)| Op::SetMass(b, m, i)),
+        1 => (any::<usize>(), scalar(), scalar()).prop_map(|(b, v, f)| Op::Motor(b, v, f)),
+        1 => (any::<usize>(), any::<usize>(), scalar()).prop_map(|(a, b, k)| Op::ExplicitSpring(a, b, k)),
+        1 => (any::<usize>(), any::<usize>(), 0u8..5, scalar()).prop_map(|(a, b, k, x)| Op::OtherJoint(a, b, k, x)),
+        1 => (any::<usize>(), vec3(), vec3()).prop_map(|(b, f, t)| Op::Force(b, f, t)),
+        1 => (any::<usize>(), scalar()).prop_map(|(c, v)| Op::SetRestitution(c, v)),
+        1 => (prop_oneof![Just(0u32), 1u32..8, Just(64u32)], scalar(), scalar(), scalar(), vec3())
+            .prop_map(|(substeps, max_push_out_speed, max_speed, fixed_dt, gravity)| Op::Settings { substeps, max_push_out_speed, max_speed, fixed_dt, gravity }),
+        1 => any::<usize>().prop_map(Op::Release),
+        1 => any::<usize>().prop_map(Op::Wake),
     ]
 }
 
@@ -183,10 +225,70 @@ fn assert_finite_state(world: &PhysicsWorld, op: &Op) {
     }
     for manifold in world.contacts() {
         assert!(manifold.normal.is_finite());
+        for p in manifold.points() {
+            assert!(
+                p.normal_impulse.is_finite() && p.tangent_impulse.is_finite(),
+                "impulse not finite after {op:?}: {manifold:?}"
+            );
+        }
+    }
+    for (handle, _) in world.world().joints() {
+        let s = world.joint_state(handle).unwrap();
+        assert!(
+            s.linear_impulse.is_finite()
+                && s.angular_impulse.is_finite()
+                && [
+                    s.axial_impulse,
+                    s.lower_impulse,
+                    s.upper_impulse,
+                    s.motor_impulse,
+                    s.tether_impulse,
+                    s.reaction_force,
+                    s.reaction_torque
+                ]
+                .iter()
+                .all(|x| x.is_finite()),
+            "joint {handle:?} not finite after {op:?}: {s:?}"
+        );
     }
 }
 
-fn run(ops: &[Op]) {
+/// Calls `f`; if it fails, the world must be as before — its whole snapshot (bodies, joints, contacts,
+/// settings, colliders) and its state digest.
+fn checked<T, E: core::fmt::Debug>(
+    world: &mut PhysicsWorld,
+    op: &Op,
+    f: impl FnOnce(&mut PhysicsWorld) -> Result<T, E>,
+) -> Option<T> {
+    let (before, digest) = (world.snapshot(), world.state_digest());
+    // A snapshot unequal to itself holds a NaN: a non-finite value got into the state.
+    assert!(before == before, "before {op:?}: the snapshot holds a NaN");
+    match f(world) {
+        Ok(value) => Some(value),
+        Err(error) => {
+            assert!(
+                world.snapshot() == before && world.state_digest() == digest,
+                "{op:?} failed with {error:?} and changed the world"
+            );
+            None
+        }
+    }
+}
+
+/// The longest one step or advance may take (s): far beyond any step of these small worlds, so only a hang
+/// (an unbounded loop) exceeds it.
+const STEP_BUDGET: f32 = 20.0;
+
+fn timed<T>(op: &Op, f: impl FnOnce() -> T) -> T {
+    let start = std::time::Instant::now();
+    let value = f();
+    let took = start.elapsed().as_secs_f32();
+    assert!(took < STEP_BUDGET, "{op:?} took {took} s");
+    value
+}
+
+/// Runs the calls on a small scene; returns how many steps the world took.
+fn run(ops: &[Op]) -> u64 {
     let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
     // Handles ever issued, removed ones included (they must be refused, not panic).
     let mut bodies = Vec::new();
@@ -220,6 +322,7 @@ fn run(ops: &[Op]) {
     let mut snapshot = None;
     let filter = QueryFilter::new();
     for op in ops {
+        let o = op;
         match op.clone() {
             Op::InsertBody {
                 kind,
@@ -231,15 +334,12 @@ fn run(ops: &[Op]) {
                     1 => BodyDesc::fixed(),
                     _ => BodyDesc::kinematic(),
                 };
-                if let Ok(h) =
-                    world.insert_body(desc.with_position(position).with_linear_velocity(velocity))
-                {
-                    bodies.push(h);
-                }
+                let desc = desc.with_position(position).with_linear_velocity(velocity);
+                bodies.extend(checked(&mut world, o, |w| w.insert_body(desc)));
             }
             Op::RemoveBody(i) => {
                 if let Some(h) = pick(&bodies, i) {
-                    let _ = world.remove_body(h);
+                    checked(&mut world, o, |w| w.remove_body(h));
                 }
             }
             Op::InsertCollider {
@@ -260,13 +360,11 @@ fn run(ops: &[Op]) {
                     .with_restitution(restitution)
                     .with_sensor(sensor)
                     .with_position(offset);
-                if let Ok(h) = world.insert_collider(desc, b) {
-                    colliders.push(h);
-                }
+                colliders.extend(checked(&mut world, o, |w| w.insert_collider(desc, b)));
             }
             Op::RemoveCollider(i) => {
                 if let Some(h) = pick(&colliders, i) {
-                    let _ = world.remove_collider(h);
+                    checked(&mut world, o, |w| w.remove_collider(h));
                 }
             }
             Op::InsertJoint {
@@ -285,70 +383,177 @@ fn run(ops: &[Op]) {
                     Rope::new(length).ok().map(Joint::new)
                 };
                 let Some(joint) = joint else { continue };
-                let result = if to_world {
-                    world.insert_world_joint(joint, b)
-                } else {
-                    world.insert_joint(joint, a, b)
-                };
-                if let Ok(h) = result {
-                    joints.push(h);
-                }
+                joints.extend(checked(&mut world, o, |w| {
+                    if to_world {
+                        w.insert_world_joint(joint, b)
+                    } else {
+                        w.insert_joint(joint, a, b)
+                    }
+                }));
             }
             Op::RemoveJoint(i) => {
                 if let Some(h) = pick(&joints, i) {
-                    let _ = world.remove_joint(h);
+                    checked(&mut world, o, |w| w.remove_joint(h));
                 }
             }
             Op::JointContacts(i, on) => {
                 if let Some(h) = pick(&joints, i) {
-                    let _ = world.set_joint_contacts_enabled(h, on);
+                    checked(&mut world, o, |w| w.set_joint_contacts_enabled(h, on));
                 }
             }
             Op::Step(dt) => {
-                let _ = world.step(dt);
+                let report = timed(o, || world.step(dt));
+                assert!(report.skipped.is_some() || dt > 0.0, "{report:?}");
             }
             Op::Advance(elapsed) => {
-                let _ = world.advance(elapsed);
+                let report = timed(o, || world.advance(elapsed));
+                assert!(report.steps <= world.settings().max_steps_per_advance);
             }
             Op::SetVelocity(i, v) => {
-                if let Some(b) = pick(&bodies, i).and_then(|h| world.body_mut(h)) {
-                    let _ = b.set_linear_velocity(v);
+                if let Some(h) = pick(&bodies, i) {
+                    checked(&mut world, o, |w| {
+                        w.body_mut(h).map_or(Ok(()), |b| b.set_linear_velocity(v))
+                    });
+                }
+            }
+            Op::SetAngularVelocity(i, v) => {
+                if let Some(h) = pick(&bodies, i) {
+                    checked(&mut world, o, |w| {
+                        w.body_mut(h).map_or(Ok(()), |b| b.set_angular_velocity(v))
+                    });
                 }
             }
             Op::SetPosition(i, p) => {
-                if let Some(b) = pick(&bodies, i).and_then(|h| world.body_mut(h)) {
-                    let _ = b.set_position(p);
+                if let Some(h) = pick(&bodies, i) {
+                    checked(&mut world, o, |w| {
+                        w.body_mut(h).map_or(Ok(()), |b| b.set_position(p))
+                    });
                 }
             }
             Op::Impulse(i, j) => {
-                if let Some(b) = pick(&bodies, i).and_then(|h| world.body_mut(h)) {
-                    let _ = b.apply_impulse(j);
+                if let Some(h) = pick(&bodies, i) {
+                    checked(&mut world, o, |w| {
+                        w.body_mut(h).map_or(Ok(()), |b| b.apply_impulse(j))
+                    });
                 }
+            }
+            Op::Force(i, f, t) => {
+                if let Some(h) = pick(&bodies, i) {
+                    checked(&mut world, o, |w| {
+                        w.body_mut(h).map_or(Ok(()), |b| b.apply_force(f))
+                    });
+                    checked(&mut world, o, |w| {
+                        w.body_mut(h).map_or(Ok(()), |b| b.apply_torque(t))
+                    });
+                }
+            }
+            Op::KinematicTarget(i, p, angle) => {
+                if let Some(h) = pick(&bodies, i) {
+                    let target = Pose::new(p, Quat::from_rotation_y(angle));
+                    checked(&mut world, o, |w| w.set_kinematic_target(h, target));
+                }
+            }
+            Op::SetMass(i, mass, inertia) => {
+                let (Some(h), Ok(m)) = (
+                    pick(&bodies, i),
+                    MassProperties::new(mass, Vec3::ZERO, Vec3::splat(inertia)),
+                ) else {
+                    continue;
+                };
+                checked(&mut world, o, |w| w.set_body_mass_properties(h, m));
+            }
+            Op::Motor(i, speed, force) => {
+                let (Some(h), Ok(motor)) = (pick(&bodies, i), Motor::new(speed, force)) else {
+                    continue;
+                };
+                let mut hinge = HingeJoint::new();
+                hinge.set_motor(Some(motor));
+                joints.extend(checked(&mut world, o, |w| {
+                    w.insert_world_joint(Joint::new(hinge), h)
+                }));
+            }
+            Op::ExplicitSpring(a, b, stiffness) => {
+                let (Some(a), Some(b)) = (pick(&bodies, a), pick(&bodies, b)) else {
+                    continue;
+                };
+                let Ok(spring) =
+                    SpringModel::force(stiffness, 0.0).and_then(|m| Spring::new(1.0, m))
+                else {
+                    continue;
+                };
+                joints.extend(checked(&mut world, o, |w| {
+                    w.insert_joint(Joint::new(spring), a, b)
+                }));
+            }
+            Op::OtherJoint(a, b, kind, x) => {
+                let (Some(a), Some(b)) = (pick(&bodies, a), pick(&bodies, b)) else {
+                    continue;
+                };
+                let joint = match kind {
+                    0 => Some(Joint::new(BallJoint::new())),
+                    1 => Some(Joint::new(FixedJoint::new())),
+                    2 => Some(Joint::new(PrismaticJoint::new())),
+                    3 => Some(Joint::new(WheelJoint::default())),
+                    _ => Rod::new(x).ok().map(Joint::new),
+                };
+                let Some(joint) = joint else { continue };
+                let joint = joint.with_break_force(x.abs()).unwrap_or(joint);
+                joints.extend(checked(&mut world, o, |w| w.insert_joint(joint, a, b)));
             }
             Op::SetDensity(i, v) => {
                 if let Some(c) = pick(&colliders, i) {
-                    let _ = world.set_collider_density(c, v);
+                    checked(&mut world, o, |w| w.set_collider_density(c, v));
                 }
             }
             Op::SetFriction(i, v) => {
                 if let Some(c) = pick(&colliders, i) {
-                    let _ = world.set_collider_friction(c, v);
+                    checked(&mut world, o, |w| w.set_collider_friction(c, v));
+                }
+            }
+            Op::SetRestitution(i, v) => {
+                if let Some(c) = pick(&colliders, i) {
+                    checked(&mut world, o, |w| w.set_collider_restitution(c, v));
                 }
             }
             Op::SetEnabled(i, v) => {
                 if let Some(c) = pick(&colliders, i) {
-                    let _ = world.set_collider_enabled(c, v);
+                    checked(&mut world, o, |w| w.set_collider_enabled(c, v));
                 }
             }
             Op::SetSensor(i, v) => {
                 if let Some(c) = pick(&colliders, i) {
-                    let _ = world.set_collider_sensor(c, v);
+                    checked(&mut world, o, |w| w.set_collider_sensor(c, v));
                 }
             }
             Op::SetLocalPose(i, p, angle) => {
                 if let Some(c) = pick(&colliders, i) {
-                    let _ = world
-                        .set_collider_local_pose(c, Pose::new(p, Quat::from_rotation_y(angle)));
+                    let pose = Pose::new(p, Quat::from_rotation_y(angle));
+                    checked(&mut world, o, |w| w.set_collider_local_pose(c, pose));
+                }
+            }
+            Op::Settings {
+                substeps,
+                max_push_out_speed,
+                max_speed,
+                fixed_dt,
+                gravity,
+            } => {
+                let mut settings = *world.settings();
+                settings.substep_count = substeps;
+                settings.max_push_out_speed = max_push_out_speed;
+                settings.limits.max_speed = max_speed;
+                settings.fixed_dt = fixed_dt;
+                settings.gravity = gravity;
+                checked(&mut world, o, |w| w.set_settings(settings));
+            }
+            Op::Release(i) => {
+                if let Some(h) = pick(&bodies, i) {
+                    checked(&mut world, o, |w| w.release_quarantine(h));
+                }
+            }
+            Op::Wake(i) => {
+                if let Some(h) = pick(&bodies, i) {
+                    checked(&mut world, o, |w| w.wake_body(h));
                 }
             }
             Op::Ray(origin, direction, max) => {
@@ -392,7 +597,7 @@ fn run(ops: &[Op]) {
             Op::Snapshot => snapshot = Some(world.snapshot()),
             Op::Restore => {
                 if let Some(s) = &snapshot {
-                    world.restore(s).unwrap();
+                    checked(&mut world, o, |w| w.restore(s)).unwrap();
                 }
             }
         }
@@ -400,16 +605,63 @@ fn run(ops: &[Op]) {
     }
     // Whatever happened, the world still steps.
     for _ in 0..3 {
-        world.step(1.0 / 60.0);
-        assert_finite_state(&world, &Op::Step(1.0 / 60.0));
+        let step = Op::Step(1.0 / 60.0);
+        timed(&step, || world.step(1.0 / 60.0));
+        assert_finite_state(&world, &step);
+    }
+    world.step_count()
+}
+
+/// How many random sequences to run: `API_FUZZ_CASES`, else 512; from a fixed seed, so that CI runs the
+/// same sequences every time (`PROPTEST_RNG_SEED` picks another).
+fn config() -> ProptestConfig {
+    let cases = std::env::var("API_FUZZ_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(512);
+    let seed = std::env::var("PROPTEST_RNG_SEED")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(30);
+    ProptestConfig {
+        rng_seed: RngSeed::Fixed(seed),
+        ..ProptestConfig::with_cases(cases)
     }
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    #![proptest_config(config())]
 
     #[test]
-    fn random_api_calls_never_panic_and_keep_the_state_finite(ops in prop::collection::vec(op(), 1..40)) {
+    fn random_api_calls_never_panic_and_keep_the_state_finite(ops in prop::collection::vec(op(), 1..80)) {
         run(&ops);
     }
+}
+
+/// The long run, with its figures (cases, calls, steps) printed:
+/// `API_FUZZ_CASES=100000 cargo test --release -p rebound --test api_fuzz -- --ignored --nocapture`.
+#[test]
+#[ignore = "the long randomised run (10⁵ cases by default): run with --ignored, see the doc comment"]
+fn the_long_randomised_run() {
+    use proptest::test_runner::TestRunner;
+    use std::cell::Cell;
+    let cases = std::env::var("API_FUZZ_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(100_000);
+    let (calls, steps) = (Cell::new(0u64), Cell::new(0u64));
+    let start = std::time::Instant::now();
+    let mut runner = TestRunner::new(ProptestConfig::with_cases(cases));
+    let result = runner.run(&prop::collection::vec(op(), 1..80), |ops| {
+        calls.set(calls.get() + ops.len() as u64);
+        steps.set(steps.get() + run(&ops));
+        Ok(())
+    });
+    eprintln!(
+        "api fuzz: {cases} cases, {} calls, {} steps in {:?}: {result:?}",
+        calls.get(),
+        steps.get(),
+        start.elapsed()
+    );
+    result.unwrap();
 }

@@ -51,6 +51,11 @@ pub struct Contact {
     /// contact plane — a conveyor belt's surface speed. Friction drives the relative tangential velocity to it
     /// instead of to zero; the part along the normal is ignored. Default: zero (ordinary friction).
     pub surface_velocity: Vec3,
+    /// The fastest this manifold pushes its overlapping bodies apart (m/s); the step's
+    /// `max_push_out_speed` if that is lower. A body in `k` overlaps gets `max_push_out_speed / k` on each
+    /// from the world, so that it leaves them all at no more than `max_push_out_speed` together. Default: ∞
+    /// (the step's).
+    pub push_out_speed: f32,
     /// The points; only the first `point_count` are used.
     pub points: [ContactPoint; MAX_CONTACT_POINTS],
     /// How many points are in use (0 to [`MAX_CONTACT_POINTS`]).
@@ -75,6 +80,7 @@ impl Contact {
             restitution,
             rolling_friction: 0.0,
             surface_velocity: Vec3::ZERO,
+            push_out_speed: f32::INFINITY,
             points: [ContactPoint::default(); MAX_CONTACT_POINTS],
             point_count: 0,
         }

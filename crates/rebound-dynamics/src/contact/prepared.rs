@@ -31,6 +31,8 @@ pub(crate) struct PreparedContact {
     pub(crate) inv_mass_a: f32,
     pub(crate) inv_mass_b: f32,
     pub(crate) softness: Softness,
+    /// The push-out speed cap of this manifold (m/s): the step's, or the contact's if lower.
+    pub(crate) max_push_out_speed: f32,
     /// Whether both bodies are moved by the solver (not fixed or kinematic).
     pub(crate) both_dynamic: bool,
     /// Whether the contact has a surface velocity ([`Contact::surface_velocity`]): only the scalar path's
@@ -74,6 +76,7 @@ impl PreparedContact {
             } else {
                 ctx.static_softness
             },
+            max_push_out_speed: ctx.max_push_out_speed.min(contact.push_out_speed),
             both_dynamic,
             moving_surface: contact.surface_velocity != Vec3::ZERO,
         }

@@ -222,7 +222,7 @@ pub(crate) fn solve(
             (s * ctx.inv_h, 1.0, 0.0)
         } else if bias == Bias::On {
             (
-                (c.softness.bias_rate * s).max(-ctx.max_push_out_speed),
+                (c.softness.bias_rate * s).max(-c.max_push_out_speed),
                 c.softness.mass_scale,
                 c.softness.impulse_scale,
             )

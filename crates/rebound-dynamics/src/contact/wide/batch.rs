@@ -92,6 +92,8 @@ pub(crate) struct Batch {
     pub(crate) bias_rate: Vec4,
     pub(crate) mass_scale: Vec4,
     pub(crate) impulse_scale: Vec4,
+    /// Minus each lane's push-out speed cap (m/s).
+    pub(crate) max_push: Vec4,
 }
 
 impl Batch {
@@ -244,6 +246,7 @@ impl Batch {
             bias_rate: gather1(&headers, |c| c.softness.bias_rate),
             mass_scale: gather1(&headers, |c| c.softness.mass_scale),
             impulse_scale: gather1(&headers, |c| c.softness.impulse_scale),
+            max_push: gather1(&headers, |c| -c.max_push_out_speed),
         }
     }
 
@@ -273,7 +276,7 @@ impl Batch {
         let zero = Vec4::ZERO;
         let one = Vec4::ONE;
         let inv_h = Vec4::splat(ctx.inv_h);
-        let max_push = Vec4::splat(-ctx.max_push_out_speed);
+        let max_push = self.max_push;
         let mut total = zero;
         let mut twist_total = zero;
         // The normal rows change the linear velocities only along n: the loop carries `u = n·(v_b − v_a)` and
@@ -505,6 +508,7 @@ const EMPTY_LANE: PreparedContact = PreparedContact {
     inv_mass_a: 0.0,
     inv_mass_b: 0.0,
     softness: crate::Softness::RIGID,
+    max_push_out_speed: 0.0,
     both_dynamic: false,
     moving_surface: false,
 };

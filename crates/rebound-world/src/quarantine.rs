@@ -1,0 +1,211 @@
+//! The quarantine: a moving body whose state leaves the bounds of [`crate::StepLimits`] (or is not finite)
+//! is taken out of the step, so that one bad body cannot poison the solver for the others.
+//!
+//! Two checks. **At the start of the step** (after the kinematic targets became velocities, before
+//! *collide*) every awake moving body's position, speed and angular speed are compared with the limits; a body
+//! beyond them never reaches the collision backend or the solver. **After the solver passes** (before
+//! *store*) every solved body's velocities and pose deltas: a body the solve drove beyond the limits or to a
+//! non-finite value — a mass so large that its effective masses overflow, a motor at `f32::MAX`, an explicit
+//! spring past its stability limit — is quarantined and the step's *prepare* and solver passes run again
+//! without it, from the same start state, so nothing it did in the failed pass reaches the others.
+//!
+//! A bad body poisons what it touches within the pass (a contact with a non-finite velocity gives a
+//! non-finite impulse), so the bodies found bad after a pass are suspects, not culprits: the passes run again
+//! without all of them (and without any new ones that run finds), then with each suspect let back in turn,
+//! in solver order; a suspect whose return leaves every result in bounds is innocent and stays in. Only the
+//! guilty are quarantined. With more than [`MAX_TRIED_SUSPECTS`] suspects all are quarantined untried (the
+//! passes are the step's cost, each).
+//!
+//! A quarantined body keeps its pose, its velocities are zeroed, its forces and kinematic target cleared, the
+//! impulses of its joints zeroed and its contacts dropped; until [`crate::World::release_quarantine`] it is
+//! in no step (no contact, no joint row, no sleep island), as if it were not in the world. Each quarantine is
+//! reported once, by [`crate::Event::BodyQuarantined`] and the step report's count.
+//!
+//! The rerun's joint paths start from the rows the failed pass left (`rebound_constraints::KeptRows`), so bodies
+//! on a directly solved path move as without the bad body to the solver's tolerance rather than bit for bit.
+
+use crate::body_set::BodyEntry;
+use crate::events::Event;
+use crate::handles::BodyHandle;
+use crate::limits::StepLimits;
+use crate::prepare::Solver;
+use crate::state::WorldState;
+use rebound_constraints::JointState;
+use rebound_dynamics::{BodyType, SolverBody};
+use rebound_math::Vec3;
+
+/// The most suspects of one step let back in one by one (see the module docs).
+pub(crate) const MAX_TRIED_SUSPECTS: usize = 8;
+
+/// Why a body was quarantined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum QuarantineReason {
+    /// Its speed exceeded [`StepLimits::max_speed`].
+    Speed,
+    /// Its angular speed exceeded [`StepLimits::max_angular_speed`].
+    AngularSpeed,
+    /// Its position exceeded [`StepLimits::max_position`] along an axis.
+    Position,
+    /// The solver's result for it was not finite.
+    NotFinite,
+}
+
+/// The squares of the speed limits, computed once per check (the limits are at most 10¹⁵, so they are
+/// finite).
+struct Bounds {
+    speed_sq: f32,
+    angular_speed_sq: f32,
+    position: f32,
+}
+
+impl Bounds {
+    fn new(limits: &StepLimits) -> Self {
+        Self {
+            speed_sq: limits.max_speed * limits.max_speed,
+            angular_speed_sq: limits.max_angular_speed * limits.max_angular_speed,
+            position: limits.max_position,
+        }
+    }
+
+    /// What is wrong with a body at `position` moving at `v`, `w`, if anything. A squared length that
+    /// overflows to ∞ exceeds every bound, as it should.
+    #[inline]
+    fn check(&self, position: Vec3, v: Vec3, w: Vec3) -> Option<QuarantineReason> {
+        // Every body, every step: one branch for the common case (a NaN fails every comparison).
+        let within = (v.length_squared() <= self.speed_sq)
+            & (w.length_squared() <= self.angular_speed_sq)
+            & position.abs().cmple(Vec3::splat(self.position)).all();
+        if within {
+            return None;
+        }
+        self.reason(position, v, w)
+    }
+
+    /// Which bound a body outside them breaks.
+    #[cold]
+    fn reason(&self, position: Vec3, v: Vec3, w: Vec3) -> Option<QuarantineReason> {
+        if !(position.is_finite() && v.is_finite() && w.is_finite()) {
+            Some(QuarantineReason::NotFinite)
+        } else if v.length_squared() > self.speed_sq {
+            Some(QuarantineReason::Speed)
+        } else if w.length_squared() > self.angular_speed_sq {
+            Some(QuarantineReason::AngularSpeed)
+        } else if position.abs().max_element() > self.position {
+            Some(QuarantineReason::Position)
+        } else {
+            None
+        }
+    }
+}
+
+/// The check at the start of the step: every awake moving body out of bounds is quarantined. Returns how
+/// many were.
+pub(crate) fn check_bodies(state: &mut WorldState, events: &mut Vec<Event>) -> usize {
+    let bounds = Bounds::new(&state.settings.limits);
+    let mut found = Vec::new();
+    for (index, entry) in state.bodies.arena.iter() {
+        let body = &entry.body;
+        if entry.quarantined || body.is_sleeping() || body.body_type() == BodyType::Fixed {
+            continue;
+        }
+        if let Some(reason) = bounds.check(
+            body.position(),
+            body.linear_velocity(),
+            body.angular_velocity(),
+        ) {
+            found.push((BodyHandle(index), reason));
+        }
+    }
+    quarantine(state, &found, events);
+    found.len()
+}
+
+/// The check after the solver passes: the solved dynamic bodies (kinematic ones keep the velocities the
+/// first check passed) whose velocities or pose deltas are out of bounds or not finite, into `found`
+/// (cleared first) in solver order. Changes nothing: the step decides which of them to quarantine.
+pub(crate) fn find_bad_results(
+    state: &WorldState,
+    s: &Solver,
+    found: &mut Vec<(BodyHandle, QuarantineReason)>,
+) {
+    found.clear();
+    let bounds = Bounds::new(&state.settings.limits);
+    for ((handle, solved), params) in s.solver_handles.iter().zip(&s.states).zip(&s.params) {
+        let Some(handle) = handle else { continue };
+        if !params.is_dynamic() {
+            continue;
+        }
+        if let Some(reason) = check_solved(&bounds, solved) {
+            found.push((*handle, reason));
+        }
+    }
+}
+
+/// Marks a body as out of the step (`true`) or back in it, for a trial pass of the solver: *prepare* skips
+/// a marked body and its contacts and joints.
+pub(crate) fn set_excluded(state: &mut WorldState, body: BodyHandle, excluded: bool) {
+    if let Some(entry) = state.bodies.entry_mut(body) {
+        entry.quarantined = excluded;
+    }
+}
+
+/// Quarantines `bodies`: each isolated (at rest, no force, no target), its contacts and joint impulses
+/// cleared, an event each.
+pub(crate) fn quarantine(
+    state: &mut WorldState,
+    bodies: &[(BodyHandle, QuarantineReason)],
+    events: &mut Vec<Event>,
+) {
+    if bodies.is_empty() {
+        return;
+    }
+    for &(body, reason) in bodies {
+        if let Some(entry) = state.bodies.entry_mut(body) {
+            isolate(entry);
+            events.push(Event::BodyQuarantined { body, reason });
+        }
+    }
+    forget(state, bodies);
+}
+
+/// What is wrong with a solved body, if anything: its velocities against the bounds, its pose deltas
+/// finite (its position is checked at the start of the next step).
+#[inline]
+fn check_solved(bounds: &Bounds, solved: &SolverBody) -> Option<QuarantineReason> {
+    // `x·0` is 0 for a finite `x` and NaN otherwise: one comparison for the seven numbers.
+    let deltas =
+        solved.delta_position * 0.0 + Vec3::splat(solved.delta_rotation.length_squared() * 0.0);
+    if deltas != Vec3::ZERO {
+        return Some(QuarantineReason::NotFinite);
+    }
+    bounds.check(Vec3::ZERO, solved.linear_velocity, solved.angular_velocity)
+}
+
+/// Takes a body out of the steps: at rest where it is, no force, no kinematic target.
+fn isolate(entry: &mut BodyEntry) {
+    entry.quarantined = true;
+    entry.kinematic_target = None;
+    entry.sleep_time = 0.0;
+    entry.body.clear_forces();
+    // Zero is finite: both setters accept it.
+    let _ = entry.body.set_linear_velocity(Vec3::ZERO);
+    let _ = entry.body.set_angular_velocity(Vec3::ZERO);
+}
+
+/// Clears what the world keeps of the quarantined bodies' interactions: last step's manifolds with them
+/// (no warm start from them) and the impulses of their joints (kept: whether a joint broke).
+fn forget(state: &mut WorldState, bodies: &[(BodyHandle, QuarantineReason)]) {
+    let is_bad = |h: BodyHandle| bodies.iter().any(|&(b, _)| b == h);
+    let involves = |a: BodyHandle, b: BodyHandle| is_bad(a) || is_bad(b);
+    state.manifolds.retain(|m| !involves(m.body_a, m.body_b));
+    for (_, joint) in state.joints.iter_mut() {
+        let a = joint.body_a.unwrap_or(joint.body_b);
+        if involves(a, joint.body_b) {
+            joint.state = JointState {
+                broken: joint.state.broken,
+                ..JointState::default()
+            };
+        }
+    }
+}
