@@ -4,6 +4,7 @@
 //! bodies on insertion and removal, the query BVH refreshed and sensor overlaps found after each step.
 
 use crate::sensors::update_sensors;
+use crate::sweep::{SweepScratch, record_spinning, sweep};
 use crate::{ColliderHandle, Error, Event, ParryBackend};
 use parry3d::bounding_volume::Aabb;
 use rebound_dynamics::{BodyDesc, MassProperties, RigidBody};
@@ -51,6 +52,8 @@ pub struct PhysicsWorld {
     /// Time [`PhysicsWorld::advance`] has not yet stepped (s).
     pub(crate) accumulator: f32,
     events: Vec<Event>,
+    /// The rotational sweep's buffers.
+    sweep: SweepScratch,
 }
 
 impl PhysicsWorld {
@@ -70,6 +73,7 @@ impl PhysicsWorld {
             sensor_overlaps: Vec::new(),
             accumulator: 0.0,
             events: Vec::new(),
+            sweep: SweepScratch::default(),
         })
     }
 
@@ -217,6 +221,12 @@ impl PhysicsWorld {
     }
 
     fn step_and_collect(&mut self, dt: f32) -> StepReport {
+        let spinning = record_spinning(
+            &mut self.sweep,
+            self.world.bodies(),
+            &self.world.backend().colliders,
+            dt,
+        );
         let report = self.world.step(dt);
         self.events
             .extend(self.world.events().iter().copied().map(Event::from));
@@ -226,6 +236,9 @@ impl PhysicsWorld {
         }
         if report.skipped.is_none() {
             self.after_step();
+            if spinning {
+                sweep(&mut self.sweep, &mut self.world, dt);
+            }
         }
         report
     }
