@@ -42,6 +42,7 @@ use crate::prediction::{
     ball_center, ball_center_at, centres_clearly_apart, prediction_distance, rotation_reach,
 };
 use crate::shape::to_parry_pose;
+use crate::sweep::is_swept;
 use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use parry3d::partitioning::{Bvh, BvhWorkspace};
@@ -170,6 +171,8 @@ pub(crate) struct BroadPhase {
     /// Whether any collider of a moving body took part in the last pair search (without one there are no
     /// pairs to find).
     any_mover: bool,
+    /// The bodies the last pair search found turning far enough to be swept, with their poses then.
+    swept: Vec<(BodyHandle, Pose)>,
     /// Scratch of the pair sort (reused: no allocation per step).
     sort_scratch: Vec<(ColliderHandle, ColliderHandle)>,
 }
@@ -196,6 +199,7 @@ impl BroadPhase {
     ) {
         self.any_mover = false;
         self.candidates.clear();
+        self.swept.clear();
         let mut changed = 0;
         for (handle, collider) in colliders.iter() {
             let slot = handle.0.index;
@@ -215,6 +219,12 @@ impl BroadPhase {
             } else {
                 0.0
             };
+            if active
+                && is_swept(collider, body, dt)
+                && !self.swept.iter().any(|&(h, _)| h == collider.body)
+            {
+                self.swept.push((collider.body, body.pose()));
+            }
             let margin = if active {
                 let speed = body.linear_velocity().length() + reach;
                 (speculative_margin + speed * dt).min(MAX_MARGIN)
@@ -346,6 +356,12 @@ impl BroadPhase {
         self.pairs.clear();
         self.candidates.clear();
         self.refresh(colliders, bodies);
+    }
+
+    /// The bodies this step's pair search found turning far enough to be swept
+    /// ([`crate::sweep::is_swept`]), with their poses at the start of the step.
+    pub(crate) fn swept(&self) -> &[(BodyHandle, Pose)] {
+        &self.swept
     }
 
     /// |ω|·r of collider `handle` this step (m/s; 0 for one this step's pair search did not see).

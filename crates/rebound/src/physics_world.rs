@@ -4,7 +4,7 @@
 //! bodies on insertion and removal, the query BVH refreshed and sensor overlaps found after each step.
 
 use crate::sensors::update_sensors;
-use crate::sweep::{SweepScratch, record_spinning, sweep};
+use crate::sweep::{SweepScratch, sweep};
 use crate::{ColliderHandle, Error, Event, ParryBackend};
 use parry3d::bounding_volume::Aabb;
 use rebound_dynamics::{BodyDesc, MassProperties, RigidBody};
@@ -221,12 +221,6 @@ impl PhysicsWorld {
     }
 
     fn step_and_collect(&mut self, dt: f32) -> StepReport {
-        let spinning = record_spinning(
-            &mut self.sweep,
-            self.world.bodies(),
-            &self.world.backend().colliders,
-            dt,
-        );
         let report = self.world.step(dt);
         self.events
             .extend(self.world.events().iter().copied().map(Event::from));
@@ -236,7 +230,7 @@ impl PhysicsWorld {
         }
         if report.skipped.is_none() {
             self.after_step();
-            if spinning {
+            if !self.world.backend().broad_phase.swept().is_empty() {
                 sweep(&mut self.sweep, &mut self.world, dt);
             }
         }

@@ -15,7 +15,6 @@
 //! its restitution says.
 
 use crate::backend::ParryBackend;
-use crate::collider_set::ColliderSet;
 use crate::shape::{from_parry_pose, to_parry_pose};
 use crate::{Collider, ColliderHandle, ColliderShape};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
@@ -31,7 +30,7 @@ pub const SWEPT_TURN: f32 = 0.52;
 /// The sweep's buffers, reused from step to step (a step that sweeps nothing touches none of them).
 #[derive(Debug, Default)]
 pub(crate) struct SweepScratch {
-    /// The bodies to sweep this step and their start poses.
+    /// The bodies to sweep this step and their start poses (the broad phase's list).
     spinning: Vec<(BodyHandle, Pose)>,
     /// Bodies a swept body pushed in the step (their contacts handle them).
     pushed: Vec<BodyHandle>,
@@ -39,43 +38,16 @@ pub(crate) struct SweepScratch {
     candidates: Vec<ColliderHandle>,
 }
 
-/// Whether turning `body` moves none of its colliders: each is a ball centred on its centre of mass.
-fn turning_moves_nothing(
-    body_handle: BodyHandle,
-    body: &RigidBody,
-    colliders: &ColliderSet,
-) -> bool {
-    let center = body.mass_properties().local_center_of_mass();
-    colliders.of_body(body_handle).iter().all(|&h| {
-        colliders.get(h).is_none_or(|c| {
-            matches!(c.desc.shape, ColliderShape::Ball { .. })
-                && c.desc.local_pose.position == center
-        })
-    })
-}
-
-/// Before the step: records the bodies to sweep and their start poses — awake dynamic bodies that turn by
-/// more than [`SWEPT_TURN`] in `dt` at their current angular velocity, unless turning moves none of their
-/// colliders. Returns whether there is any.
-pub(crate) fn record_spinning(
-    scratch: &mut SweepScratch,
-    bodies: &BodySet,
-    colliders: &ColliderSet,
-    dt: f32,
-) -> bool {
-    scratch.spinning.clear();
-    scratch.spinning.extend(
-        bodies
-            .iter()
-            .filter(|(h, b)| {
-                b.is_dynamic()
-                    && !b.is_sleeping()
-                    && b.angular_velocity().length() * dt > SWEPT_TURN
-                    && !turning_moves_nothing(*h, b, colliders)
-            })
-            .map(|(h, b)| (h, b.pose())),
-    );
-    !scratch.spinning.is_empty()
+/// Whether `body` (awake, dynamic) turns by more than [`SWEPT_TURN`] in `dt` at its angular velocity, and
+/// turning it moves `collider` — which a ball centred on the body's centre of mass it does not. The broad
+/// phase lists such bodies, with their start poses, as it fattens their boxes.
+#[inline]
+pub(crate) fn is_swept(collider: &Collider, body: &RigidBody, dt: f32) -> bool {
+    let turn = body.angular_velocity().length_squared() * dt * dt;
+    turn > SWEPT_TURN * SWEPT_TURN
+        && body.is_dynamic()
+        && !(matches!(collider.desc.shape, ColliderShape::Ball { .. })
+            && collider.desc.local_pose.position == body.mass_properties().local_center_of_mass())
 }
 
 /// The motion of `collider` on `body` from the body's start pose `start` at its current velocities.
@@ -193,14 +165,19 @@ fn first_impact(
     best
 }
 
-/// After the step: each body recorded by [`record_spinning`] that met a new collider on its turning path is
-/// put back on the path at the first time of impact, velocities unchanged. Returns how many were.
+/// After the step: each body the broad phase listed as swept ([`is_swept`]) that met a new collider on its
+/// turning path is put back on the path at the first time of impact, velocities unchanged. Returns how many
+/// were.
 pub(crate) fn sweep(
     scratch: &mut SweepScratch,
     world: &mut rebound_world::World<ParryBackend>,
     dt: f32,
 ) -> usize {
     let mut clamped = 0;
+    scratch.spinning.clear();
+    scratch
+        .spinning
+        .extend_from_slice(world.backend().broad_phase.swept());
     let SweepScratch {
         spinning,
         pushed,
