@@ -39,10 +39,10 @@
 //! what makes a restored snapshot step like the world that never stopped.
 
 use crate::prediction::{
-    ball_center, ball_center_at, centres_clearly_apart, prediction_distance, rotation_reach,
+    ball_center, ball_center_at, centres_clearly_apart, is_swept, prediction_distance,
+    rotation_reach,
 };
 use crate::shape::to_parry_pose;
-use crate::sweep::is_swept;
 use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use parry3d::partitioning::{Bvh, BvhWorkspace};
@@ -359,7 +359,7 @@ impl BroadPhase {
     }
 
     /// The bodies this step's pair search found turning far enough to be swept
-    /// ([`crate::sweep::is_swept`]), with their poses at the start of the step.
+    /// ([`crate::prediction::is_swept`]), with their poses at the start of the step.
     pub(crate) fn swept(&self) -> &[(BodyHandle, Pose)] {
         &self.swept
     }

@@ -6,7 +6,7 @@
 //! step. A thin plank spinning at 150 rad/s turns by 2.5 rad per step at 60 Hz: the closest points at the
 //! start say nothing about the face that sweeps into a ball a quarter turn later, and the plank passes
 //! through it. So, as conservative advancement does (Mirtich 1996; parry's nonlinear shape cast), each body
-//! that turns by more than [`SWEPT_TURN`] in a step is cast along its motion of the step — its start pose
+//! that turns by more than [`crate::prediction::SWEPT_TURN`] in a step is cast along its motion of the step — its start pose
 //! carried by its end-of-step velocities, linear and angular — against the colliders in reach, at their
 //! end-of-step poses. At the first time of impact `t* < dt` with a collider it did not already push in the
 //! step, the body is put back on its path at `t*`, touching, with its velocities unchanged: the next step's
@@ -16,16 +16,12 @@
 
 use crate::backend::ParryBackend;
 use crate::shape::{from_parry_pose, to_parry_pose};
-use crate::{Collider, ColliderHandle, ColliderShape};
+use crate::{Collider, ColliderHandle};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use parry3d::query::{NonlinearRigidMotion, ShapeCastStatus};
 use rebound_dynamics::RigidBody;
 use rebound_math::Pose;
 use rebound_world::{BodyHandle, BodySet, ContactManifold};
-
-/// A body that turns by more than this (rad) in a step is swept: 30°, beyond which the start-of-step
-/// linearisation of a contact is off by more than 1 − cos 30° ≈ 13 % of the lever arm.
-pub const SWEPT_TURN: f32 = 0.52;
 
 /// The sweep's buffers, reused from step to step (a step that sweeps nothing touches none of them).
 #[derive(Debug, Default)]
@@ -36,18 +32,6 @@ pub(crate) struct SweepScratch {
     pushed: Vec<BodyHandle>,
     /// Colliders whose boxes meet a swept box.
     candidates: Vec<ColliderHandle>,
-}
-
-/// Whether `body` (awake, dynamic) turns by more than [`SWEPT_TURN`] in `dt` at its angular velocity, and
-/// turning it moves `collider` — which a ball centred on the body's centre of mass it does not. The broad
-/// phase lists such bodies, with their start poses, as it fattens their boxes.
-#[inline]
-pub(crate) fn is_swept(collider: &Collider, body: &RigidBody, dt: f32) -> bool {
-    let turn = body.angular_velocity().length_squared() * dt * dt;
-    turn > SWEPT_TURN * SWEPT_TURN
-        && body.is_dynamic()
-        && !(matches!(collider.desc.shape, ColliderShape::Ball { .. })
-            && collider.desc.local_pose.position == body.mass_properties().local_center_of_mass())
 }
 
 /// The motion of `collider` on `body` from the body's start pose `start` at its current velocities.
@@ -165,7 +149,7 @@ fn first_impact(
     best
 }
 
-/// After the step: each body the broad phase listed as swept ([`is_swept`]) that met a new collider on its
+/// After the step: each body the broad phase listed as swept ([`crate::prediction::is_swept`]) that met a new collider on its
 /// turning path is put back on the path at the first time of impact, velocities unchanged. Returns how many
 /// were.
 pub(crate) fn sweep(
