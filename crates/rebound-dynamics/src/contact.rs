@@ -30,7 +30,7 @@
 //! bodies do not gain energy. Friction, at the patch centre `c` (the mean of the points' anchors):
 //! `λ_t ← clamp_circle(λ_t − M_t·v_t, μ·Σλ)`, and about the normal `τ ← clamp(τ − m_τ·n·(ω_b − ω_a),
 //! ±μ·Σλ·|r − c|)` (`docs/physics.md`, "Contacts"). Restitution is a bounce inside the solve pass, once per
-//! point and step: when a point touches (or, between two moving bodies, closes its gap within the substep)
+//! point and approach: when a point touches (or, between two moving bodies, closes its gap within the substep)
 //! having approached faster than the threshold, one impulse sets its normal velocity to `+C_r·v_n⁻`, where
 //! `v_n⁻` is the approach speed — the most negative normal velocity any pass met before an impulse acted, so
 //! a body that keeps falling for part of the step rebounds from its speed at impact, not its speed when the

@@ -39,7 +39,8 @@
 //! what makes a restored snapshot step like the world that never stopped.
 
 use crate::prediction::{
-    ball_center, ball_center_at, centres_clearly_apart, prediction_distance, rotation_reach,
+    ball_center, ball_center_at, centres_clearly_apart, is_swept, prediction_distance,
+    rotation_reach,
 };
 use crate::shape::to_parry_pose;
 use crate::{
@@ -180,6 +181,8 @@ pub(crate) struct BroadPhase {
     /// Whether any collider of a moving body took part in the last pair search (without one there are no
     /// pairs to find).
     any_mover: bool,
+    /// The bodies the last pair search found turning far enough to be swept, with their poses then.
+    swept: Vec<(BodyHandle, Pose)>,
     /// Scratch of the pair sort (reused: no allocation per step).
     sort_scratch: Vec<(ColliderHandle, ColliderHandle)>,
     /// Candidate pairs the last pair search left out because of its cap.
@@ -210,6 +213,7 @@ impl BroadPhase {
         self.any_mover = false;
         self.capped = 0;
         self.candidates.clear();
+        self.swept.clear();
         let mut changed = 0;
         for (handle, collider) in colliders.iter() {
             let slot = handle.0.index;
@@ -229,6 +233,12 @@ impl BroadPhase {
             } else {
                 0.0
             };
+            if active
+                && is_swept(collider, body, dt)
+                && !self.swept.iter().any(|&(h, _)| h == collider.body)
+            {
+                self.swept.push((collider.body, body.pose()));
+            }
             let margin = if active {
                 let speed = body.linear_velocity().length() + reach;
                 (speculative_margin + speed * dt).min(MAX_MARGIN)
@@ -379,6 +389,12 @@ impl BroadPhase {
         self.pairs.clear();
         self.candidates.clear();
         self.refresh(colliders, bodies);
+    }
+
+    /// The bodies this step's pair search found turning far enough to be swept
+    /// ([`crate::prediction::is_swept`]), with their poses at the start of the step.
+    pub(crate) fn swept(&self) -> &[(BodyHandle, Pose)] {
+        &self.swept
     }
 
     /// |ω|·r of collider `handle` this step (m/s; 0 for one this step's pair search did not see).

@@ -23,6 +23,7 @@ mod sensors;
 mod shape;
 mod shape_manifold;
 mod snapshot;
+mod sweep;
 
 /// The collision library, re-exported so users get the same version Rebound uses.
 pub use parry3d;

@@ -6,6 +6,7 @@
 use crate::backend::SharedHooks;
 use crate::hooks::ContactHooks;
 use crate::sensors::update_sensors;
+use crate::sweep::{SweepScratch, sweep};
 use crate::{ColliderHandle, Error, Event, ParryBackend};
 use parry3d::bounding_volume::Aabb;
 use rebound_dynamics::{BodyDesc, MassProperties, RigidBody};
@@ -54,6 +55,8 @@ pub struct PhysicsWorld {
     /// Time [`PhysicsWorld::advance`] has not yet stepped (s).
     pub(crate) accumulator: f32,
     events: Vec<Event>,
+    /// The rotational sweep's buffers.
+    sweep: SweepScratch,
 }
 
 impl PhysicsWorld {
@@ -73,6 +76,7 @@ impl PhysicsWorld {
             sensor_overlaps: Vec::new(),
             accumulator: 0.0,
             events: Vec::new(),
+            sweep: SweepScratch::default(),
         })
     }
 
@@ -251,6 +255,9 @@ impl PhysicsWorld {
         }
         if report.skipped.is_none() {
             self.after_step();
+            if !self.world.backend().broad_phase.swept().is_empty() {
+                sweep(&mut self.sweep, &mut self.world, dt);
+            }
         }
         report
     }

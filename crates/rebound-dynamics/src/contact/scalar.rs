@@ -22,12 +22,12 @@ pub(crate) struct PreparedPoint {
     pub(crate) anchor_a: Vec3,
     pub(crate) anchor_b: Vec3,
     pub(crate) separation: f32,
-    /// The most negative normal relative velocity seen before an impulse in any pass of the step (m/s);
-    /// negative when approaching. Restitution reverses it.
+    /// The most negative normal relative velocity seen before an impulse in any pass of the step since the
+    /// point last bounced (m/s); negative when approaching. Restitution reverses it. A bounce resets it to
+    /// the velocity it leaves, so the contact is then an ordinary one until the bodies approach again: a
+    /// bounce is one event per approach (otherwise a ball that handed its momentum on would be pushed again),
+    /// and a second approach in the same step — the next ball of a row arriving — bounces again.
     pub(crate) relative_velocity: f32,
-    /// Whether this point has bounced this step: a bounce is one event, applied once, after which the
-    /// contact is an ordinary one (otherwise a ball that handed its momentum on would be pushed again).
-    pub(crate) bounced: bool,
     pub(crate) normal_impulse: f32,
     pub(crate) max_normal_impulse: f32,
     /// What the point pushed with at its bounce beyond its accumulated impulse (N·s; 0 until it bounces): the
@@ -67,7 +67,6 @@ impl PreparedPoint {
             anchor_b: rb,
             separation: point.separation,
             relative_velocity: 0.0,
-            bounced: false,
             normal_impulse: if input.ctx.warm_starting {
                 point.normal_impulse
             } else {
@@ -159,7 +158,7 @@ pub(crate) fn warm_start(
 
 /// Stages *solve* (`Bias::On`) and *relax* (`Bias::Off`) for manifold `c` with points `points`, its friction
 /// patch and its rolling block: one Gauss–Seidel pass of its normal rows (a point that hits fast enough
-/// bounces instead, once per step), then the patch, limited by this pass's normal impulses, then the rolling
+/// bounces instead, once per approach), then the patch, limited by this pass's normal impulses, then the rolling
 /// block, limited likewise.
 #[inline]
 pub(crate) fn solve(
@@ -191,7 +190,7 @@ pub(crate) fn solve(
         // neighbour in a row approaches the next only once struck.
         p.relative_velocity = p.relative_velocity.min(vn);
         let approach = -p.relative_velocity;
-        let bounce = if !p.bounced && c.restitution > 0.0 && approach > ctx.restitution_threshold {
+        let bounce = if c.restitution > 0.0 && approach > ctx.restitution_threshold {
             c.restitution * approach
         } else {
             0.0
@@ -205,9 +204,10 @@ pub(crate) fn solve(
             // The bounce: one impulse that sets the normal velocity to +C_r·approach. It is kept out
             // of the accumulated impulse (which restarts at 0), so the later passes of the step —
             // relax, the next substeps' warm start — see a separating contact and leave it alone
-            // instead of taking the bounce back.
-            p.bounced = true;
-            p.bounce_impulse = p.normal_impulse;
+            // instead of taking the bounce back; and the approach is measured afresh from the velocity
+            // the bounce leaves. What was accumulated before it joins the step's bounce impulse.
+            p.relative_velocity = bounce;
+            p.bounce_impulse += p.normal_impulse;
             p.normal_impulse = 0.0;
             let impulse = (-p.normal_mass * (vn - bounce)).max(0.0);
             p.max_normal_impulse = p.max_normal_impulse.max(impulse);
