@@ -276,7 +276,7 @@ impl Tracker {
     fn event(&self, event: &Event) -> Option<RecordedEvent> {
         let collider = |h: ColliderHandle| self.collider_index.get(h.into_raw_parts());
         Some(match *event {
-            Event::ContactForce { .. } => return None,
+            Event::ContactForce { .. } | Event::BodyQuarantined { .. } => return None,
             Event::ContactBegan {
                 body_a,
                 body_b,
@@ -313,7 +313,6 @@ impl Tracker {
                 sensor: collider(sensor),
                 collider: collider(c),
             },
-            Event::BodyQuarantined { .. } => return None,
         })
     }
 }
