@@ -45,7 +45,7 @@ impl RigidBody {
         if !self.is_dynamic() {
             return Vec3::ZERO;
         }
-        spin + (self.center_of_mass() - about).cross(self.linear_momentum())
+        orbit_plus_spin(spin, self.center_of_mass(), self.linear_momentum(), about)
     }
 
     /// Kinetic energy `½·m·|v|² + ½·ωᵀ·I_w·ω` (J); zero for fixed and kinematic bodies.
@@ -75,8 +75,21 @@ impl RigidBody {
         if !self.is_dynamic() {
             return 0.0;
         }
-        -self.mass_properties().mass() * self.gravity_scale() * gravity.dot(self.center_of_mass())
+        self.gravitational_potential_energy_at(gravity, self.center_of_mass())
     }
+
+    /// `−m·s·(g·c)` for a dynamic body whose centre of mass is `c`.
+    #[inline]
+    fn gravitational_potential_energy_at(&self, gravity: Vec3, c: Vec3) -> f32 {
+        -self.mass_properties().mass() * self.gravity_scale() * gravity.dot(c)
+    }
+}
+
+/// Angular momentum about `about` of a body with spin `spin`, centre of mass `c` and linear momentum `p`:
+/// `spin + (c − about) × p`.
+#[inline]
+fn orbit_plus_spin(spin: Vec3, c: Vec3, p: Vec3, about: Vec3) -> Vec3 {
+    spin + (c - about).cross(p)
 }
 
 /// Total linear momentum of `bodies` (kg·m/s).
@@ -113,7 +126,7 @@ pub struct Totals {
 /// Kinetic and potential energy (in the field `gravity`) and linear and angular momentum (about `about`) of
 /// `bodies`, in one pass: the same numbers as [`total_kinetic_energy`],
 /// [`total_gravitational_potential_energy`], [`total_linear_momentum`] and [`total_angular_momentum`], for
-/// the cost of one world-space inertia per body instead of two.
+/// the cost of one world-space inertia and one centre of mass per body instead of two of each.
 pub fn totals<'a>(
     bodies: impl IntoIterator<Item = &'a RigidBody>,
     gravity: Vec3,
@@ -125,10 +138,12 @@ pub fn totals<'a>(
             continue;
         }
         let spin = body.spin_angular_momentum();
+        let c = body.center_of_mass();
+        let p = body.linear_momentum();
         sum.kinetic_energy += body.kinetic_energy_with_spin(spin);
-        sum.gravitational_potential_energy += body.gravitational_potential_energy(gravity);
-        sum.linear_momentum += body.linear_momentum();
-        sum.angular_momentum += body.angular_momentum_with_spin(spin, about);
+        sum.gravitational_potential_energy += body.gravitational_potential_energy_at(gravity, c);
+        sum.linear_momentum += p;
+        sum.angular_momentum += orbit_plus_spin(spin, c, p, about);
     }
     sum
 }

@@ -43,6 +43,9 @@ pub(crate) struct Tracker {
     colliders: Vec<Option<WrittenCollider>>,
     /// How many entries of `colliders` are `Some`.
     live_colliders: usize,
+    /// The world's collider revision when the colliders were last compared (`None` before the first
+    /// time): while it holds, no collider was inserted, edited or removed, and none is compared.
+    collider_revision: Option<u64>,
     joint_index: HandleIndex,
     joints: Vec<WrittenJoint>,
     /// By body index: the pose of the last sample, for the contact points.
@@ -101,6 +104,17 @@ impl Tracker {
                 }
             }
         }
+        let revision = world.colliders().revision();
+        if self.collider_revision != Some(revision) {
+            self.collider_revision = Some(revision);
+            self.collider_changes(world, &mut changes);
+        }
+        self.joint_changes(world, &mut changes);
+        changes
+    }
+
+    /// Adds to `changes` the colliders inserted, edited or removed since the last comparison.
+    fn collider_changes(&mut self, world: &PhysicsWorld, changes: &mut Changes) {
         // The world's colliders found among the live ones: if that is all of them, none was removed.
         let mut seen = 0;
         for (handle, collider) in world.colliders().iter() {
@@ -137,6 +151,10 @@ impl Tracker {
                 }
             }
         }
+    }
+
+    /// Adds to `changes` the joints inserted or edited since the last call.
+    fn joint_changes(&mut self, world: &PhysicsWorld, changes: &mut Changes) {
         for (handle, joint) in world.world().joints() {
             let Some((a, b)) = world.joint_bodies(handle) else {
                 continue;
@@ -169,7 +187,6 @@ impl Tracker {
                 }
             }
         }
-        changes
     }
 
     /// Gives a new collider the next index and returns its entry.

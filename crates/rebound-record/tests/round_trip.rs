@@ -289,3 +289,37 @@ fn the_layout_matches_the_documented_offsets() {
         first.diagnostics.kinetic_energy.to_bits()
     );
 }
+
+#[test]
+fn a_restored_snapshot_is_noticed_as_edits() {
+    let mut world = menagerie();
+    let (collider, desc) = world
+        .colliders()
+        .iter()
+        .map(|(handle, collider)| (handle, collider.desc().clone()))
+        .next()
+        .unwrap();
+    let snapshot = world.snapshot();
+    let mut recorder = Recorder::new(&world, Vec::new()).unwrap();
+    recorder.record(&world).unwrap();
+    world
+        .set_collider_friction(collider, desc.friction + 0.25)
+        .unwrap();
+    recorder.step(&mut world, DT).unwrap();
+    world.restore(&snapshot).unwrap();
+    recorder.step(&mut world, DT).unwrap();
+    recorder.step(&mut world, DT).unwrap();
+    let bytes = recorder.finish().unwrap();
+
+    let recording = Recording::read(bytes.as_slice()).unwrap();
+    let frames = recording.frames();
+    let edited = frames[1].changes.as_ref().unwrap();
+    assert_eq!(edited.colliders.len(), 1);
+    assert!((edited.colliders[0].friction - (desc.friction + 0.25)).abs() < 1e-6);
+    // The restore puts the old friction back: written as an edit of the same collider.
+    let restored = frames[2].changes.as_ref().unwrap();
+    assert_eq!(restored.colliders.len(), 1);
+    assert_eq!(restored.colliders[0].index, edited.colliders[0].index);
+    assert!((restored.colliders[0].friction - desc.friction).abs() < 1e-7);
+    assert!(frames[3].changes.is_none());
+}

@@ -12,6 +12,8 @@ pub struct ColliderSet {
     pub(crate) arena: Arena<Collider>,
     /// Each body's colliders, in insertion order.
     pub(crate) by_body: BTreeMap<BodyHandle, Vec<ColliderHandle>>,
+    /// Bumped by every insertion, edit and removal, and by a restore (see [`ColliderSet::revision`]).
+    revision: u64,
 }
 
 impl Default for ColliderSet {
@@ -25,11 +27,13 @@ impl ColliderSet {
         Self {
             arena: Arena::with_generation_base(base),
             by_body: BTreeMap::new(),
+            revision: 0,
         }
     }
 
-    /// Rebuilds the per-body lists from the arena (after a restore).
-    pub(crate) fn from_arena(arena: Arena<Collider>) -> Self {
+    /// Rebuilds the per-body lists from the arena (after a restore); the revision moves on from
+    /// `revision`, the replaced set's.
+    pub(crate) fn from_arena(arena: Arena<Collider>, revision: u64) -> Self {
         let mut by_body: BTreeMap<BodyHandle, Vec<ColliderHandle>> = BTreeMap::new();
         for (index, collider) in arena.iter() {
             by_body
@@ -37,7 +41,20 @@ impl ColliderSet {
                 .or_default()
                 .push(ColliderHandle(index));
         }
-        Self { arena, by_body }
+        Self {
+            arena,
+            by_body,
+            revision: revision.wrapping_add(1),
+        }
+    }
+
+    /// A count that changes with every insertion, edit and removal of a collider, and with a snapshot
+    /// restore: if two reads of the same set give the same revision, it holds the same colliders with the
+    /// same descriptions. Stepping does not change it. Lets an observer (a recording) notice edits without
+    /// comparing every description.
+    #[must_use]
+    pub const fn revision(&self) -> u64 {
+        self.revision
     }
 
     /// The collider behind `handle`.
@@ -46,7 +63,9 @@ impl ColliderSet {
         self.arena.get(handle.0)
     }
 
+    /// The collider behind `handle`, to edit: counts as an edit in [`ColliderSet::revision`].
     pub(crate) fn get_mut(&mut self, handle: ColliderHandle) -> Option<&mut Collider> {
+        self.revision = self.revision.wrapping_add(1);
         self.arena.get_mut(handle.0)
     }
 
@@ -90,12 +109,14 @@ impl ColliderSet {
     pub(crate) fn insert(&mut self, collider: Collider) -> Option<ColliderHandle> {
         let body = collider.body;
         let handle = ColliderHandle(self.arena.insert(collider)?);
+        self.revision = self.revision.wrapping_add(1);
         self.by_body.entry(body).or_default().push(handle);
         Some(handle)
     }
 
     pub(crate) fn remove(&mut self, handle: ColliderHandle) -> Option<Collider> {
         let collider = self.arena.remove(handle.0)?;
+        self.revision = self.revision.wrapping_add(1);
         if let Some(list) = self.by_body.get_mut(&collider.body) {
             list.retain(|h| *h != handle);
             if list.is_empty() {

@@ -173,7 +173,7 @@ impl PhysicsSnapshot {
         target.world.restore(&self.world)?;
 
         let backend = target.world.backend_mut();
-        backend.colliders = ColliderSet::from_arena(arena);
+        backend.colliders = ColliderSet::from_arena(arena, backend.colliders.revision());
         backend.narrow_phase.clear();
         target.own_mass = self.own_mass.iter().copied().collect();
         target.joints_without_contacts = self.joints_without_contacts.iter().copied().collect();

@@ -331,3 +331,34 @@ fn two_worlds_built_by_the_same_calls_step_identically() {
         );
     }
 }
+
+/// The collider revision, by which an observer notices edits without comparing descriptions, moves on with
+/// every insertion, edit, removal and restore, and not with a step.
+#[test]
+fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
+    let mut world = scene();
+    let snapshot = world.snapshot();
+    let mut last = world.colliders().revision();
+    let mut moved = |world: &PhysicsWorld| {
+        let now = world.colliders().revision();
+        let changed = now != last;
+        last = now;
+        changed
+    };
+    for _ in 0..30 {
+        world.step(DT);
+        assert!(!moved(&world), "a step changed the revision");
+    }
+    let body = world.insert_body(BodyDesc::dynamic()).unwrap();
+    assert!(!moved(&world), "a body without colliders changed it");
+    let collider = world
+        .insert_collider(ColliderDesc::ball(0.5), body)
+        .unwrap();
+    assert!(moved(&world), "insertion");
+    world.set_collider_friction(collider, 0.2).unwrap();
+    assert!(moved(&world), "edit");
+    world.remove_collider(collider).unwrap();
+    assert!(moved(&world), "removal");
+    world.restore(&snapshot).unwrap();
+    assert!(moved(&world), "restore");
+}
