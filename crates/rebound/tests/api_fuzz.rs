@@ -262,7 +262,8 @@ fn checked<T, E: core::fmt::Debug>(
 ) -> Option<T> {
     let (before, digest) = (world.snapshot(), world.state_digest());
     // A snapshot unequal to itself holds a NaN: a non-finite value got into the state.
-    assert!(before == before, "before {op:?}: the snapshot holds a NaN");
+    let copy = before.clone();
+    assert!(before == copy, "before {op:?}: the snapshot holds a NaN");
     match f(world) {
         Ok(value) => Some(value),
         Err(error) => {
