@@ -1,6 +1,6 @@
 //! Validation at the facade's doors: a deserialised collider description is checked as
-//! [`PhysicsWorld::insert_collider`] checks it; a snapshot whose colliders, own masses, joints without contacts
-//! or sensor pairs refer to nothing in it, or whose world part is invalid, is refused whole with a typed error
+//! [`PhysicsWorld::insert_collider`] checks it; a snapshot whose colliders, own masses or joints without
+//! contacts refer to nothing in it, or whose world part is invalid, is refused whole with a typed error
 //! naming the item, and the world is unchanged; settings above their bounds and too short a step are refused
 //! or skipped here too.
 
