@@ -275,9 +275,10 @@ fn the_explicit_spring_is_bounded_below_h_omega_2_and_diverges_above() {
         "h·ω = 1.9 stays bounded, peak stretch {bounded} m from 0.1 m"
     );
     let diverged = force_spring_peak(DT, 300, SpringModel::force(k_for(2.1), 0.0).unwrap());
+    // Above the limit the stretch grows until the quarantine takes the body out at its speed bound.
     assert!(
-        diverged > 1e3,
-        "h·ω = 2.1 grows without bound, peak stretch {diverged} m"
+        diverged > 10.0,
+        "h·ω = 2.1 grows (100 times its start at least), peak stretch {diverged} m"
     );
 }
 

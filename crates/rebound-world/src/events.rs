@@ -6,8 +6,8 @@
 //! then sleep changes, each sorted by handle.
 
 use crate::handles::{BodyHandle, JointHandle};
+use crate::limits::QuarantineReason;
 use crate::prepare::Solver;
-use crate::quarantine::QuarantineReason;
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
 use rebound_math::Vec3;

@@ -37,12 +37,11 @@ pub use body_set::BodySet;
 pub use error::WorldError;
 pub use events::{ContactForce, Event};
 pub use handles::{BodyHandle, JointHandle};
-pub use limits::{MAX_BOUND, StepLimits};
+pub use limits::{MAX_BOUND, QuarantineReason, StepLimits};
 pub use manifold::{
     CollisionBackend, ContactBasis, ContactManifold, LEVER_ARM_RELATIVE_TOLERANCE,
     LEVER_ARM_TOLERANCE, MAX_MANIFOLD_POINTS, ManifoldPoint, NoCollision,
 };
-pub use quarantine::QuarantineReason;
 pub use report::{AdvanceReport, Profile, StepReport, StepSkipped};
 pub use settings::{MAX_STEPS_PER_ADVANCE, MAX_SUBSTEPS, MIN_STEP_DT, WorldSettings};
 pub use world::{RemovedBody, World, WorldSnapshot};

@@ -1,5 +1,6 @@
 //! `StepLimits`: the physical bounds beyond which a body is quarantined (taken out of the step, see
-//! `quarantine.rs`) and the caps on the work one step does. Part of [`crate::WorldSettings`].
+//! `quarantine.rs`), `QuarantineReason` (which bound a body passed) and the caps on the work one step does.
+//! Part of [`crate::WorldSettings`].
 
 use crate::WorldError;
 use rebound_math::validity::check_positive;
@@ -83,4 +84,18 @@ impl StepLimits {
         }
         Ok(())
     }
+}
+
+/// Why a body was quarantined.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub enum QuarantineReason {
+    /// Its speed exceeded [`StepLimits::max_speed`].
+    Speed,
+    /// Its angular speed exceeded [`StepLimits::max_angular_speed`].
+    AngularSpeed,
+    /// Its position exceeded [`StepLimits::max_position`] along an axis.
+    Position,
+    /// The solver's result for it was not finite.
+    NotFinite,
 }

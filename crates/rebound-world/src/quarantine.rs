@@ -27,7 +27,7 @@
 use crate::body_set::BodyEntry;
 use crate::events::Event;
 use crate::handles::BodyHandle;
-use crate::limits::StepLimits;
+use crate::limits::{QuarantineReason, StepLimits};
 use crate::prepare::Solver;
 use crate::state::WorldState;
 use rebound_constraints::JointState;
@@ -36,20 +36,6 @@ use rebound_math::Vec3;
 
 /// The most suspects of one step let back in one by one (see the module docs).
 pub(crate) const MAX_TRIED_SUSPECTS: usize = 8;
-
-/// Why a body was quarantined.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub enum QuarantineReason {
-    /// Its speed exceeded [`StepLimits::max_speed`].
-    Speed,
-    /// Its angular speed exceeded [`StepLimits::max_angular_speed`].
-    AngularSpeed,
-    /// Its position exceeded [`StepLimits::max_position`] along an axis.
-    Position,
-    /// The solver's result for it was not finite.
-    NotFinite,
-}
 
 /// The squares of the speed limits, computed once per check (the limits are at most 10¹⁵, so they are
 /// finite).

@@ -6,8 +6,8 @@ use crate::collide::Collision;
 use crate::events::EventBuffers;
 use crate::handles::BodyHandle;
 use crate::islands::SleepBuffers;
+use crate::limits::QuarantineReason;
 use crate::prepare::Solver;
-use crate::quarantine::QuarantineReason;
 
 /// Buffers reused from step to step (no allocation in a steady-state step). Not part of the state.
 #[derive(Debug, Default)]

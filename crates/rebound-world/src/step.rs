@@ -27,9 +27,9 @@
 use crate::collide::Collision;
 use crate::events::Event;
 use crate::handles::BodyHandle;
+use crate::limits::QuarantineReason;
 use crate::manifold::CollisionBackend;
 use crate::prepare::Solver;
-use crate::quarantine::QuarantineReason;
 use crate::report::{Profile, StepReport, StepSkipped};
 use crate::scratch::Scratch;
 use crate::settings::MIN_STEP_DT;
