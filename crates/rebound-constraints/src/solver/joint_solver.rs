@@ -75,6 +75,9 @@ pub struct JointSolver {
     /// errors with.
     pub(super) saved: Vec<(usize, SolverBody)>,
     pub(super) probe: Vec<Link>,
+    /// Scratch of the position projection: per entry of the paths' joints, the position impulse (N·s·s) of
+    /// its rope or rod row summed over the projection's accepted Newton steps.
+    pub(super) position_impulses: Vec<f32>,
     /// The joint softness of the prepared step.
     pub(super) joint_softness: Softness,
     /// The substep length of the prepared step (s).
@@ -102,6 +105,7 @@ impl Default for JointSolver {
             solution: Vec::new(),
             saved: Vec::new(),
             probe: Vec::new(),
+            position_impulses: Vec::new(),
             joint_softness: Softness::RIGID,
             h: 0.0,
             carry_angle: CARRY_ANGLE,
