@@ -15,7 +15,7 @@ use crate::soft_spring::JointSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
 use core::f32::consts::{PI, TAU};
-use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
+use rebound_dynamics::SolverBody;
 use rebound_math::glam::Vec3A;
 use rebound_math::{Quat, Vec3};
 
@@ -149,17 +149,9 @@ impl HingeJoint {
         self.spring = spring;
     }
 
-    pub(crate) fn prepare(
-        &self,
-        pair: &BodyPair,
-        ctx: &StepContext,
-        state: &mut JointState,
-    ) -> PreparedHinge {
+    pub(crate) fn prepare(&self, pair: &BodyPair, state: &mut JointState) -> PreparedHinge {
         let rows = CoordinateRows {
             spring: self.spring,
-            spring_softness: self
-                .spring
-                .map_or(Softness::RIGID, |s| s.spring().softness(0.0, ctx.h)),
             motor: self.motor,
             limits: self.limits,
         };
@@ -220,7 +212,7 @@ impl PreparedHinge {
         let align = state.angular_impulse;
         let [b1, b2] = self.perpendiculars_b;
         let perpendicular = b.delta_rotation * (b1 * align.x + b2 * align.y);
-        let twist = AnglePart::twist(axis, CoordinateRows::accumulated(state))
+        let twist = AnglePart::twist(axis, CoordinateRows::warm_start_impulse(state))
             + AlignPart::twist(axis, perpendicular);
         let r_a = a.delta_rotation * Vec3A::from(pair.anchor_a);
         let r_b = b.delta_rotation * Vec3A::from(pair.anchor_b);
@@ -272,11 +264,27 @@ impl PreparedHinge {
         [x, y, z, p, q]
     }
 
-    /// Whether the hinge has no limit, motor or spring: all its rows are then the point and alignment rows
-    /// of [`PreparedHinge::direct_rows`].
+    /// Whether the hinge has no limit or motor: all the rows its passes solve are then the point and
+    /// alignment rows of [`PreparedHinge::direct_rows`] (a spring acts in *apply forces*, before them).
     pub(crate) fn has_no_coordinate_rows(&self) -> bool {
-        // Idle in the bias pass: no limit, no motor, no spring (idle in the relax pass holds then too).
-        self.rows.is_idle(Bias::On)
+        self.rows.is_idle()
+    }
+
+    /// Stage *apply forces*: the spring on the hinge angle, if any ([`CoordinateRows::apply_spring`]).
+    pub(crate) fn apply_forces(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        (a, b): (&mut SolverBody, &mut SolverBody),
+        h: f32,
+    ) {
+        if self.rows.spring.is_none() {
+            return;
+        }
+        let (fa, fb) = pair.frames(a, b);
+        let part = AnglePart::new(pair, hinge_axis(fa));
+        self.rows
+            .apply_spring(&part, pair, twist_angle(fa, fb), state, (a, b), h);
     }
 
     /// The limit, motor and spring rows alone (when the point and alignment rows are solved directly).
@@ -288,8 +296,8 @@ impl PreparedHinge {
         b: &mut SolverBody,
         stage: &Stage,
     ) {
-        // A plain hinge (no limit, motor or spring; every hinge of a bridge) skips the angle and its row.
-        if self.rows.is_idle(stage.bias) {
+        // A plain hinge (no limit or motor; every hinge of a bridge) skips the angle and its row.
+        if self.rows.is_idle() {
             return;
         }
         let frames = pair.frames(a, b);
@@ -324,7 +332,7 @@ impl PreparedHinge {
     ) {
         let (fa, fb) = pair.frames(a, b);
         let (axis, perpendiculars) = alignment_axes((fa, fb));
-        if !self.rows.is_idle(stage.bias) {
+        if !self.rows.is_idle() {
             self.solve_angle(pair, (fa, fb), axis, state, a, b, stage);
         }
         let align = AlignPart::new(pair, axis, perpendiculars);

@@ -11,7 +11,7 @@ use crate::part::{AxisPart, RotationPart, Row, RowTarget};
 use crate::soft_spring::JointSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
-use rebound_dynamics::{Softness, SolverBody, StepContext};
+use rebound_dynamics::SolverBody;
 use rebound_math::{Quat, Vec3};
 
 rebound_math::checked_serde! { "PrismaticJoint", PrismaticJoint::validated;
@@ -117,17 +117,9 @@ impl PrismaticJoint {
         self.spring = spring;
     }
 
-    pub(crate) fn prepare(
-        &self,
-        pair: &BodyPair,
-        ctx: &StepContext,
-        state: &mut JointState,
-    ) -> PreparedPrismatic {
+    pub(crate) fn prepare(&self, pair: &BodyPair, state: &mut JointState) -> PreparedPrismatic {
         let rows = CoordinateRows {
             spring: self.spring,
-            spring_softness: self
-                .spring
-                .map_or(Softness::RIGID, |s| s.spring().softness(0.0, ctx.h)),
             motor: self.motor,
             limits: self.limits,
         };
@@ -235,9 +227,25 @@ impl PreparedPrismatic {
     ) {
         let g = SlideGeometry::new(pair, a, b);
         g.row(pair, 0)
-            .apply(pair, a, b, CoordinateRows::accumulated(state));
+            .apply(pair, a, b, CoordinateRows::warm_start_impulse(state));
         RotationPart::apply(pair, a, b, state.angular_impulse);
         g.warm_start_across(pair, [1, 2], state, a, b);
+    }
+
+    /// Stage *apply forces*: the spring on the slide, if any ([`CoordinateRows::apply_spring`]).
+    pub(crate) fn apply_forces(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        (a, b): (&mut SolverBody, &mut SolverBody),
+        h: f32,
+    ) {
+        if self.rows.spring.is_none() {
+            return;
+        }
+        let g = SlideGeometry::new(pair, a, b);
+        self.rows
+            .apply_spring(&g.row(pair, 0), pair, g.axes[0].dot(g.d), state, (a, b), h);
     }
 
     pub(crate) fn solve(

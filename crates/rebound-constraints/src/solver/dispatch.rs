@@ -72,16 +72,17 @@ impl Prepared {
                 keep_only(state, Keep::Linear);
                 Self::Ball
             }
-            JointKind::Hinge(h) => Self::Hinge(h.prepare(pair, ctx, state)),
+            JointKind::Hinge(h) => Self::Hinge(h.prepare(pair, state)),
             JointKind::Fixed(_) => Self::Fixed(FixedJoint::prepare(pair, state)),
-            JointKind::Prismatic(p) => Self::Prismatic(p.prepare(pair, ctx, state)),
-            JointKind::Wheel(w) => Self::Wheel(w.prepare(ctx, state)),
+            JointKind::Prismatic(p) => Self::Prismatic(p.prepare(pair, state)),
+            JointKind::Wheel(w) => Self::Wheel(w.prepare(state)),
             JointKind::SixDof(j) => Self::SixDof(j.prepare(pair, ctx, state)),
         }
     }
 
     /// Stage *apply forces*: a spring's impulse over the substep `h` (s) on its bodies, recorded in `state`
-    /// (see [`crate::spring`]); nothing for every other joint.
+    /// (see [`crate::spring`]) — the distance spring's, and the springs of hinge, prismatic and wheel joints
+    /// ([`crate::coordinate`]); nothing for every other joint.
     #[inline]
     pub(super) fn apply_forces(
         &self,
@@ -90,14 +91,31 @@ impl Prepared {
         solver_bodies: &mut [SolverBody],
         h: f32,
     ) {
-        let Self::Spring(spring) = self else {
-            return;
-        };
-        let Some((mut a, mut b)) = pair.load(solver_bodies) else {
-            return;
-        };
-        state.axial_impulse = spring.apply_forces(pair, &mut a, &mut b, h);
-        pair.store(solver_bodies, a, b);
+        match self {
+            Self::Spring(spring) => {
+                let Some((mut a, mut b)) = pair.load(solver_bodies) else {
+                    return;
+                };
+                state.axial_impulse = spring.apply_forces(pair, &mut a, &mut b, h);
+                pair.store(solver_bodies, a, b);
+            }
+            Self::Hinge(p) => {
+                if let Some([a, b]) = pair.bodies_mut(solver_bodies) {
+                    p.apply_forces(pair, state, (a, b), h);
+                }
+            }
+            Self::Prismatic(p) => {
+                if let Some([a, b]) = pair.bodies_mut(solver_bodies) {
+                    p.apply_forces(pair, state, (a, b), h);
+                }
+            }
+            Self::Wheel(p) => {
+                if let Some([a, b]) = pair.bodies_mut(solver_bodies) {
+                    p.apply_forces(pair, state, (a, b), h);
+                }
+            }
+            _ => {}
+        }
     }
 
     /// Stage *warm start*: the impulses of the last substep in `state`, again, along the current directions.
