@@ -32,10 +32,10 @@ rebound_math::checked_serde! { "HingeJoint", HingeJoint::validated;
 ///          Ċ = a·(ω_b − ω_a),   J = [ 0  −aᵀ  0  aᵀ ],   m_eff = 1/(a·I_a⁻¹·a + a·I_b⁻¹·a)
 /// limits:  θ − θ_min ≥ 0 (λ ≥ 0),  θ − θ_max ≤ 0 (λ ≤ 0), speculative inside, joint softness outside
 /// motor:   Ċ → ω_target, |λ| ≤ τ_max·h
-/// spring:  C = θ − θ_target, soft with its own SoftSpring (bias pass only)
+/// spring:  C = θ − θ_target, its own SoftSpring, the oscillator step in apply forces (see crate::coordinate)
 /// ```
 ///
-/// Row order in an iteration: spring, motor, limits, axis, point — the point last so that holding the bodies
+/// The spring acts before the passes; row order in an iteration: motor, limits, axis, point — the point last so that holding the bodies
 /// together wins (Box2D's and Jolt's order).
 ///
 /// Limitation: the angle wraps at ±π, so limits should lie inside (−π, π) with some margin; a hinge spun past
@@ -221,7 +221,8 @@ impl PreparedHinge {
     }
 
     /// The point rows and the two alignment rows for the direct solve of a chain ([`crate::path`]) at the
-    /// current pose; the limit, motor and spring rows stay with [`PreparedHinge::solve_coordinate`].
+    /// current pose; the limit and motor rows stay with [`PreparedHinge::solve_coordinate`] (the spring acts in
+    /// *apply forces*).
     pub(crate) fn direct_rows(
         pair: &BodyPair,
         a: &SolverBody,
@@ -270,6 +271,12 @@ impl PreparedHinge {
         self.rows.is_idle()
     }
 
+    /// Whether the joint has a spring ([`CoordinateRows::apply_spring`] acts).
+    #[inline]
+    pub(crate) fn has_spring(&self) -> bool {
+        self.rows.spring.is_some()
+    }
+
     /// Stage *apply forces*: the spring on the hinge angle, if any ([`CoordinateRows::apply_spring`]).
     pub(crate) fn apply_forces(
         &self,
@@ -278,16 +285,13 @@ impl PreparedHinge {
         (a, b): (&mut SolverBody, &mut SolverBody),
         h: f32,
     ) {
-        if self.rows.spring.is_none() {
-            return;
-        }
         let (fa, fb) = pair.frames(a, b);
         let part = AnglePart::new(pair, hinge_axis(fa));
         self.rows
             .apply_spring(&part, pair, twist_angle(fa, fb), state, (a, b), h);
     }
 
-    /// The limit, motor and spring rows alone (when the point and alignment rows are solved directly).
+    /// The limit and motor rows alone (when the point and alignment rows are solved directly).
     pub(crate) fn solve_coordinate(
         &self,
         pair: &BodyPair,
@@ -304,7 +308,7 @@ impl PreparedHinge {
         self.solve_angle(pair, frames, hinge_axis(frames.0), state, a, b, stage);
     }
 
-    /// The limit, motor and spring rows on the angle between the joint frames `frames` (world), about A's
+    /// The limit and motor rows on the angle between the joint frames `frames` (world), about A's
     /// hinge axis `axis` (world).
     #[inline]
     fn solve_angle(

@@ -29,8 +29,8 @@ rebound_math::checked_serde! { "PrismaticJoint", PrismaticJoint::validated;
 /// m_eff = 1/(1/m_a + 1/m_b + ((r_a + d) × t)·I_a⁻¹·((r_a + d) × t) + (r_b × t)·I_b⁻¹·(r_b × t))   per row
 /// ```
 ///
-/// Softness: the joint softness in the bias pass for the locks and limits, the spring's own for the spring.
-/// Row order: spring, motor, limits, rotation, across.
+/// Softness: the joint softness in the bias pass for the locks and limits; the spring takes its oscillator step.
+/// The spring acts in *apply forces*, before the passes; row order in them: motor, limits, rotation, across.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PrismaticJoint {
@@ -232,6 +232,12 @@ impl PreparedPrismatic {
         g.warm_start_across(pair, [1, 2], state, a, b);
     }
 
+    /// Whether the joint has a spring ([`CoordinateRows::apply_spring`] acts).
+    #[inline]
+    pub(crate) fn has_spring(&self) -> bool {
+        self.rows.spring.is_some()
+    }
+
     /// Stage *apply forces*: the spring on the slide, if any ([`CoordinateRows::apply_spring`]).
     pub(crate) fn apply_forces(
         &self,
@@ -240,9 +246,6 @@ impl PreparedPrismatic {
         (a, b): (&mut SolverBody, &mut SolverBody),
         h: f32,
     ) {
-        if self.rows.spring.is_none() {
-            return;
-        }
         let g = SlideGeometry::new(pair, a, b);
         self.rows
             .apply_spring(&g.row(pair, 0), pair, g.axes[0].dot(g.d), state, (a, b), h);

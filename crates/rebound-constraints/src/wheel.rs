@@ -28,7 +28,8 @@ rebound_math::checked_serde! { "WheelJoint", WheelJoint::validated;
 /// drive:      Ċ = a·(ω_b − ω_a) → ω_target, |λ| ≤ τ_max·h                  see crate::part::AnglePart
 /// ```
 ///
-/// Row order: suspension (spring, limits), drive, axle, across.
+/// The suspension spring acts in *apply forces*, before the passes; row order in them: suspension limits,
+/// drive, axle, across.
 ///
 /// # Examples
 ///

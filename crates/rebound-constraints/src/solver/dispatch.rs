@@ -80,9 +80,9 @@ impl Prepared {
         }
     }
 
-    /// Stage *apply forces*: a spring's impulse over the substep `h` (s) on its bodies, recorded in `state`
-    /// (see [`crate::spring`]) — the distance spring's, and the springs of hinge, prismatic and wheel joints
-    /// ([`crate::coordinate`]); nothing for every other joint.
+    /// Stage *apply forces*: a distance spring's impulse over the substep `h` (s) on its bodies, recorded in
+    /// `state` (see [`crate::spring`]); nothing for every other joint (the springs of joint coordinates:
+    /// [`Prepared::apply_coordinate_spring`]).
     #[inline]
     pub(super) fn apply_forces(
         &self,
@@ -91,29 +91,48 @@ impl Prepared {
         solver_bodies: &mut [SolverBody],
         h: f32,
     ) {
+        let Self::Spring(spring) = self else {
+            return;
+        };
+        let Some((mut a, mut b)) = pair.load(solver_bodies) else {
+            return;
+        };
+        state.axial_impulse = spring.apply_forces(pair, &mut a, &mut b, h);
+        pair.store(solver_bodies, a, b);
+    }
+
+    /// Whether the joint is a hinge or prismatic joint with a spring, or a wheel (its suspension): what
+    /// [`Prepared::apply_coordinate_spring`] acts on.
+    #[inline]
+    pub(super) fn has_coordinate_spring(&self) -> bool {
         match self {
-            Self::Spring(spring) => {
-                let Some((mut a, mut b)) = pair.load(solver_bodies) else {
-                    return;
-                };
-                state.axial_impulse = spring.apply_forces(pair, &mut a, &mut b, h);
-                pair.store(solver_bodies, a, b);
-            }
-            Self::Hinge(p) => {
-                if let Some([a, b]) = pair.bodies_mut(solver_bodies) {
-                    p.apply_forces(pair, state, (a, b), h);
-                }
-            }
-            Self::Prismatic(p) => {
-                if let Some([a, b]) = pair.bodies_mut(solver_bodies) {
-                    p.apply_forces(pair, state, (a, b), h);
-                }
-            }
-            Self::Wheel(p) => {
-                if let Some([a, b]) = pair.bodies_mut(solver_bodies) {
-                    p.apply_forces(pair, state, (a, b), h);
-                }
-            }
+            Self::Hinge(p) => p.has_spring(),
+            Self::Prismatic(p) => p.has_spring(),
+            Self::Wheel(_) => true,
+            _ => false,
+        }
+    }
+
+    /// Stage *apply forces* of a hinge's, prismatic joint's or wheel's spring over the substep `h` (s)
+    /// ([`crate::coordinate`]); nothing for every other joint.
+    pub(super) fn apply_coordinate_spring(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        solver_bodies: &mut [SolverBody],
+        h: f32,
+    ) {
+        if !self.has_coordinate_spring() {
+            return;
+        }
+        let Some([a, b]) = pair.bodies_mut(solver_bodies) else {
+            return;
+        };
+        let bodies = (a, b);
+        match self {
+            Self::Hinge(p) => p.apply_forces(pair, state, bodies, h),
+            Self::Prismatic(p) => p.apply_forces(pair, state, bodies, h),
+            Self::Wheel(p) => p.apply_forces(pair, state, bodies, h),
             _ => {}
         }
     }
@@ -149,7 +168,7 @@ impl Prepared {
     }
 
     /// Whether a Gauss–Seidel pass visits the joint: a joint on no path, and a hinge on one for its limit,
-    /// motor and spring rows, if it has any (the path solves the rest).
+    /// and motor rows, if it has any (the path solves the rest; its spring acts in *apply forces*).
     pub(super) fn is_iterated(&self, on_path: bool) -> bool {
         match self {
             Self::Hinge(hinge) => !on_path || !hinge.has_no_coordinate_rows(),
@@ -159,7 +178,7 @@ impl Prepared {
     }
 
     /// Stages *solve* and *relax*, one Gauss–Seidel visit of the joint's rows (of a hinge `on_path`, only its
-    /// limit, motor and spring rows).
+    /// limit and motor rows).
     #[inline]
     pub(super) fn solve(
         &mut self,
@@ -291,7 +310,7 @@ impl Prepared {
     }
 
     /// Whether all of the joint's rows are in the direct solve when it is on a path: a rope's, a rod's, a
-    /// ball joint's, a hinge's without limit, motor or spring.
+    /// ball joint's, a hinge's without limit or motor.
     pub(super) fn is_solved_directly_whole(&self) -> bool {
         match self {
             Self::Rope(_) | Self::Rod(_) | Self::Ball => true,

@@ -78,6 +78,9 @@ pub struct JointSolver {
     /// Scratch of the position projection: per entry of the paths' joints, the position impulse (N·s·s) of
     /// its rope or rod row summed over the projection's accepted Newton steps.
     pub(super) position_impulses: Vec<f32>,
+    /// Whether a prepared joint has a hinge, prismatic or wheel spring (*apply forces* visits the joints a
+    /// second time for them only then).
+    pub(super) coordinate_springs: bool,
     /// The joint softness of the prepared step.
     pub(super) joint_softness: Softness,
     /// The substep length of the prepared step (s).
@@ -106,6 +109,7 @@ impl Default for JointSolver {
             saved: Vec::new(),
             probe: Vec::new(),
             position_impulses: Vec::new(),
+            coordinate_springs: false,
             joint_softness: Softness::RIGID,
             h: 0.0,
             carry_angle: CARRY_ANGLE,
