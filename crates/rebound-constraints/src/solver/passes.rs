@@ -12,7 +12,8 @@ impl JointSolver {
     /// Stage *apply forces* (every substep, right after integrate velocities): each spring's impulse over
     /// the substep — the exact oscillator step of a [`crate::SpringModel::Soft`] spring, the explicit Hooke
     /// force `Δv = f·h·n/m` of a [`crate::SpringModel::Force`] one (course items 1–2) — on both bodies; then
-    /// the oscillator step of the springs of hinge, prismatic and wheel joints ([`crate::coordinate`]).
+    /// the oscillator step of the springs of hinge, prismatic and wheel joints (`docs/physics.md`, "Joint
+    /// springs").
     pub fn apply_forces(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
         for j in &mut self.joints {
             j.kind
