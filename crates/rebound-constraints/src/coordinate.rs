@@ -1,9 +1,10 @@
 //! The free coordinate of a hinge (angle), prismatic joint (slide) or wheel (suspension travel, drive): its
 //! optional spring, motor and limit rows, solved on one [`Row`] — an [`crate::part::AnglePart`] or an
-//! [`crate::part::AxisPart`]. Stage *solve* (the spring in the bias pass only) and *relax*.
+//! [`crate::part::AxisPart`]. The spring in stage *apply forces* (its whole substep, the distance spring's
+//! [`crate::OscillatorStep`]: no numerical damping); motor and limits in *solve* and *relax*.
 //!
 //! ```text
-//! spring:  C = x − x_target, soft (its own SoftSpring), λ unclamped            → JointState::axial_impulse
+//! spring:  C = x − x_target, λ = m_eff·((α − 1)·Ċ + β·C) once per substep       → JointState::axial_impulse
 //! motor:   Ċ → v_target, rigid, |λ| ≤ F_max·h                                  → JointState::motor_impulse
 //! lower:   C = x − x_min ≥ 0, speculative inside, joint softness outside, λ ≥ 0 → JointState::lower_impulse
 //! upper:   C = x − x_max ≤ 0, likewise, λ ≤ 0                                   → JointState::upper_impulse
@@ -16,23 +17,28 @@ use crate::part::{Row, RowTarget};
 use crate::soft_spring::JointSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
-use rebound_dynamics::{Bias, Softness, SolverBody};
+use rebound_dynamics::SolverBody;
 
 /// The optional rows of a joint coordinate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct CoordinateRows {
     pub spring: Option<JointSpring>,
-    /// The spring's coefficients in frequency form (the stiffness form is computed per iteration).
-    pub spring_softness: Softness,
     pub motor: Option<Motor>,
     pub limits: Option<Limits>,
 }
 
 impl CoordinateRows {
-    /// The accumulated impulse of all these rows (they share one direction), for warm starting.
+    /// The impulse of all these rows in the last substep (they share one direction), for the reaction.
     #[inline]
     pub(crate) fn accumulated(state: &JointState) -> f32 {
         state.axial_impulse + state.motor_impulse + state.lower_impulse + state.upper_impulse
+    }
+
+    /// The accumulated impulse of the rows the passes solve (motor and limits), for warm starting: the
+    /// spring's impulse is its whole substep, applied afresh in *apply forces*.
+    #[inline]
+    pub(crate) fn warm_start_impulse(state: &JointState) -> f32 {
+        state.motor_impulse + state.lower_impulse + state.upper_impulse
     }
 
     /// Zeroes the impulses of rows that are absent (so a removed motor is not warm-started).
@@ -49,13 +55,38 @@ impl CoordinateRows {
         }
     }
 
-    /// Whether a pass of stage `bias` has nothing to solve: no limits, no motor, and no spring (or the relax
-    /// pass, where springs rest). Then the caller need not measure the coordinate at all.
+    /// Whether the passes have nothing to solve: no limits and no motor (the spring acts in *apply forces*).
+    /// Then the caller need not measure the coordinate at all.
     #[inline]
-    pub(crate) fn is_idle(&self, bias: Bias) -> bool {
-        self.limits.is_none()
-            && self.motor.is_none()
-            && (self.spring.is_none() || bias == Bias::Off)
+    pub(crate) fn is_idle(&self) -> bool {
+        self.limits.is_none() && self.motor.is_none()
+    }
+
+    /// Stage *apply forces*: the spring's impulse over the substep `h` (s) at the coordinate value
+    /// `position` (m or rad) — the [`crate::OscillatorStep`] of the row's effective mass — applied along
+    /// `row` and kept in `state.axial_impulse`; nothing without a spring.
+    #[inline]
+    pub(crate) fn apply_spring<R: Row>(
+        &self,
+        row: &R,
+        pair: &BodyPair,
+        position: f32,
+        state: &mut JointState,
+        (a, b): (&mut SolverBody, &mut SolverBody),
+        h: f32,
+    ) {
+        let Some(spring) = self.spring else {
+            return;
+        };
+        let effective_mass = row.effective_mass();
+        let step = spring.spring().oscillator_step(effective_mass, h);
+        let impulse = step.impulse(
+            effective_mass,
+            row.velocity(a, b),
+            position - spring.target(),
+        );
+        row.apply_impulse(pair, a, b, impulse);
+        state.axial_impulse = impulse;
     }
 
     /// One pass over the rows, at the coordinate value `position` (m or rad).
@@ -69,23 +100,6 @@ impl CoordinateRows {
         b: &mut SolverBody,
         stage: &Stage,
     ) {
-        if let (Some(spring), Bias::On) = (self.spring, stage.bias) {
-            let softness = spring.spring().softness_in_iteration(
-                self.spring_softness,
-                row.effective_mass(),
-                stage.h,
-            );
-            let target = RowTarget::spring(position - spring.target(), softness);
-            row.solve_clamped(
-                pair,
-                a,
-                b,
-                target,
-                &mut state.axial_impulse,
-                f32::NEG_INFINITY,
-                f32::INFINITY,
-            );
-        }
         if let Some(motor) = self.motor {
             let max = motor.max_force() * stage.h;
             let target = RowTarget::speed(motor.target_speed());

@@ -15,7 +15,7 @@ use crate::soft_spring::JointSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
 use core::f32::consts::{PI, TAU};
-use rebound_dynamics::{Bias, Softness, SolverBody, StepContext};
+use rebound_dynamics::SolverBody;
 use rebound_math::glam::Vec3A;
 use rebound_math::{Quat, Vec3};
 
@@ -32,10 +32,10 @@ rebound_math::checked_serde! { "HingeJoint", HingeJoint::validated;
 ///          Ċ = a·(ω_b − ω_a),   J = [ 0  −aᵀ  0  aᵀ ],   m_eff = 1/(a·I_a⁻¹·a + a·I_b⁻¹·a)
 /// limits:  θ − θ_min ≥ 0 (λ ≥ 0),  θ − θ_max ≤ 0 (λ ≤ 0), speculative inside, joint softness outside
 /// motor:   Ċ → ω_target, |λ| ≤ τ_max·h
-/// spring:  C = θ − θ_target, soft with its own SoftSpring (bias pass only)
+/// spring:  C = θ − θ_target, its own SoftSpring, the oscillator step in apply forces (see crate::coordinate)
 /// ```
 ///
-/// Row order in an iteration: spring, motor, limits, axis, point — the point last so that holding the bodies
+/// The spring acts before the passes; row order in an iteration: motor, limits, axis, point — the point last so that holding the bodies
 /// together wins (Box2D's and Jolt's order).
 ///
 /// Limitation: the angle wraps at ±π, so limits should lie inside (−π, π) with some margin; a hinge spun past
@@ -149,17 +149,9 @@ impl HingeJoint {
         self.spring = spring;
     }
 
-    pub(crate) fn prepare(
-        &self,
-        pair: &BodyPair,
-        ctx: &StepContext,
-        state: &mut JointState,
-    ) -> PreparedHinge {
+    pub(crate) fn prepare(&self, pair: &BodyPair, state: &mut JointState) -> PreparedHinge {
         let rows = CoordinateRows {
             spring: self.spring,
-            spring_softness: self
-                .spring
-                .map_or(Softness::RIGID, |s| s.spring().softness(0.0, ctx.h)),
             motor: self.motor,
             limits: self.limits,
         };
@@ -220,7 +212,7 @@ impl PreparedHinge {
         let align = state.angular_impulse;
         let [b1, b2] = self.perpendiculars_b;
         let perpendicular = b.delta_rotation * (b1 * align.x + b2 * align.y);
-        let twist = AnglePart::twist(axis, CoordinateRows::accumulated(state))
+        let twist = AnglePart::twist(axis, CoordinateRows::warm_start_impulse(state))
             + AlignPart::twist(axis, perpendicular);
         let r_a = a.delta_rotation * Vec3A::from(pair.anchor_a);
         let r_b = b.delta_rotation * Vec3A::from(pair.anchor_b);
@@ -229,7 +221,8 @@ impl PreparedHinge {
     }
 
     /// The point rows and the two alignment rows for the direct solve of a chain ([`crate::path`]) at the
-    /// current pose; the limit, motor and spring rows stay with [`PreparedHinge::solve_coordinate`].
+    /// current pose; the limit and motor rows stay with [`PreparedHinge::solve_coordinate`] (the spring acts in
+    /// *apply forces*).
     pub(crate) fn direct_rows(
         pair: &BodyPair,
         a: &SolverBody,
@@ -272,14 +265,33 @@ impl PreparedHinge {
         [x, y, z, p, q]
     }
 
-    /// Whether the hinge has no limit, motor or spring: all its rows are then the point and alignment rows
-    /// of [`PreparedHinge::direct_rows`].
+    /// Whether the hinge has no limit or motor: all the rows its passes solve are then the point and
+    /// alignment rows of [`PreparedHinge::direct_rows`] (a spring acts in *apply forces*, before them).
     pub(crate) fn has_no_coordinate_rows(&self) -> bool {
-        // Idle in the bias pass: no limit, no motor, no spring (idle in the relax pass holds then too).
-        self.rows.is_idle(Bias::On)
+        self.rows.is_idle()
     }
 
-    /// The limit, motor and spring rows alone (when the point and alignment rows are solved directly).
+    /// Whether the joint has a spring ([`CoordinateRows::apply_spring`] acts).
+    #[inline]
+    pub(crate) fn has_spring(&self) -> bool {
+        self.rows.spring.is_some()
+    }
+
+    /// Stage *apply forces*: the spring on the hinge angle, if any ([`CoordinateRows::apply_spring`]).
+    pub(crate) fn apply_forces(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        (a, b): (&mut SolverBody, &mut SolverBody),
+        h: f32,
+    ) {
+        let (fa, fb) = pair.frames(a, b);
+        let part = AnglePart::new(pair, hinge_axis(fa));
+        self.rows
+            .apply_spring(&part, pair, twist_angle(fa, fb), state, (a, b), h);
+    }
+
+    /// The limit and motor rows alone (when the point and alignment rows are solved directly).
     pub(crate) fn solve_coordinate(
         &self,
         pair: &BodyPair,
@@ -288,15 +300,15 @@ impl PreparedHinge {
         b: &mut SolverBody,
         stage: &Stage,
     ) {
-        // A plain hinge (no limit, motor or spring; every hinge of a bridge) skips the angle and its row.
-        if self.rows.is_idle(stage.bias) {
+        // A plain hinge (no limit or motor; every hinge of a bridge) skips the angle and its row.
+        if self.rows.is_idle() {
             return;
         }
         let frames = pair.frames(a, b);
         self.solve_angle(pair, frames, hinge_axis(frames.0), state, a, b, stage);
     }
 
-    /// The limit, motor and spring rows on the angle between the joint frames `frames` (world), about A's
+    /// The limit and motor rows on the angle between the joint frames `frames` (world), about A's
     /// hinge axis `axis` (world).
     #[inline]
     fn solve_angle(
@@ -324,7 +336,7 @@ impl PreparedHinge {
     ) {
         let (fa, fb) = pair.frames(a, b);
         let (axis, perpendiculars) = alignment_axes((fa, fb));
-        if !self.rows.is_idle(stage.bias) {
+        if !self.rows.is_idle() {
             self.solve_angle(pair, (fa, fb), axis, state, a, b, stage);
         }
         let align = AlignPart::new(pair, axis, perpendiculars);

@@ -11,7 +11,7 @@ use crate::part::{AxisPart, RotationPart, Row, RowTarget};
 use crate::soft_spring::JointSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
-use rebound_dynamics::{Softness, SolverBody, StepContext};
+use rebound_dynamics::SolverBody;
 use rebound_math::{Quat, Vec3};
 
 rebound_math::checked_serde! { "PrismaticJoint", PrismaticJoint::validated;
@@ -29,8 +29,8 @@ rebound_math::checked_serde! { "PrismaticJoint", PrismaticJoint::validated;
 /// m_eff = 1/(1/m_a + 1/m_b + ((r_a + d) × t)·I_a⁻¹·((r_a + d) × t) + (r_b × t)·I_b⁻¹·(r_b × t))   per row
 /// ```
 ///
-/// Softness: the joint softness in the bias pass for the locks and limits, the spring's own for the spring.
-/// Row order: spring, motor, limits, rotation, across.
+/// Softness: the joint softness in the bias pass for the locks and limits; the spring takes its oscillator step.
+/// The spring acts in *apply forces*, before the passes; row order in them: motor, limits, rotation, across.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct PrismaticJoint {
@@ -117,17 +117,9 @@ impl PrismaticJoint {
         self.spring = spring;
     }
 
-    pub(crate) fn prepare(
-        &self,
-        pair: &BodyPair,
-        ctx: &StepContext,
-        state: &mut JointState,
-    ) -> PreparedPrismatic {
+    pub(crate) fn prepare(&self, pair: &BodyPair, state: &mut JointState) -> PreparedPrismatic {
         let rows = CoordinateRows {
             spring: self.spring,
-            spring_softness: self
-                .spring
-                .map_or(Softness::RIGID, |s| s.spring().softness(0.0, ctx.h)),
             motor: self.motor,
             limits: self.limits,
         };
@@ -235,9 +227,28 @@ impl PreparedPrismatic {
     ) {
         let g = SlideGeometry::new(pair, a, b);
         g.row(pair, 0)
-            .apply(pair, a, b, CoordinateRows::accumulated(state));
+            .apply(pair, a, b, CoordinateRows::warm_start_impulse(state));
         RotationPart::apply(pair, a, b, state.angular_impulse);
         g.warm_start_across(pair, [1, 2], state, a, b);
+    }
+
+    /// Whether the joint has a spring ([`CoordinateRows::apply_spring`] acts).
+    #[inline]
+    pub(crate) fn has_spring(&self) -> bool {
+        self.rows.spring.is_some()
+    }
+
+    /// Stage *apply forces*: the spring on the slide, if any ([`CoordinateRows::apply_spring`]).
+    pub(crate) fn apply_forces(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        (a, b): (&mut SolverBody, &mut SolverBody),
+        h: f32,
+    ) {
+        let g = SlideGeometry::new(pair, a, b);
+        self.rows
+            .apply_spring(&g.row(pair, 0), pair, g.axes[0].dot(g.d), state, (a, b), h);
     }
 
     pub(crate) fn solve(

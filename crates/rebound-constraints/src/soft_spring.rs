@@ -1,11 +1,13 @@
 //! Spring parameters shared by every soft spring in the crate (the `Soft` model of [`crate::Spring`], hinge,
-//! prismatic and wheel springs), turned into [`Softness`] coefficients at *prepare* (frequency form) or in each
-//! iteration (stiffness form, which needs the current effective mass).
+//! prismatic and wheel springs, the 6-DOF drive, the orientation motor), turned into the [`OscillatorStep`]
+//! of a substep or into [`Softness`] coefficients.
 //!
-//! A joint's soft spring (hinge, prismatic, wheel) is a spring-damper `F = −k·C − c·Ċ` integrated with
-//! implicit Euler (Catto, "Soft Constraints", GDC 2011): stable for any stiffness and step. The distance
-//! [`crate::Spring`] instead takes the [`OscillatorStep`], which has no numerical damping. The two parameterisations are related through
-//! the row's effective mass `m_eff`: `k = m_eff·ω²`, `c = 2·m_eff·ζ·ω`, `ω = 2π·f`.
+//! Every spring — the distance [`crate::Spring`]'s `Soft` model and the springs of hinge, prismatic and wheel
+//! joints — is a spring-damper `F = −k·C − c·Ċ` on one row, taken through each substep by the
+//! [`OscillatorStep`] in the *apply forces* stage: stable for any stiffness and step, without numerical
+//! damping. The 6-DOF joint's position drive and the orientation motor, which are capped, are soft rows
+//! ([`SoftSpring::softness`], implicit Euler: Catto, "Soft Constraints", GDC 2011). The two parameterisations
+//! are related through the row's effective mass `m_eff`: `k = m_eff·ω²`, `c = 2·m_eff·ζ·ω`, `ω = 2π·f`.
 
 use crate::error::ConstraintError;
 use rebound_dynamics::Softness;
@@ -96,24 +98,6 @@ impl SoftSpring {
     #[must_use]
     pub fn depends_on_mass(&self) -> bool {
         matches!(self, Self::Stiffness { .. })
-    }
-
-    /// The coefficients in one iteration of a row of effective mass `effective_mass` (kg or kg·m²) in
-    /// substep `h` (s): `prepared` (this spring's [`SoftSpring::softness`] for mass 0, made once at prepare)
-    /// unless they depend on the mass ([`SoftSpring::depends_on_mass`]), else computed now.
-    #[inline]
-    #[must_use]
-    pub(crate) fn softness_in_iteration(
-        &self,
-        prepared: Softness,
-        effective_mass: f32,
-        h: f32,
-    ) -> Softness {
-        if self.depends_on_mass() {
-            self.softness(effective_mass, h)
-        } else {
-            prepared
-        }
     }
 
     /// The exact oscillator step ([`OscillatorStep`]) of a row of effective mass `effective_mass` (kg or
@@ -207,6 +191,15 @@ impl OscillatorStep {
             velocity_factor,
             position_rate: -velocity_factor * h * omega_squared,
         }
+    }
+
+    /// The impulse (N·s or N·m·s) that takes a row of effective mass `effective_mass` (kg or kg·m²) moving
+    /// at `speed` (`Ċ`, m/s or rad/s) with the stretch `stretch` (`C`, m or rad) through the step:
+    /// `λ = m_eff·((α − 1)·Ċ + β·C)`, so that `Ċ' = α·Ċ + β·C`.
+    #[inline]
+    #[must_use]
+    pub fn impulse(&self, effective_mass: f32, speed: f32, stretch: f32) -> f32 {
+        effective_mass * ((self.velocity_factor - 1.0) * speed + self.position_rate * stretch)
     }
 
     /// The rigid limit (`ω → ∞`): the stretch is closed in one substep, `v' = −x/h`.

@@ -322,8 +322,7 @@ impl PreparedSpring {
                 let step = spring.oscillator_step(effective_mass, h);
                 let c = dist.length - self.spring.rest_length;
                 let speed = part.velocity(a, b);
-                let impulse = effective_mass
-                    * ((step.velocity_factor - 1.0) * speed + step.position_rate * c);
+                let impulse = step.impulse(effective_mass, speed, c);
                 impulse
                     .max(self.spring.min_force * h)
                     .min(self.spring.max_force * h)

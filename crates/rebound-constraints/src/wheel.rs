@@ -12,7 +12,7 @@ use crate::prismatic::SlideGeometry;
 use crate::soft_spring::{JointSpring, SoftSpring};
 use crate::stage::Stage;
 use crate::state::JointState;
-use rebound_dynamics::{SolverBody, StepContext};
+use rebound_dynamics::SolverBody;
 
 rebound_math::checked_serde! { "WheelJoint", WheelJoint::validated;
 /// A wheel joint.
@@ -28,7 +28,8 @@ rebound_math::checked_serde! { "WheelJoint", WheelJoint::validated;
 /// drive:      Ċ = a·(ω_b − ω_a) → ω_target, |λ| ≤ τ_max·h                  see crate::part::AnglePart
 /// ```
 ///
-/// Row order: suspension (spring, limits), drive, axle, across.
+/// The suspension spring acts in *apply forces*, before the passes; row order in them: suspension limits,
+/// drive, axle, across.
 ///
 /// # Examples
 ///
@@ -137,10 +138,9 @@ impl WheelJoint {
         self.motor = motor;
     }
 
-    pub(crate) fn prepare(&self, ctx: &StepContext, state: &mut JointState) -> PreparedWheel {
+    pub(crate) fn prepare(&self, state: &mut JointState) -> PreparedWheel {
         let suspension = CoordinateRows {
             spring: Some(JointSpring::relaxed_at_zero(self.suspension)),
-            spring_softness: self.suspension.softness(0.0, ctx.h),
             motor: None,
             limits: self.suspension_limits,
         };
@@ -176,7 +176,8 @@ impl PreparedWheel {
         b: &mut SolverBody,
     ) {
         let g = SlideGeometry::new(pair, a, b);
-        let suspension = state.axial_impulse + state.lower_impulse + state.upper_impulse;
+        // The suspension spring's impulse is its whole substep, applied afresh in *apply forces*.
+        let suspension = state.lower_impulse + state.upper_impulse;
         g.row(pair, 1).apply(pair, a, b, suspension);
         let axle = g.axes[0];
         AnglePart::new(pair, axle).apply(a, b, state.motor_impulse);
@@ -189,6 +190,19 @@ impl PreparedWheel {
             state.angular_impulse.truncate(),
         );
         g.warm_start_across(pair, ACROSS, state, a, b);
+    }
+
+    /// Stage *apply forces*: the suspension spring ([`CoordinateRows::apply_spring`]).
+    pub(crate) fn apply_forces(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        (a, b): (&mut SolverBody, &mut SolverBody),
+        h: f32,
+    ) {
+        let g = SlideGeometry::new(pair, a, b);
+        self.suspension
+            .apply_spring(&g.row(pair, 1), pair, g.axes[1].dot(g.d), state, (a, b), h);
     }
 
     pub(crate) fn solve(

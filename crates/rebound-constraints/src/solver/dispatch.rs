@@ -72,16 +72,17 @@ impl Prepared {
                 keep_only(state, Keep::Linear);
                 Self::Ball
             }
-            JointKind::Hinge(h) => Self::Hinge(h.prepare(pair, ctx, state)),
+            JointKind::Hinge(h) => Self::Hinge(h.prepare(pair, state)),
             JointKind::Fixed(_) => Self::Fixed(FixedJoint::prepare(pair, state)),
-            JointKind::Prismatic(p) => Self::Prismatic(p.prepare(pair, ctx, state)),
-            JointKind::Wheel(w) => Self::Wheel(w.prepare(ctx, state)),
+            JointKind::Prismatic(p) => Self::Prismatic(p.prepare(pair, state)),
+            JointKind::Wheel(w) => Self::Wheel(w.prepare(state)),
             JointKind::SixDof(j) => Self::SixDof(j.prepare(pair, ctx, state)),
         }
     }
 
-    /// Stage *apply forces*: a spring's impulse over the substep `h` (s) on its bodies, recorded in `state`
-    /// (see [`crate::spring`]); nothing for every other joint.
+    /// Stage *apply forces*: a distance spring's impulse over the substep `h` (s) on its bodies, recorded in
+    /// `state` (see [`crate::spring`]); nothing for every other joint (the springs of joint coordinates:
+    /// [`Prepared::apply_coordinate_spring`]).
     #[inline]
     pub(super) fn apply_forces(
         &self,
@@ -98,6 +99,42 @@ impl Prepared {
         };
         state.axial_impulse = spring.apply_forces(pair, &mut a, &mut b, h);
         pair.store(solver_bodies, a, b);
+    }
+
+    /// Whether the joint is a hinge or prismatic joint with a spring, or a wheel (its suspension): what
+    /// [`Prepared::apply_coordinate_spring`] acts on.
+    #[inline]
+    pub(super) fn has_coordinate_spring(&self) -> bool {
+        match self {
+            Self::Hinge(p) => p.has_spring(),
+            Self::Prismatic(p) => p.has_spring(),
+            Self::Wheel(_) => true,
+            _ => false,
+        }
+    }
+
+    /// Stage *apply forces* of a hinge's, prismatic joint's or wheel's spring over the substep `h` (s)
+    /// ([`crate::coordinate`]); nothing for every other joint.
+    pub(super) fn apply_coordinate_spring(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        solver_bodies: &mut [SolverBody],
+        h: f32,
+    ) {
+        if !self.has_coordinate_spring() {
+            return;
+        }
+        let Some([a, b]) = pair.bodies_mut(solver_bodies) else {
+            return;
+        };
+        let bodies = (a, b);
+        match self {
+            Self::Hinge(p) => p.apply_forces(pair, state, bodies, h),
+            Self::Prismatic(p) => p.apply_forces(pair, state, bodies, h),
+            Self::Wheel(p) => p.apply_forces(pair, state, bodies, h),
+            _ => {}
+        }
     }
 
     /// Stage *warm start*: the impulses of the last substep in `state`, again, along the current directions.
@@ -131,7 +168,7 @@ impl Prepared {
     }
 
     /// Whether a Gauss–Seidel pass visits the joint: a joint on no path, and a hinge on one for its limit,
-    /// motor and spring rows, if it has any (the path solves the rest).
+    /// and motor rows, if it has any (the path solves the rest; its spring acts in *apply forces*).
     pub(super) fn is_iterated(&self, on_path: bool) -> bool {
         match self {
             Self::Hinge(hinge) => !on_path || !hinge.has_no_coordinate_rows(),
@@ -141,7 +178,7 @@ impl Prepared {
     }
 
     /// Stages *solve* and *relax*, one Gauss–Seidel visit of the joint's rows (of a hinge `on_path`, only its
-    /// limit, motor and spring rows).
+    /// limit and motor rows).
     #[inline]
     pub(super) fn solve(
         &mut self,
@@ -273,7 +310,7 @@ impl Prepared {
     }
 
     /// Whether all of the joint's rows are in the direct solve when it is on a path: a rope's, a rod's, a
-    /// ball joint's, a hinge's without limit, motor or spring.
+    /// ball joint's, a hinge's without limit or motor.
     pub(super) fn is_solved_directly_whole(&self) -> bool {
         match self {
             Self::Rope(_) | Self::Rod(_) | Self::Ball => true,

@@ -75,6 +75,12 @@ pub struct JointSolver {
     /// errors with.
     pub(super) saved: Vec<(usize, SolverBody)>,
     pub(super) probe: Vec<Link>,
+    /// Scratch of the position projection: per entry of the paths' joints, the position impulse (N·s·s) of
+    /// its rope or rod row summed over the projection's accepted Newton steps.
+    pub(super) position_impulses: Vec<f32>,
+    /// Whether a prepared joint has a hinge, prismatic or wheel spring (*apply forces* visits the joints a
+    /// second time for them only then).
+    pub(super) coordinate_springs: bool,
     /// The joint softness of the prepared step.
     pub(super) joint_softness: Softness,
     /// The substep length of the prepared step (s).
@@ -102,6 +108,8 @@ impl Default for JointSolver {
             solution: Vec::new(),
             saved: Vec::new(),
             probe: Vec::new(),
+            position_impulses: Vec::new(),
+            coordinate_springs: false,
             joint_softness: Softness::RIGID,
             h: 0.0,
             carry_angle: CARRY_ANGLE,

@@ -17,7 +17,8 @@
 //!                                               substep's also relaxes closed paths and builds every path's rows
 //!                                               at the final pose
 //! project_positions              project.rs     once: the positions of each path, so that its joints end the
-//!                                               step closed
+//!                                               step closed; projection_velocity.rs: the velocities its
+//!                                               displacement along turning rope and rod rows implies
 //! apply_restitution              passes.rs      once: ropes that snapped taut
 //! store_impulses                 passes.rs      impulses back into the JointStates; break check
 //! ```
@@ -31,6 +32,7 @@ mod passes;
 mod path_pass;
 mod prepare;
 mod project;
+mod projection_velocity;
 #[cfg(test)]
 mod tests;
 

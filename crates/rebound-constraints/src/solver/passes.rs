@@ -11,11 +11,22 @@ use rebound_dynamics::{Bias, SolverBody, StepContext};
 impl JointSolver {
     /// Stage *apply forces* (every substep, right after integrate velocities): each spring's impulse over
     /// the substep — the exact oscillator step of a [`crate::SpringModel::Soft`] spring, the explicit Hooke
-    /// force `Δv = f·h·n/m` of a [`crate::SpringModel::Force`] one (course items 1–2) — on both bodies.
+    /// force `Δv = f·h·n/m` of a [`crate::SpringModel::Force`] one (course items 1–2) — on both bodies; then
+    /// the oscillator step of the springs of hinge, prismatic and wheel joints (`docs/physics.md`, "Joint
+    /// springs").
     pub fn apply_forces(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
         for j in &mut self.joints {
             j.kind
                 .apply_forces(&j.pair, &mut j.state, solver_bodies, ctx.h);
+        }
+        // The springs of hinge, prismatic and wheel joints, the same oscillator step on their coordinate: a
+        // second visit, made only in a step that has one, so that scenes without them (chains, bridges,
+        // distance springs) test one variant per joint as before.
+        if self.coordinate_springs {
+            for j in &mut self.joints {
+                j.kind
+                    .apply_coordinate_spring(&j.pair, &mut j.state, solver_bodies, ctx.h);
+            }
         }
     }
 
@@ -101,7 +112,7 @@ impl JointSolver {
             }
         }
         for _ in 0..iterations {
-            // Joints on a direct path are solved below, all but a hinge's limit, motor and spring rows (they
+            // Joints on a direct path are solved below, all but a hinge's limit and motor rows (they
             // are not in `iterated`).
             for &index in &self.iterated {
                 let Some(j) = self.joints.get_mut(index) else {

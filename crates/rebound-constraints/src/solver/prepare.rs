@@ -46,6 +46,7 @@ impl JointSolver {
         ctx: &StepContext,
     ) -> usize {
         self.joints.clear();
+        self.coordinate_springs = false;
         self.relax_passes = 0;
         self.joint_softness = self.settings.joint_softness(ctx);
         self.h = ctx.h;
@@ -78,6 +79,7 @@ impl JointSolver {
                 JointState::default()
             };
             let kind = Prepared::prepare(joint.kind(), &pair, (sa, sb), ctx, &mut state);
+            self.coordinate_springs |= kind.has_coordinate_spring();
             self.joints.push(PreparedJoint {
                 source,
                 pair,

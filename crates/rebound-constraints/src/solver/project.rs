@@ -5,6 +5,7 @@
 use super::dispatch::PreparedJoint;
 use super::joint_solver::JointSolver;
 use super::path_pass::{direct_rows, link_rows, solve_links};
+use super::projection_velocity::apply_turning_rows;
 use crate::path::{Link, MAX_ROWS, Real, link_at, project_rows, resize_links};
 use crate::stage::Stage;
 use rebound_dynamics::{SolverBody, StepContext};
@@ -48,6 +49,9 @@ impl JointSolver {
     /// `(v·h)²/(2L)` in each substep, far more than the soft correction takes back.
     pub fn project_positions(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
         let stage = Stage::projection(ctx.h);
+        self.position_impulses.clear();
+        self.position_impulses
+            .resize(self.topology.path_joints.len(), 0.0);
         for path in 0..self.topology.paths.len() {
             let Some(range) = self.topology.paths.get(path).cloned() else {
                 continue;
@@ -59,13 +63,16 @@ impl JointSolver {
                 solution,
                 saved,
                 probe,
+                position_impulses,
                 ..
             } = self;
             let path_joints = &topology.path_joints;
             resize_links(links, path_joints.len());
-            let (Some(members), Some(links)) =
-                (path_joints.get(range.clone()), links.get_mut(range))
-            else {
+            let (Some(members), Some(links), Some(impulses)) = (
+                path_joints.get(range.clone()),
+                links.get_mut(range.clone()),
+                position_impulses.get_mut(range),
+            ) else {
                 continue;
             };
             let worst =
@@ -119,6 +126,7 @@ impl JointSolver {
                     saved,
                     probe,
                     stage: &stage,
+                    impulses: &mut *impulses,
                 };
                 let mut after = step.try_scaled(before * gain, 1.0, 1);
                 if after.is_none() && step.stiffen_and_solve() {
@@ -174,6 +182,14 @@ impl JointSolver {
                 }
             }
         }
+        // The velocities of bodies moved along turning rows (`projection_velocity.rs`): without them, each
+        // projection takes the centripetal work of its shortening out of a swinging rope.
+        apply_turning_rows(
+            &self.joints,
+            &self.topology.path_joints,
+            &self.position_impulses,
+            solver_bodies,
+        );
     }
 }
 
@@ -220,6 +236,8 @@ pub(super) struct NewtonStep<'a> {
     pub(super) saved: &'a [(usize, SolverBody)],
     pub(super) probe: &'a mut Link,
     pub(super) stage: &'a Stage,
+    /// Per link, the position impulse of its rope or rod row summed over the accepted steps.
+    pub(super) impulses: &'a mut [f32],
 }
 
 impl NewtonStep<'_> {
@@ -243,12 +261,30 @@ impl NewtonStep<'_> {
                 self.probe,
             );
             if after <= target {
+                self.add_distance_impulses(scale);
                 return Some(after);
             }
             restore_bodies(self.saved, self.solver_bodies);
             scale *= 0.5;
         }
         None
+    }
+
+    /// Adds `scale` times the solution's position impulse of each rope's and rod's distance row (its first,
+    /// while active; what `Link::apply_solution` displaced the bodies by) to `impulses`.
+    fn add_distance_impulses(&mut self, scale: Real) {
+        for ((link, x), (&index, total)) in self
+            .links
+            .iter()
+            .zip(&*self.solution)
+            .zip(self.members.iter().zip(self.impulses.iter_mut()))
+        {
+            if !link.active[0] || self.joints[index].kind.link_length().is_none() {
+                continue;
+            }
+            let row = &link.rows.rows[0];
+            *total += crate::part::clamp_impulse(-((x[0] * scale) as f32), row.lower, row.upper);
+        }
     }
 
     /// Stiffens the path's pulled ropes and rods ([`stiffen`]) and, if any was, solves the step again; whether
