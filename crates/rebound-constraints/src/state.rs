@@ -72,6 +72,25 @@ impl JointState {
         check_non_negative("reaction_torque", self.reaction_torque)?;
         Ok(self)
     }
+
+    /// Whether every number is finite: `x·0` is 0 for a finite `x` and NaN otherwise, so the sum of the
+    /// products is zero exactly when all are (one comparison for the thirteen numbers).
+    #[inline]
+    pub(crate) fn is_finite(&self) -> bool {
+        let vectors = self.linear_impulse * 0.0 + self.angular_impulse * 0.0;
+        let zero_if_finite = [
+            self.axial_impulse,
+            self.lower_impulse,
+            self.upper_impulse,
+            self.motor_impulse,
+            self.tether_impulse,
+            self.reaction_force,
+            self.reaction_torque,
+        ]
+        .iter()
+        .fold(vectors.x + vectors.y + vectors.z, |sum, x| sum + x * 0.0);
+        zero_if_finite == 0.0
+    }
 }
 
 /// Where [`crate::JointSolver::store_impulses_to`] writes the joints' states back: joint `i` of the step (in

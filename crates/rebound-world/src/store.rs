@@ -50,7 +50,9 @@ pub(crate) fn store_impulses(
             if let Some(point) = manifolds[source].points.get_mut(k) {
                 // Never a non-finite impulse into the state (the next step would warm start from it): the
                 // quarantine reruns a step whose bodies went non-finite, so this guards a fault only.
-                let finite = normal.is_finite() && tangent.is_finite();
+                let finite = (tangent * 0.0 + Vec3::splat(normal * 0.0))
+                    .cmpeq(Vec3::ZERO)
+                    .all();
                 point.normal_impulse = if finite { normal } else { 0.0 };
                 point.tangent_impulse = if finite { tangent } else { Vec3::ZERO };
             }
@@ -61,18 +63,8 @@ pub(crate) fn store_impulses(
         joints: &mut state.joints,
         handles: &s.joint_handles,
     };
+    // The joint solver stores no non-finite impulse either.
     s.joint_solver.store_impulses_to(&mut stored, &mut s.broken);
-    // Likewise no non-finite joint impulse is kept (checked where it is stored, for the joints of the step).
-    for handle in &s.joint_handles {
-        if let Some(entry) = state.joints.get_mut(handle.0)
-            && !is_finite(&entry.state)
-        {
-            entry.state = JointState {
-                broken: entry.state.broken,
-                ..JointState::default()
-            };
-        }
-    }
     report.broken_joint_count = s.broken.len();
     for &i in &s.broken {
         if let Some(handle) = s.joint_handles.get(i) {
@@ -94,19 +86,3 @@ pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver) {
     }
 }
 
-/// Whether every number of a joint's state is finite.
-fn is_finite(state: &JointState) -> bool {
-    state.linear_impulse.is_finite()
-        && state.angular_impulse.is_finite()
-        && [
-            state.axial_impulse,
-            state.lower_impulse,
-            state.upper_impulse,
-            state.motor_impulse,
-            state.tether_impulse,
-            state.reaction_force,
-            state.reaction_torque,
-        ]
-        .iter()
-        .all(|x| x.is_finite())
-}

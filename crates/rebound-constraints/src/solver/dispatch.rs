@@ -93,11 +93,12 @@ impl Prepared {
         let Self::Spring(spring) = self else {
             return;
         };
-        let Some((mut a, mut b)) = pair.load(solver_bodies) else {
+        // The bodies in place: the spring changes velocities only (`prepare` never keeps a joint whose two
+        // bodies are one).
+        let Some([a, b]) = pair.bodies_mut(solver_bodies) else {
             return;
         };
-        state.axial_impulse = spring.apply_forces(pair, &mut a, &mut b, h);
-        pair.store(solver_bodies, a, b);
+        state.axial_impulse = spring.apply_forces(pair, a, b, h);
     }
 
     /// Stage *warm start*: the impulses of the last substep in `state`, again, along the current directions.
