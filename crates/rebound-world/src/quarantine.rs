@@ -55,29 +55,23 @@ impl Bounds {
         }
     }
 
-    /// What is wrong with a body at `position` moving at `v`, `w`, if anything. A squared length that
-    /// overflows to ∞ exceeds every bound, as it should.
-    #[inline]
-    fn check(&self, position: Vec3, v: Vec3, w: Vec3) -> Option<QuarantineReason> {
-        if self.within(position, v, w) {
-            return None;
-        }
-        self.reason(position, v, w)
-    }
-
-    /// Whether a body at `position` moving at `v`, `w` is within every bound (a NaN fails every comparison).
-    /// Every body, every step: the comparisons side by side and one branch for the answer.
+    /// Whether a body at `position` moving at `v`, `w` is within every bound (a NaN fails every comparison;
+    /// a squared length that overflows to ∞ exceeds every bound, as it should). Every body, every step: the
+    /// comparisons side by side and one branch for the answer.
     #[inline]
     fn within(&self, position: Vec3, v: Vec3, w: Vec3) -> bool {
-        let speeds = Vec3A::new(v.length_squared(), w.length_squared(), 0.0)
-            .cmple(Vec3A::new(self.speed_sq, self.angular_speed_sq, 0.0));
+        let speeds = Vec3A::new(v.length_squared(), w.length_squared(), 0.0).cmple(Vec3A::new(
+            self.speed_sq,
+            self.angular_speed_sq,
+            0.0,
+        ));
         let place = Vec3A::from(position)
             .abs()
             .cmple(Vec3A::splat(self.position));
         (speeds & place).all()
     }
 
-    /// Which bound a body outside them breaks.
+    /// Which bound a body outside them breaks, if any.
     #[cold]
     fn reason(&self, position: Vec3, v: Vec3, w: Vec3) -> Option<QuarantineReason> {
         if !(position.is_finite() && v.is_finite() && w.is_finite()) {
@@ -101,14 +95,16 @@ pub(crate) fn check_bodies(state: &mut WorldState, events: &mut Vec<Event>) -> u
     let mut found = Vec::new();
     for (index, entry) in state.bodies.arena.iter() {
         let body = &entry.body;
-        if entry.quarantined || body.is_sleeping() || body.body_type() == BodyType::Fixed {
+        let (v, w) = (body.linear_velocity(), body.angular_velocity());
+        // The bounds first, whatever the body: almost every body is within them, and one branch says so.
+        if bounds.within(body.position(), v, w)
+            || entry.quarantined
+            || body.is_sleeping()
+            || body.body_type() == BodyType::Fixed
+        {
             continue;
         }
-        if let Some(reason) = bounds.check(
-            body.position(),
-            body.linear_velocity(),
-            body.angular_velocity(),
-        ) {
+        if let Some(reason) = bounds.reason(body.position(), v, w) {
             found.push((BodyHandle(index), reason));
         }
     }
@@ -128,10 +124,9 @@ pub(crate) fn find_bad_results(
     let bounds = Bounds::new(&state.settings.limits);
     // Every solved body at once first (the fixed ones are at rest, the kinematic ones were checked): almost
     // always all are within, and the search below, body by body, is skipped.
-    let all_within = s
-        .states
-        .iter()
-        .fold(true, |within, solved| within & solved_within(&bounds, solved));
+    let all_within = s.states.iter().fold(true, |within, solved| {
+        within & solved_within(&bounds, solved)
+    });
     if all_within {
         return;
     }

@@ -8,6 +8,7 @@ use crate::body_set::BodySet;
 use crate::collide::Collision;
 use crate::events::Event;
 use crate::handles::JointHandle;
+use crate::manifold::ContactManifold;
 use crate::prepare::Solver;
 use crate::report::StepReport;
 use crate::state::{JointEntry, WorldState};
@@ -42,22 +43,26 @@ pub(crate) fn store_impulses(
     // `pushed` holds collide's verdict for each manifold (a carried resting contact keeps its touching).
     c.pushed.resize(c.manifolds.len(), false);
     let (manifolds, pushed, sources) = (&mut c.manifolds, &mut c.pushed, &s.contact_sources);
+    // `x·0` is 0 for a finite `x` and NaN otherwise: the sum of the impulses' products is zero exactly when
+    // every impulse stored is finite.
+    let mut zero_if_finite = Vec3::ZERO;
     s.contact_solver
         .for_each_point_result(|contact, k, normal, tangent, max| {
             let Some(&source) = sources.get(contact) else {
                 return;
             };
             if let Some(point) = manifolds[source].points.get_mut(k) {
-                // Never a non-finite impulse into the state (the next step would warm start from it): the
-                // quarantine reruns a step whose bodies went non-finite, so this guards a fault only.
-                let finite = (tangent * 0.0 + Vec3::splat(normal * 0.0))
-                    .cmpeq(Vec3::ZERO)
-                    .all();
-                point.normal_impulse = if finite { normal } else { 0.0 };
-                point.tangent_impulse = if finite { tangent } else { Vec3::ZERO };
+                point.normal_impulse = normal;
+                point.tangent_impulse = tangent;
+                zero_if_finite += tangent * 0.0 + Vec3::splat(normal * 0.0);
             }
             pushed[source] |= max > 0.0;
         });
+    // Never a non-finite impulse into the state (the next step would warm start from it): the quarantine
+    // reruns a step whose bodies went non-finite, so this guards a fault only.
+    if zero_if_finite != Vec3::ZERO {
+        zero_non_finite_impulses(manifolds);
+    }
     s.broken.clear();
     let mut stored = StoredJoints {
         joints: &mut state.joints,
@@ -86,3 +91,13 @@ pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver) {
     }
 }
 
+/// Sets the impulses of every point whose normal or friction impulse is not finite to zero.
+#[cold]
+fn zero_non_finite_impulses(manifolds: &mut [ContactManifold]) {
+    for point in manifolds.iter_mut().flat_map(|m| m.points.iter_mut()) {
+        if !(point.normal_impulse.is_finite() && point.tangent_impulse.is_finite()) {
+            point.normal_impulse = 0.0;
+            point.tangent_impulse = Vec3::ZERO;
+        }
+    }
+}

@@ -55,7 +55,7 @@ impl Prepared {
             JointKind::Spring(s) => {
                 keep_only(state, Keep::Axial);
                 state.axial_impulse = 0.0;
-                Self::Spring(s.prepare(pair, sa, sb))
+                Self::Spring(s.prepare(pair, sa, sb, ctx.h))
             }
             JointKind::Rope(r) => {
                 keep_only(state, Keep::Upper);
