@@ -46,7 +46,7 @@ use crate::error::ConstraintError;
 use crate::error::{check_not_nan, check_ordered};
 use crate::pair::BodyPair;
 use crate::part::AxisPart;
-use crate::soft_spring::SoftSpring;
+use crate::soft_spring::{OscillatorStep, SoftSpring};
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
@@ -269,15 +269,31 @@ impl Spring {
         Ok(())
     }
 
+    /// Stage *prepare* for substeps of `h` (s): the soft model's oscillator step for the effective mass at
+    /// the start of the step.
     pub(crate) fn prepare(
         &self,
         pair: &BodyPair,
         a: &SolverBody,
         b: &SolverBody,
+        h: f32,
     ) -> PreparedSpring {
+        let dist = pair.distance(a, b, Vec3::X);
+        let step = match self.model {
+            SpringModel::Soft(spring) => {
+                let effective_mass = AxisPart::along(pair, &dist).effective_mass();
+                Some(PreparedStep {
+                    effective_mass,
+                    h,
+                    step: spring.oscillator_step(effective_mass, h),
+                })
+            }
+            SpringModel::Force { .. } => None,
+        };
         PreparedSpring {
             spring: *self,
-            fallback_axis: initial_axis(pair, a, b),
+            fallback_axis: dist.axis,
+            step,
         }
     }
 }
@@ -292,6 +308,18 @@ pub(crate) fn initial_axis(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> V
 pub(crate) struct PreparedSpring {
     spring: Spring,
     fallback_axis: Vec3,
+    /// The soft model's step at prepare.
+    step: Option<PreparedStep>,
+}
+
+/// The oscillator step of an effective mass and a substep, made at prepare: a spring whose effective mass
+/// does not change within the step (anchored at the centres of mass, the common case) uses it in every
+/// substep instead of making it again (an exponential each).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct PreparedStep {
+    effective_mass: f32,
+    h: f32,
+    step: OscillatorStep,
 }
 
 impl PreparedSpring {
@@ -319,7 +347,15 @@ impl PreparedSpring {
         let impulse = match self.spring.model {
             SpringModel::Soft(spring) => {
                 let effective_mass = part.effective_mass();
-                let step = spring.oscillator_step(effective_mass, h);
+                let step = match self.step {
+                    Some(prepared)
+                        if prepared.effective_mass.to_bits() == effective_mass.to_bits()
+                            && prepared.h.to_bits() == h.to_bits() =>
+                    {
+                        prepared.step
+                    }
+                    _ => spring.oscillator_step(effective_mass, h),
+                };
                 let c = dist.length - self.spring.rest_length;
                 let speed = part.velocity(a, b);
                 let impulse = step.impulse(effective_mass, speed, c);

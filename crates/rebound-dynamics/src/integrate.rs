@@ -427,20 +427,3 @@ mod tests {
         assert_eq!(states[0].angular_velocity, Vec3::ZERO);
     }
 }
-#[cfg(test)]
-mod scratch {
-    use super::*;
-    #[test]
-    fn scratch_newton() {
-        let mass =
-            crate::MassProperties::cuboid(1.0, Vec3::new(0.02, 0.02, 0.56333584)).expect("box");
-        let li = mass.local_inertia();
-        let linv = mass.local_inv_inertia();
-        eprintln!("{li} {linv}");
-        let h = 1.0 / 240.0;
-        let w = Vec3::new(0.0, 0.0, 453.25977);
-        let q = Quat::from_axis_angle(Vec3::new(1.0, 2.0, 3.0).normalize(), 0.7405359);
-        let w2 = solve_gyroscopic(w, q, &li, &linv, h);
-        eprintln!("{w} -> {w2}");
-    }
-}

@@ -36,6 +36,7 @@ pub struct BodySet {
 impl BodySet {
     /// The body behind `handle`, if it exists.
     #[must_use]
+    #[inline]
     pub fn get(&self, handle: BodyHandle) -> Option<&RigidBody> {
         self.arena.get(handle.0).map(|e| &e.body)
     }
@@ -49,6 +50,7 @@ impl BodySet {
     /// Whether the body behind `handle` is quarantined (taken out of every step after its state left the
     /// bounds of [`crate::StepLimits`]); `false` for a stale handle. A collision backend skips such bodies.
     #[must_use]
+    #[inline]
     pub fn is_quarantined(&self, handle: BodyHandle) -> bool {
         self.arena.get(handle.0).is_some_and(|e| e.quarantined)
     }
@@ -76,10 +78,12 @@ impl BodySet {
         self.arena.capacity()
     }
 
+    #[inline]
     pub(crate) fn entry(&self, handle: BodyHandle) -> Option<&BodyEntry> {
         self.arena.get(handle.0)
     }
 
+    #[inline]
     pub(crate) fn entry_mut(&mut self, handle: BodyHandle) -> Option<&mut BodyEntry> {
         self.arena.get_mut(handle.0)
     }

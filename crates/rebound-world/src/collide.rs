@@ -74,7 +74,8 @@ pub(crate) fn collide<B: CollisionBackend>(
     let mut speeds = core::mem::take(&mut c.approach_speeds);
     speeds.clear();
     // Whether each manifold counts as pushed before the solver runs (stage *store* adds the solver's
-    // pushes): a carried manifold keeps the touching state its pair had last step.
+    // pushes): a carried manifold keeps the touching state its pair had last step. Without carried
+    // manifolds none is, and the list stays empty (*store* fills it).
     let mut pushed = core::mem::take(&mut c.pushed);
     pushed.clear();
     let mut rotations = core::mem::take(&mut c.rotations);
@@ -131,15 +132,16 @@ pub(crate) fn collide<B: CollisionBackend>(
                 0.0
             },
         );
-        pushed.push(
-            carried
-                && !moves(body_a)
-                && !moves(body_b)
-                && state
-                    .touching
-                    .binary_search(&ordered(manifold.body_a, manifold.body_b))
-                    .is_ok(),
-        );
+        if carried {
+            pushed.push(
+                !moves(body_a)
+                    && !moves(body_b)
+                    && state
+                        .touching
+                        .binary_search(&ordered(manifold.body_a, manifold.body_b))
+                        .is_ok(),
+            );
+        }
         let count = manifold.point_count.min(MAX_MANIFOLD_POINTS);
         let old_points = old.map_or(&[][..], ContactManifold::points);
         let rotations = [
@@ -183,7 +185,7 @@ pub(crate) struct Dropped {
 
 impl Collision {
     /// Drops this step's manifolds with a body quarantined after the solver passes (and their approach
-    /// speeds), before the passes run again.
+    /// speeds and touching verdicts), before the passes run again.
     pub(crate) fn drop_quarantined(&mut self, bodies: &BodySet) {
         let mut kept = 0;
         for index in 0..self.manifolds.len() {
@@ -193,10 +195,14 @@ impl Collision {
             }
             self.manifolds.swap(kept, index);
             self.approach_speeds.swap(kept, index);
+            if !self.pushed.is_empty() {
+                self.pushed.swap(kept, index);
+            }
             kept += 1;
         }
         self.manifolds.truncate(kept);
         self.approach_speeds.truncate(kept);
+        self.pushed.truncate(kept);
     }
 }
 

@@ -111,7 +111,9 @@ pub(crate) fn build_contacts(
     s.contacts.clear();
     s.contact_sources.clear();
     let mut reports_forces = false;
+    // Only the awake moving bodies, which have the first solver indices, are counted.
     s.overlaps.clear();
+    s.overlaps.resize(s.states.len(), 0);
     // Whether some dynamic body overlaps more than one other: then the push-out speed is shared out.
     let mut crowded = false;
     for (source, manifold) in manifolds.iter().enumerate() {
@@ -175,15 +177,16 @@ pub(crate) fn build_contacts(
 
 /// Counts an overlapping manifold of the body of solver index `i` if it is dynamic (a fixed or kinematic
 /// body is not pushed); returns whether it now has more than one.
+#[inline]
 fn count_overlap(s: &mut Solver, i: usize) -> bool {
     if !s.params[i].is_dynamic() {
         return false;
     }
-    if s.overlaps.len() <= i {
-        s.overlaps.resize(s.states.len(), 0);
-    }
-    s.overlaps[i] += 1;
-    s.overlaps[i] > 1
+    let Some(count) = s.overlaps.get_mut(i) else {
+        return false;
+    };
+    *count += 1;
+    *count > 1
 }
 
 /// Shares the push-out speed of each dynamic body out among its overlaps: a manifold whose bodies have up to

@@ -33,6 +33,7 @@ use crate::state::WorldState;
 use rebound_constraints::JointState;
 use rebound_dynamics::{BodyType, SolverBody};
 use rebound_math::Vec3;
+use rebound_math::glam::Vec3A;
 
 /// The most suspects of one step let back in one by one (see the module docs).
 pub(crate) const MAX_TRIED_SUSPECTS: usize = 8;
@@ -54,21 +55,23 @@ impl Bounds {
         }
     }
 
-    /// What is wrong with a body at `position` moving at `v`, `w`, if anything. A squared length that
-    /// overflows to ∞ exceeds every bound, as it should.
+    /// Whether a body at `position` moving at `v`, `w` is within every bound (a NaN fails every comparison;
+    /// a squared length that overflows to ∞ exceeds every bound, as it should). Every body, every step: the
+    /// comparisons side by side and one branch for the answer.
     #[inline]
-    fn check(&self, position: Vec3, v: Vec3, w: Vec3) -> Option<QuarantineReason> {
-        // Every body, every step: one branch for the common case (a NaN fails every comparison).
-        let within = (v.length_squared() <= self.speed_sq)
-            & (w.length_squared() <= self.angular_speed_sq)
-            & position.abs().cmple(Vec3::splat(self.position)).all();
-        if within {
-            return None;
-        }
-        self.reason(position, v, w)
+    fn within(&self, position: Vec3, v: Vec3, w: Vec3) -> bool {
+        let speeds = Vec3A::new(v.length_squared(), w.length_squared(), 0.0).cmple(Vec3A::new(
+            self.speed_sq,
+            self.angular_speed_sq,
+            0.0,
+        ));
+        let place = Vec3A::from(position)
+            .abs()
+            .cmple(Vec3A::splat(self.position));
+        (speeds & place).all()
     }
 
-    /// Which bound a body outside them breaks.
+    /// Which bound a body outside them breaks, if any.
     #[cold]
     fn reason(&self, position: Vec3, v: Vec3, w: Vec3) -> Option<QuarantineReason> {
         if !(position.is_finite() && v.is_finite() && w.is_finite()) {
@@ -92,14 +95,16 @@ pub(crate) fn check_bodies(state: &mut WorldState, events: &mut Vec<Event>) -> u
     let mut found = Vec::new();
     for (index, entry) in state.bodies.arena.iter() {
         let body = &entry.body;
-        if entry.quarantined || body.is_sleeping() || body.body_type() == BodyType::Fixed {
+        let (v, w) = (body.linear_velocity(), body.angular_velocity());
+        // The bounds first, whatever the body: almost every body is within them, and one branch says so.
+        if bounds.within(body.position(), v, w)
+            || entry.quarantined
+            || body.is_sleeping()
+            || body.body_type() == BodyType::Fixed
+        {
             continue;
         }
-        if let Some(reason) = bounds.check(
-            body.position(),
-            body.linear_velocity(),
-            body.angular_velocity(),
-        ) {
+        if let Some(reason) = bounds.reason(body.position(), v, w) {
             found.push((BodyHandle(index), reason));
         }
     }
@@ -117,6 +122,14 @@ pub(crate) fn find_bad_results(
 ) {
     found.clear();
     let bounds = Bounds::new(&state.settings.limits);
+    // Every solved body at once first (the fixed ones are at rest, the kinematic ones were checked): almost
+    // always all are within, and the search below, body by body, is skipped.
+    let all_within = s.states.iter().fold(true, |within, solved| {
+        within & solved_within(&bounds, solved)
+    });
+    if all_within {
+        return;
+    }
     for ((handle, solved), params) in s.solver_handles.iter().zip(&s.states).zip(&s.params) {
         let Some(handle) = handle else { continue };
         if !params.is_dynamic() {
@@ -159,13 +172,29 @@ pub(crate) fn quarantine(
 /// finite (its position is checked at the start of the next step).
 #[inline]
 fn check_solved(bounds: &Bounds, solved: &SolverBody) -> Option<QuarantineReason> {
-    // `x·0` is 0 for a finite `x` and NaN otherwise: one comparison for the seven numbers.
-    let deltas =
-        solved.delta_position * 0.0 + Vec3::splat(solved.delta_rotation.length_squared() * 0.0);
-    if deltas != Vec3::ZERO {
-        return Some(QuarantineReason::NotFinite);
+    if solved_within(bounds, solved) {
+        None
+    } else if !deltas_are_finite(solved) {
+        Some(QuarantineReason::NotFinite)
+    } else {
+        bounds.reason(Vec3::ZERO, solved.linear_velocity, solved.angular_velocity)
     }
-    bounds.check(Vec3::ZERO, solved.linear_velocity, solved.angular_velocity)
+}
+
+/// Whether a solved body's velocities are within the bounds and its pose deltas finite.
+#[inline]
+fn solved_within(bounds: &Bounds, solved: &SolverBody) -> bool {
+    deltas_are_finite(solved)
+        & bounds.within(Vec3::ZERO, solved.linear_velocity, solved.angular_velocity)
+}
+
+/// Whether a solved body's pose deltas are finite: `x·0` is 0 for a finite `x` and NaN otherwise, so one
+/// comparison covers the seven numbers.
+#[inline]
+fn deltas_are_finite(solved: &SolverBody) -> bool {
+    let deltas = Vec3A::from(solved.delta_position) * 0.0
+        + Vec3A::splat(solved.delta_rotation.length_squared() * 0.0);
+    deltas.cmpeq(Vec3A::ZERO).all()
 }
 
 /// Takes a body out of the steps: at rest where it is, no force, no kinematic target.

@@ -8,6 +8,7 @@ use crate::body_set::BodySet;
 use crate::collide::Collision;
 use crate::events::Event;
 use crate::handles::JointHandle;
+use crate::manifold::ContactManifold;
 use crate::prepare::Solver;
 use crate::report::StepReport;
 use crate::state::{JointEntry, WorldState};
@@ -42,37 +43,33 @@ pub(crate) fn store_impulses(
     // `pushed` holds collide's verdict for each manifold (a carried resting contact keeps its touching).
     c.pushed.resize(c.manifolds.len(), false);
     let (manifolds, pushed, sources) = (&mut c.manifolds, &mut c.pushed, &s.contact_sources);
+    // `x·0` is 0 for a finite `x` and NaN otherwise: the sum of the impulses' products is zero exactly when
+    // every impulse stored is finite.
+    let mut zero_if_finite = Vec3::ZERO;
     s.contact_solver
         .for_each_point_result(|contact, k, normal, tangent, max| {
             let Some(&source) = sources.get(contact) else {
                 return;
             };
             if let Some(point) = manifolds[source].points.get_mut(k) {
-                // Never a non-finite impulse into the state (the next step would warm start from it): the
-                // quarantine reruns a step whose bodies went non-finite, so this guards a fault only.
-                let finite = normal.is_finite() && tangent.is_finite();
-                point.normal_impulse = if finite { normal } else { 0.0 };
-                point.tangent_impulse = if finite { tangent } else { Vec3::ZERO };
+                point.normal_impulse = normal;
+                point.tangent_impulse = tangent;
+                zero_if_finite += tangent * 0.0 + Vec3::splat(normal * 0.0);
             }
             pushed[source] |= max > 0.0;
         });
+    // Never a non-finite impulse into the state (the next step would warm start from it): the quarantine
+    // reruns a step whose bodies went non-finite, so this guards a fault only.
+    if zero_if_finite != Vec3::ZERO {
+        zero_non_finite_impulses(manifolds);
+    }
     s.broken.clear();
     let mut stored = StoredJoints {
         joints: &mut state.joints,
         handles: &s.joint_handles,
     };
+    // The joint solver stores no non-finite impulse either.
     s.joint_solver.store_impulses_to(&mut stored, &mut s.broken);
-    // Likewise no non-finite joint impulse is kept (checked where it is stored, for the joints of the step).
-    for handle in &s.joint_handles {
-        if let Some(entry) = state.joints.get_mut(handle.0)
-            && !is_finite(&entry.state)
-        {
-            entry.state = JointState {
-                broken: entry.state.broken,
-                ..JointState::default()
-            };
-        }
-    }
     report.broken_joint_count = s.broken.len();
     for &i in &s.broken {
         if let Some(handle) = s.joint_handles.get(i) {
@@ -94,19 +91,13 @@ pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver) {
     }
 }
 
-/// Whether every number of a joint's state is finite.
-fn is_finite(state: &JointState) -> bool {
-    state.linear_impulse.is_finite()
-        && state.angular_impulse.is_finite()
-        && [
-            state.axial_impulse,
-            state.lower_impulse,
-            state.upper_impulse,
-            state.motor_impulse,
-            state.tether_impulse,
-            state.reaction_force,
-            state.reaction_torque,
-        ]
-        .iter()
-        .all(|x| x.is_finite())
+/// Sets the impulses of every point whose normal or friction impulse is not finite to zero.
+#[cold]
+fn zero_non_finite_impulses(manifolds: &mut [ContactManifold]) {
+    for point in manifolds.iter_mut().flat_map(|m| m.points.iter_mut()) {
+        if !(point.normal_impulse.is_finite() && point.tangent_impulse.is_finite()) {
+            point.normal_impulse = 0.0;
+            point.tangent_impulse = Vec3::ZERO;
+        }
+    }
 }

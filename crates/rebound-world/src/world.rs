@@ -260,6 +260,7 @@ impl<B: CollisionBackend> World<B> {
     }
 
     /// The body behind `handle`.
+    #[inline]
     #[must_use]
     pub fn body(&self, handle: BodyHandle) -> Option<&RigidBody> {
         self.state.bodies.get(handle)

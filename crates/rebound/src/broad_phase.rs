@@ -318,19 +318,13 @@ impl BroadPhase {
             }
         }
         let (pairs, scratch, capped) = (&mut self.pairs, &mut self.sort_scratch, &mut self.capped);
-        // Once the cap has been reached, a pair not below the highest kept one cannot be kept.
-        let mut highest_kept = None;
+        let trim_at = 2 * max_pairs;
         self.bvh
             .traverse_bvtt_single_tree::<false>(&mut self.workspace, &mut |slot1, slot2| {
                 if let Some(pair) = filter.keeps_leaves(slot1, slot2) {
-                    if highest_kept.is_some_and(|highest| pair >= highest) {
-                        *capped += 1;
-                        return;
-                    }
                     pairs.push(pair);
-                    if pairs.len() >= 2 * max_pairs {
+                    if pairs.len() >= trim_at {
                         *capped += keep_lowest(pairs, scratch, max_pairs);
-                        highest_kept = pairs.last().copied();
                     }
                 }
             });
@@ -581,6 +575,8 @@ fn find_overlaps(
 /// Sorts and deduplicates `pairs` and keeps the `cap` lowest; returns how many were left out. Called
 /// whenever the pair search has gathered twice the cap, and at its end, it bounds the memory of the search at
 /// `2·cap` pairs and keeps the same pairs whatever order the tree yields them in: the `cap` lowest of all.
+/// Never inlined: the traversal's callback stays small enough to be inlined into the traversal.
+#[inline(never)]
 fn keep_lowest(
     pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
     scratch: &mut Vec<(ColliderHandle, ColliderHandle)>,

@@ -141,6 +141,7 @@ impl PhysicsWorld {
     }
 
     /// The body behind `handle`.
+    #[inline]
     #[must_use]
     pub fn body(&self, handle: BodyHandle) -> Option<&RigidBody> {
         self.world.body(handle)

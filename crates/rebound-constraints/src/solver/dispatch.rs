@@ -55,7 +55,7 @@ impl Prepared {
             JointKind::Spring(s) => {
                 keep_only(state, Keep::Axial);
                 state.axial_impulse = 0.0;
-                Self::Spring(s.prepare(pair, sa, sb))
+                Self::Spring(s.prepare(pair, sa, sb, ctx.h))
             }
             JointKind::Rope(r) => {
                 keep_only(state, Keep::Upper);
@@ -94,11 +94,12 @@ impl Prepared {
         let Self::Spring(spring) = self else {
             return;
         };
-        let Some((mut a, mut b)) = pair.load(solver_bodies) else {
+        // The bodies in place: the spring changes velocities only (`prepare` never keeps a joint whose two
+        // bodies are one).
+        let Some([a, b]) = pair.bodies_mut(solver_bodies) else {
             return;
         };
-        state.axial_impulse = spring.apply_forces(pair, &mut a, &mut b, h);
-        pair.store(solver_bodies, a, b);
+        state.axial_impulse = spring.apply_forces(pair, a, b, h);
     }
 
     /// Whether the joint is a hinge or prismatic joint with a spring, or a wheel (its suspension): what

@@ -165,7 +165,8 @@ impl JointSolver {
     }
 
     /// [`JointSolver::store_impulses`] into the states where they are kept ([`JointStates`]): joint `i` of
-    /// [`JointSolver::prepare_from`] is written to `states.state_mut(i)`, once.
+    /// [`JointSolver::prepare_from`] is written to `states.state_mut(i)`, once. A state with a non-finite
+    /// number is stored as zero impulses (whether the joint broke is kept).
     pub fn store_impulses_to<S: JointStates + ?Sized>(
         &self,
         states: &mut S,
@@ -188,6 +189,13 @@ impl JointSolver {
             if out.reaction_force > j.break_force || out.reaction_torque > j.break_torque {
                 out.broken = true;
                 broken.push(j.source);
+            }
+            // Never a non-finite impulse into the state (the next step would warm start from it).
+            if !out.is_finite() {
+                *out = JointState {
+                    broken: out.broken,
+                    ..JointState::default()
+                };
             }
         }
     }
