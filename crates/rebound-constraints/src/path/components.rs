@@ -48,7 +48,13 @@ impl Topology {
         rows: impl Fn(usize) -> usize,
     ) {
         self.find_paths(body_count, count, pair, capable);
-        let graphs = self.find_graphs(body_count, count, pair, capable, rows);
+        // Every group one path (a chain, a deck): nothing more to find.
+        let graphs = if self.split {
+            self.find_graphs(body_count, count, pair, capable, rows)
+        } else {
+            self.in_graph.clear();
+            0
+        };
         if self.in_graph.contains(&true) {
             let in_graph = core::mem::take(&mut self.in_graph);
             self.find_paths(body_count, count, pair, |i| {

@@ -9,6 +9,11 @@
 //! semi-definite (so `L·D·Lᵀ` without pivoting holds, as for a path), and the path solver's rows, soft step,
 //! active set and updates serve unchanged. See `docs/physics.md`, "Joint graphs".
 
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the assembly of K reads as its formula with row and column indices"
+)]
+
 use super::link::{Link, Mode};
 use super::min_degree::minimum_degree_order;
 use super::row::{MAX_ROWS, Real, Row};

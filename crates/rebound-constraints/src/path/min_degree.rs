@@ -63,3 +63,45 @@ pub(crate) fn minimum_degree_order<'n>(
     }
     fill
 }
+
+#[cfg(test)]
+mod tests {
+    use super::minimum_degree_order;
+
+    /// The order and fill of the graph with `edges` on `nodes` nodes.
+    fn order(nodes: usize, edges: &[(usize, usize)]) -> (Vec<usize>, usize) {
+        let mut adjacency = vec![Vec::new(); nodes];
+        for &(a, b) in edges {
+            adjacency[a].push(b);
+            adjacency[b].push(a);
+        }
+        let (mut sets, mut order) = (Vec::new(), Vec::new());
+        let fill = minimum_degree_order(nodes, |i| &adjacency[i], &mut sets, &mut order);
+        (order, fill)
+    }
+
+    #[test]
+    fn a_path_and_a_star_are_eliminated_without_fill() {
+        // A path: an end first, then along it; each node has one neighbour left when eliminated.
+        let (path, fill) = order(5, &[(0, 1), (1, 2), (2, 3), (3, 4)]);
+        assert_eq!(path, vec![0, 1, 2, 3, 4]);
+        assert_eq!(fill, 4);
+        // A star (a ragdoll's torso): the leaves first; with one leaf left, the hub and it tie, and the
+        // lower index goes first.
+        let (star, fill) = order(5, &[(0, 1), (0, 2), (0, 3), (0, 4)]);
+        assert_eq!(star, vec![1, 2, 3, 0, 4]);
+        assert_eq!(fill, 4);
+    }
+
+    #[test]
+    fn a_loop_fills_one_column_and_the_order_is_a_permutation() {
+        let n = 8;
+        let edges: Vec<(usize, usize)> = (0..n).map(|i| (i, (i + 1) % n)).collect();
+        let (order, fill) = order(n, &edges);
+        let mut sorted = order.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..n).collect::<Vec<_>>());
+        // Each elimination but the last leaves two neighbours, then one: 2·(n − 2) + 1.
+        assert_eq!(fill, 2 * (n - 2) + 1);
+    }
+}

@@ -17,6 +17,11 @@
 //! of zeros — counts as zero: its unknown solves to 0 and its column of `L` is 0, never a NaN or a huge
 //! impulse.
 
+#![allow(
+    clippy::needless_range_loop,
+    reason = "sparse triangular algebra reads as the formulas with indices"
+)]
+
 use super::factor::RELATIVE_PIVOT;
 use super::row::Real;
 

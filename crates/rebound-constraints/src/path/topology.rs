@@ -33,6 +33,9 @@ pub(crate) struct Topology {
     pub(super) grouped: Vec<(usize, usize)>,
     pub(super) group_starts: Vec<(usize, Range<usize>)>,
     pub(super) scratch_bodies: Vec<usize>,
+    /// Whether the last [`Topology::find_paths`] left a group of joints that is not one path: a body with
+    /// three joints or more, two paths on one body, joints on no path. Only then can there be graphs.
+    pub(super) split: bool,
     /// Scratch of the path search: per body, its number of path-capable joints and the first two of them;
     /// per joint, whether a path has taken it.
     degree: Vec<u32>,
@@ -71,10 +74,13 @@ impl Topology {
         self.degree.resize(body_count, 0);
         self.incident.clear();
         self.incident.resize(body_count, [usize::MAX; 2]);
+        let mut split = false;
+        let mut capable_count = 0;
         for index in 0..count {
             if !capable(index) {
                 continue;
             }
+            capable_count += 1;
             for body in dynamic_bodies(pair(index)).into_iter().flatten() {
                 let (Some(degree), Some(incident)) =
                     (self.degree.get_mut(body), self.incident.get_mut(body))
@@ -85,6 +91,7 @@ impl Topology {
                     *slot = index;
                 }
                 *degree += 1;
+                split |= *degree > 2;
             }
         }
         let inner = |degree: &[u32], body: Option<usize>| {
@@ -116,6 +123,7 @@ impl Topology {
                 let [j0, j1] = self.incident[body];
                 let next = if j0 == current { j1 } else { j0 };
                 if next >= count {
+                    split = true;
                     break;
                 }
                 let next_pair = *pair(next);
@@ -127,6 +135,7 @@ impl Topology {
                 // Two joints between the same two bodies share both: not a path link.
                 let here = pair(current);
                 if self.visited[next] || other == here.index_a || other == here.index_b {
+                    split = true;
                     break;
                 }
                 toward = dynamic_bodies(&next_pair)
@@ -153,10 +162,13 @@ impl Topology {
                 if start_outer.is_some() && start_outer == end_outer {
                     self.visited[last] = false;
                     self.path_joints.pop();
+                    split = true;
                 }
             }
             self.paths.push(first..self.path_joints.len());
         }
+        // Joints on no path (a closed loop) are a group no path covers.
+        self.split = split || self.path_joints.len() < capable_count;
     }
 
     /// For member `slot` of the path `members` (joint `i` between the bodies of `pair(i)`): the side of it on
