@@ -290,6 +290,8 @@ pub(super) fn solve_links(
 /// [`solve_links`] for a graph: its solve ([`DirectGraph::solve`]) with the active-set rounds of a path —
 /// rows left out that the solution would violate added, rows it would make push released (a released row
 /// changes its bodies' velocities), and the system solved again.
+// Kept out of line: `solve_links` runs for every path of every pass, and a path's sweep should not carry it.
+#[inline(never)]
 fn solve_graph(
     graph: &mut DirectGraph,
     joints: &[PreparedJoint],
