@@ -20,7 +20,7 @@ fn anchor_distance(world: &PhysicsWorld, joint: JointHandle) -> f32 {
     let (a, b) = world.joint_bodies(joint).unwrap();
     let pose_a = a
         .and_then(|a| world.body(a))
-        .map_or(Pose::IDENTITY, |body| body.pose());
+        .map_or(Pose::IDENTITY, rebound::RigidBody::pose);
     let pose_b = world.body(b).unwrap().pose();
     pose_b
         .transform_point(j.local_anchor_b())
