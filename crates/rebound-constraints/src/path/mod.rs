@@ -92,12 +92,16 @@
 //! impulses that blow the bridge up. The kept rows are state: a snapshot holds them ([`crate::KeptRows`]).
 
 mod active_set;
+mod components;
 mod factor;
+mod graph;
 mod link;
+mod min_degree;
 mod pose;
 mod projection;
 mod reuse;
 mod row;
+mod sparse_ldl;
 mod sweep;
 mod system;
 #[cfg(test)]
@@ -106,6 +110,7 @@ pub mod tether;
 pub(crate) mod topology;
 
 pub(crate) use active_set::activate_violations;
+pub(crate) use graph::DirectGraph;
 #[cfg(test)]
 pub(crate) use link::empty_link;
 pub(crate) use link::{Link, link_at, resize_links};

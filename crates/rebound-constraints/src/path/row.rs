@@ -196,7 +196,7 @@ impl JointRows {
     /// row's target must be `rule.target(c, stage)` of the pass's stage), and turns its angular parts by the
     /// inverse inertias (and, for a row bounded at 0, computes its `J·M⁻¹·Jᵀ` once). Inlined so that the
     /// row is written where it goes rather than built and copied (every row of every rebuilt link).
-    #[inline]
+    #[inline(always)]
     pub fn push(&mut self, row: Row, c: f32, rule: TargetRule) {
         let turned = [
             self.mass_a.inertia * row.a.angular,

@@ -4,6 +4,7 @@
 //! bodies ([`Topology::find_closed`]). It sees joints only as body pairs and two flags given by the solver:
 //! whether a joint's rows can join a path, and whether all of them do.
 
+use super::graph::DirectGraph;
 use crate::pair::BodyPair;
 use core::ops::Range;
 use rebound_math::Mat3;
@@ -16,6 +17,25 @@ pub(crate) struct Topology {
     pub path_joints: Vec<usize>,
     /// Per path, whether it is closed ([`Topology::find_closed`]).
     pub closed: Vec<bool>,
+    /// Per entry of `paths`, the graph it is (an index into `graphs`), `None` for a path
+    /// ([`Topology::find_paths_and_graphs`]).
+    pub graph_of: Vec<Option<usize>>,
+    /// The graphs solved directly (the first as many as `graph_of` names; the rest kept for their buffers).
+    pub graphs: Vec<DirectGraph>,
+    /// Scratch of the graph search ([`Topology::find_paths_and_graphs`]): the graphs' members and their
+    /// ranges, per joint whether a graph took it and its path, per body its union-find parent, the capable
+    /// joints by group and each group's first joint and range, a group's bodies.
+    pub(super) graph_members: Vec<usize>,
+    pub(super) graph_ranges: Vec<Range<usize>>,
+    pub(super) in_graph: Vec<bool>,
+    pub(super) joint_path: Vec<usize>,
+    pub(super) parent: Vec<usize>,
+    pub(super) grouped: Vec<(usize, usize)>,
+    pub(super) group_starts: Vec<(usize, Range<usize>)>,
+    pub(super) scratch_bodies: Vec<usize>,
+    /// Whether the last [`Topology::find_paths`] left a group of joints that is not one path: a body with
+    /// three joints or more, two paths on one body, joints on no path. Only then can there be graphs.
+    pub(super) split: bool,
     /// Scratch of the path search: per body, its number of path-capable joints and the first two of them;
     /// per joint, whether a path has taken it.
     degree: Vec<u32>,
@@ -30,6 +50,12 @@ impl Topology {
     pub fn clear(&mut self) {
         self.paths.clear();
         self.path_joints.clear();
+        self.graph_of.clear();
+    }
+
+    /// The graph path `path` is, if it is one ([`Topology::find_paths_and_graphs`]).
+    pub fn graph(&self, path: usize) -> Option<usize> {
+        self.graph_of.get(path).copied().flatten()
     }
 
     /// The paths solved directly among `count` joints, joint `i` between the bodies of `pair(i)` and able to
@@ -48,10 +74,13 @@ impl Topology {
         self.degree.resize(body_count, 0);
         self.incident.clear();
         self.incident.resize(body_count, [usize::MAX; 2]);
+        let mut split = false;
+        let mut capable_count = 0;
         for index in 0..count {
             if !capable(index) {
                 continue;
             }
+            capable_count += 1;
             for body in dynamic_bodies(pair(index)).into_iter().flatten() {
                 let (Some(degree), Some(incident)) =
                     (self.degree.get_mut(body), self.incident.get_mut(body))
@@ -62,6 +91,7 @@ impl Topology {
                     *slot = index;
                 }
                 *degree += 1;
+                split |= *degree > 2;
             }
         }
         let inner = |degree: &[u32], body: Option<usize>| {
@@ -93,6 +123,7 @@ impl Topology {
                 let [j0, j1] = self.incident[body];
                 let next = if j0 == current { j1 } else { j0 };
                 if next >= count {
+                    split = true;
                     break;
                 }
                 let next_pair = *pair(next);
@@ -104,6 +135,7 @@ impl Topology {
                 // Two joints between the same two bodies share both: not a path link.
                 let here = pair(current);
                 if self.visited[next] || other == here.index_a || other == here.index_b {
+                    split = true;
                     break;
                 }
                 toward = dynamic_bodies(&next_pair)
@@ -112,8 +144,31 @@ impl Topology {
                     .find(|&b| b == other);
                 current = next;
             }
+            // A walk that comes back to the dynamic body it started from (a loop through a branching body:
+            // a four-bar linkage whose ground link hangs free) is not a path: the sweep couples consecutive
+            // members only, and would miss the coupling of the first and last through that body. The last
+            // joint is left out (a path of its own, coupled to this one by Gauss–Seidel).
+            if self.path_joints.len() - first >= 2 {
+                let members = &self.path_joints[first..];
+                let outer = |joint: usize, inner: usize| {
+                    let [a, b] = dynamic_bodies(pair(joint));
+                    let (p, q) = (pair(joint), pair(inner));
+                    let shared = |body: usize| body == q.index_a || body == q.index_b;
+                    if shared(p.index_a) { b } else { a }
+                };
+                let (n, last) = (members.len(), members[members.len() - 1]);
+                let start_outer = outer(members[0], members[1]);
+                let end_outer = outer(last, members[n - 2]);
+                if start_outer.is_some() && start_outer == end_outer {
+                    self.visited[last] = false;
+                    self.path_joints.pop();
+                    split = true;
+                }
+            }
             self.paths.push(first..self.path_joints.len());
         }
+        // Joints on no path (a closed loop) are a group no path covers.
+        self.split = split || self.path_joints.len() < capable_count;
     }
 
     /// For member `slot` of the path `members` (joint `i` between the bodies of `pair(i)`): the side of it on

@@ -310,6 +310,17 @@ impl Prepared {
         )
     }
 
+    /// How many rows the joint gives the direct solve ([`Prepared::direct_rows`]): 1 for a rope or rod, 3 for a
+    /// ball joint (its point rows), 5 for a hinge (point and alignment rows), 0 for the others.
+    pub(super) fn direct_row_count(&self) -> usize {
+        match self {
+            Self::Rope(_) | Self::Rod(_) => 1,
+            Self::Ball | Self::LimitedBall(_) => 3,
+            Self::Hinge(_) => 5,
+            _ => 0,
+        }
+    }
+
     /// Whether all of the joint's rows are in the direct solve when it is on a path: a rope's, a rod's, a
     /// ball joint's, a hinge's without limit or motor.
     pub(super) fn is_solved_directly_whole(&self) -> bool {

@@ -4,9 +4,10 @@
 
 use super::dispatch::{PreparedJoint, state_lambda};
 use super::joint_solver::JointSolver;
+use crate::path::topology::Topology;
 use crate::path::{
-    BuiltAt, InvMass, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations, resize_links,
-    solve_path,
+    BuiltAt, DirectGraph, InvMass, Link, MAX_ROWS, PoseKey, Real, Resume, activate_violations,
+    resize_links, solve_path,
 };
 use crate::stage::Stage;
 use rebound_dynamics::SolverBody;
@@ -43,12 +44,19 @@ impl JointSolver {
             ..
         } = self;
         // `prepare` sized the links to the path members; a solver never prepared has no paths.
-        let path_joints = &topology.path_joints;
+        let graph = topology.graph(path);
+        let Topology {
+            path_joints,
+            graphs,
+            ..
+        } = topology;
+        let graph = graph.and_then(|g| graphs.get_mut(g));
         resize_links(links, path_joints.len());
         let (Some(members), Some(links)) = (path_joints.get(range.clone()), links.get_mut(range))
         else {
             return;
         };
+        let carry_angle = if graph.is_some() { 0.0 } else { carry_angle };
         for (link, &index) in links.iter_mut().zip(members) {
             let j = &mut joints[index];
             // The bodies in place serve the rows and the activation.
@@ -60,7 +68,7 @@ impl JointSolver {
                 None => link_rows(j, None, stage, link, carry_angle),
             }
         }
-        solve_links(joints, members, links, solution, solver_bodies);
+        solve_links(joints, members, links, solution, solver_bodies, graph);
         for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
             let j = &mut joints[index];
             let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
@@ -211,14 +219,20 @@ pub(super) fn carry(
 }
 
 /// Solves the path (with the active-set rounds that drop rows which would push) into `solution`; its links
-/// are linked through their shared bodies ([`JointSolver::prepare`], `link_paths`).
+/// are linked through their shared bodies ([`JointSolver::prepare`], `link_paths`) — or, for a graph
+/// (`graph`), through its [`DirectGraph`].
 pub(super) fn solve_links(
     joints: &[PreparedJoint],
     members: &[usize],
     links: &mut [Link],
     solution: &mut Vec<[Real; MAX_ROWS]>,
     solver_bodies: &mut [SolverBody],
+    graph: Option<&mut DirectGraph>,
 ) {
+    if let Some(graph) = graph {
+        solve_graph(graph, joints, members, links, solution, solver_bodies);
+        return;
+    }
     // Active set: a rope the solution would make push is released, a rope left out that the solution would
     // stretch is added, and the system solved again; the last round's solution is the one applied.
     // A round after the first sweeps again only from the link before the first one it changed ([`Resume`]).
@@ -265,6 +279,48 @@ pub(super) fn solve_links(
             {
                 resume.changed(slot);
                 changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+}
+
+/// [`solve_links`] for a graph: its solve ([`DirectGraph::solve`]) with the active-set rounds of a path —
+/// rows left out that the solution would violate added, rows it would make push released (a released row
+/// changes its bodies' velocities), and the system solved again.
+// Kept out of line: `solve_links` runs for every path of every pass, and a path's sweep should not carry it.
+#[inline(never)]
+fn solve_graph(
+    graph: &mut DirectGraph,
+    joints: &[PreparedJoint],
+    members: &[usize],
+    links: &mut [Link],
+    solution: &mut Vec<[Real; MAX_ROWS]>,
+    solver_bodies: &mut [SolverBody],
+) {
+    for round in 0..ACTIVE_SET_ROUNDS {
+        let solved = graph.solve(
+            links,
+            |slot| joints[members[slot]].pair.bodies(solver_bodies),
+            solution,
+        );
+        if round + 1 == ACTIVE_SET_ROUNDS {
+            break;
+        }
+        let mut changed = solved.left_out
+            && graph.activate_violations(links, solution, |slot| {
+                joints[members[slot]].pair.bodies(solver_bodies)
+            });
+        if solved.released {
+            for ((link, x), &index) in links.iter_mut().zip(solution.iter()).zip(members) {
+                if !link.would_deactivate(x) {
+                    continue;
+                }
+                if let Some([a, b]) = joints[index].pair.bodies_mut(solver_bodies) {
+                    changed |= link.deactivate_violations(x, a, b);
+                }
             }
         }
         if !changed {

@@ -140,7 +140,8 @@ impl JointSolver {
         skipped
     }
 
-    /// The paths solved directly ([`Topology::find_paths`]), each joint on one told its path and link.
+    /// The paths and graphs solved directly ([`Topology::find_paths_and_graphs`]), each joint on one told
+    /// its path (or graph) and link.
     fn find_paths(&mut self, body_count: usize) {
         let Self {
             settings,
@@ -152,11 +153,13 @@ impl JointSolver {
             topology.clear();
             return;
         }
-        topology.find_paths(
+        let joints_ref = &*joints;
+        topology.find_paths_and_graphs(
             body_count,
-            joints.len(),
-            |i| &joints[i].pair,
-            |i| joints[i].kind.is_direct_capable(),
+            joints_ref.len(),
+            |i| &joints_ref[i].pair,
+            |i| joints_ref[i].kind.is_direct_capable(),
+            |i| joints_ref[i].kind.direct_row_count(),
         );
         for (path, range) in topology.paths.iter().enumerate() {
             for (link, &index) in range.clone().zip(&topology.path_joints[range.clone()]) {
@@ -176,7 +179,8 @@ impl JointSolver {
             links,
             ..
         } = self;
-        for range in &topology.paths {
+        for (path, range) in topology.paths.iter().enumerate() {
+            let graph = topology.graph_of.get(path).copied().flatten().is_some();
             let (Some(members), Some(links)) = (
                 topology.path_joints.get(range.clone()),
                 links.get_mut(range.clone()),
@@ -184,8 +188,12 @@ impl JointSolver {
                 continue;
             };
             for (slot, link) in links.iter_mut().enumerate() {
-                link.shared_with_next =
-                    Topology::shared_with_next(members, slot, |i| &joints[i].pair);
+                // A graph's links are coupled through its `DirectGraph`, not one to the next.
+                link.shared_with_next = if graph {
+                    None
+                } else {
+                    Topology::shared_with_next(members, slot, |i| &joints[i].pair)
+                };
             }
         }
     }

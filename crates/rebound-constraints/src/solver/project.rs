@@ -6,7 +6,8 @@ use super::dispatch::PreparedJoint;
 use super::joint_solver::JointSolver;
 use super::path_pass::{direct_rows, link_rows, solve_links};
 use super::projection_velocity::apply_turning_rows;
-use crate::path::{Link, MAX_ROWS, Real, link_at, project_rows, resize_links};
+use crate::path::topology::Topology;
+use crate::path::{DirectGraph, Link, MAX_ROWS, Real, link_at, project_rows, resize_links};
 use crate::stage::Stage;
 use rebound_dynamics::{SolverBody, StepContext};
 
@@ -16,6 +17,12 @@ pub(super) const PROJECTION_ITERATIONS: usize = 4;
 /// A path whose worst position error is within this (m, or rad for angular rows) is not projected: 0.1 mm is
 /// below what a game shows, and a settled chain or bridge then costs nothing here.
 pub(super) const PROJECTION_TOLERANCE: f32 = 1e-4;
+
+/// [`PROJECTION_TOLERANCE`] for a joint graph (m, or rad): a tenth of it. A path's errors do not add up, a
+/// loop's do — twenty rods each 0.1 mm long change a 5 m loop's length by 0.04 % — and the graphs solved
+/// directly are small (at most [`crate::path`]'s `MAX_GRAPH_JOINTS` joints), so the tighter bound costs a
+/// Newton step or two where it is not met.
+pub(super) const GRAPH_PROJECTION_TOLERANCE: f32 = 1e-5;
 
 /// Nonlinear Gauss–Seidel sweeps (alternating direction) after the direct projection, at most; they stop once
 /// the path is within [`PROJECTION_TOLERANCE`], checked every [`PROJECTION_SWEEP_CHECK`] sweeps.
@@ -66,7 +73,18 @@ impl JointSolver {
                 position_impulses,
                 ..
             } = self;
-            let path_joints = &topology.path_joints;
+            let graph = topology.graph(path);
+            let Topology {
+                path_joints,
+                graphs,
+                ..
+            } = topology;
+            let mut graph = graph.and_then(|g| graphs.get_mut(g));
+            let tolerance = if graph.is_some() {
+                GRAPH_PROJECTION_TOLERANCE
+            } else {
+                PROJECTION_TOLERANCE
+            };
             resize_links(links, path_joints.len());
             let (Some(members), Some(links), Some(impulses)) = (
                 path_joints.get(range.clone()),
@@ -100,13 +118,20 @@ impl JointSolver {
                     let bodies = joints[index].pair.bodies(solver_bodies);
                     link_rows(&mut joints[index], bodies, &stage, link, 0.0);
                     before = before.max(link.rows.violation());
-                    link.make_positional(PROJECTION_TOLERANCE);
+                    link.make_positional(tolerance);
                 }
                 known = Some(before);
-                if before <= PROJECTION_TOLERANCE {
+                if before <= tolerance {
                     break;
                 }
-                solve_links(joints, members, links, solution, solver_bodies);
+                solve_links(
+                    joints,
+                    members,
+                    links,
+                    solution,
+                    solver_bodies,
+                    graph.as_deref_mut(),
+                );
                 save_bodies(joints, members, solver_bodies, saved);
                 let probe = link_at(probe, 0);
                 // A Newton step can overshoot where the linearisation is poor: a light body between two
@@ -127,6 +152,7 @@ impl JointSolver {
                     probe,
                     stage: &stage,
                     impulses: &mut *impulses,
+                    graph: graph.as_deref_mut(),
                 };
                 let mut after = step.try_scaled(before * gain, 1.0, 1);
                 if after.is_none() && step.stiffen_and_solve() {
@@ -138,7 +164,7 @@ impl JointSolver {
                 match after {
                     // Within tolerance: the next iteration would build every row only to measure the error
                     // the step just measured.
-                    Some(after) if after <= PROJECTION_TOLERANCE => {
+                    Some(after) if after <= tolerance => {
                         known = Some(after);
                         break;
                     }
@@ -153,7 +179,7 @@ impl JointSolver {
                 Some(before) => before,
                 None => worst(joints, solver_bodies, probe),
             };
-            if before <= PROJECTION_TOLERANCE {
+            if before <= tolerance {
                 continue;
             }
             save_bodies(joints, members, solver_bodies, saved);
@@ -176,7 +202,7 @@ impl JointSolver {
                         restore_bodies(saved, solver_bodies);
                         break;
                     }
-                    if after <= PROJECTION_TOLERANCE {
+                    if after <= tolerance {
                         break;
                     }
                 }
@@ -226,7 +252,8 @@ pub(super) fn path_worst(
 }
 
 /// What a Newton step of the position projection reads and moves: one path's joints, links and solved step
-/// `solution`, the solver bodies and their saved pose, the probe link and the projection's stage.
+/// `solution`, the solver bodies and their saved pose, the probe link, the projection's stage and the
+/// path's graph if it is one.
 pub(super) struct NewtonStep<'a> {
     pub(super) joints: &'a mut [PreparedJoint],
     pub(super) members: &'a [usize],
@@ -238,6 +265,8 @@ pub(super) struct NewtonStep<'a> {
     pub(super) stage: &'a Stage,
     /// Per link, the position impulse of its rope or rod row summed over the accepted steps.
     pub(super) impulses: &'a mut [f32],
+    /// The path's graph, if it is one ([`DirectGraph`]).
+    pub(super) graph: Option<&'a mut DirectGraph>,
 }
 
 impl NewtonStep<'_> {
@@ -298,6 +327,7 @@ impl NewtonStep<'_> {
                 self.links,
                 self.solution,
                 self.solver_bodies,
+                self.graph.as_deref_mut(),
             );
         }
         stiffened

@@ -1,0 +1,370 @@
+//! The direct solve of a joint graph (every solve and relax pass and the projection): the rows of joints
+//! that form no path — a ladder (two ropes per gap), a tree (a ragdoll), a loop (a closed chain, a four-bar
+//! linkage) — solved together, exactly, as a path is ([`crate::path`]), through a sparse `L·D·Lᵀ` of
+//! `K = J·M⁻¹·Jᵀ` over the joints' rows in a minimum degree order ([`DirectGraph`]).
+//!
+//! `K` is assembled over the joint rows, the bodies eliminated (`K`'s entries are `J·M⁻¹·Jᵀ` through the
+//! bodies two rows share), rather than the saddle point system over bodies and rows together: a joint graph
+//! has about as many rows as body coordinates, `K` is as sparse as the joints' adjacency, it is positive
+//! semi-definite (so `L·D·Lᵀ` without pivoting holds, as for a path), and the path solver's rows, soft step,
+//! active set and updates serve unchanged. See `docs/physics.md`, "Joint graphs".
+
+#![allow(
+    clippy::needless_range_loop,
+    reason = "the assembly of K reads as its formula with row and column indices"
+)]
+
+use super::link::{Link, Mode};
+use super::min_degree::minimum_degree_order;
+use super::row::{MAX_ROWS, Real, Row};
+use super::sparse_ldl::{SparseLdl, UpperColumns};
+use super::sweep::{Solved, path_shape};
+use super::topology::dynamic_bodies;
+use crate::pair::BodyPair;
+use rebound_dynamics::SolverBody;
+use rebound_math::glam::DVec3;
+use rebound_math::{Vec3, Vec4};
+
+/// The most joints a graph solved directly may have; a larger component of joints is solved as paths and
+/// Gauss–Seidel, as before graphs were solved directly.
+pub(crate) const MAX_GRAPH_JOINTS: usize = 256;
+
+/// The most block entries the factorisation of a graph's joints may have (the fill of its minimum degree
+/// order, [`minimum_degree_order`]): a graph denser than this — every joint on one body, a mesh — costs more
+/// to factorise than Gauss–Seidel does to iterate, and is solved as paths and Gauss–Seidel.
+pub(crate) const MAX_GRAPH_FILL: usize = 4 * MAX_GRAPH_JOINTS;
+
+/// Added to each row's own `K` entry as a fraction of it in a graph's system (see
+/// [`DirectGraph::assemble`]).
+pub(crate) const GRAPH_REGULARIZATION: Real = 1e-9;
+
+/// How a joint of a graph is coupled with another one: through one or two shared dynamic bodies, each given
+/// as (the side of this joint on it, the side of the other joint on it), `true` = body B.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Coupling {
+    other: usize,
+    sides: [Option<(bool, bool)>; 2],
+}
+
+/// One joint graph solved directly: its joints' couplings and elimination order, made once a step
+/// ([`DirectGraph::build`]), and the buffers of its factorisation, reused from pass to pass.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct DirectGraph {
+    /// Per member (slot), the joints it is coupled with (by slot) and through which sides.
+    couplings: Vec<Vec<Coupling>>,
+    /// The members in elimination order, and each member's place in it.
+    order: Vec<usize>,
+    position: Vec<usize>,
+    /// Per member, its dynamic bodies as indices into `deltas` (the active-set check's body changes).
+    bodies: Vec<[Option<usize>; 2]>,
+    body_count: usize,
+    /// Scratch of a solve: each member's first row in the system, `K`, its factorisation, the right-hand
+    /// side (then the solution), `λ` and `K·λ`, and each body's change from a solution.
+    offset: Vec<usize>,
+    inverse: Vec<[[DVec3; 4]; MAX_ROWS]>,
+    matrix: UpperColumns,
+    ldl: SparseLdl,
+    rhs: Vec<Real>,
+    lambda: Vec<Real>,
+    k_lambda: Vec<Real>,
+    deltas: Vec<[Vec3; 2]>,
+    /// Scratch of `build`: the adjacency by slot and the order's sets.
+    adjacency: Vec<Vec<usize>>,
+    sets: Vec<Vec<usize>>,
+}
+
+impl DirectGraph {
+    /// Makes the graph of the joints `members` (joint `i` between the bodies of `pair(i)`): which members
+    /// share a dynamic body, and the minimum degree order. Returns the fill of that order.
+    pub fn build<'p>(&mut self, members: &[usize], pair: impl Fn(usize) -> &'p BodyPair) -> usize {
+        let m = members.len();
+        // (body, slot, side) for every dynamic side, sorted by body: each run is the joints on one body.
+        let mut ends: Vec<(usize, usize, bool)> = Vec::with_capacity(2 * m);
+        for (slot, &index) in members.iter().enumerate() {
+            let [a, b] = dynamic_bodies(pair(index));
+            ends.extend(a.map(|body| (body, slot, false)));
+            ends.extend(b.map(|body| (body, slot, true)));
+        }
+        ends.sort_unstable();
+        self.couplings
+            .resize_with(m.max(self.couplings.len()), Vec::new);
+        self.couplings.truncate(m);
+        self.couplings.iter_mut().for_each(Vec::clear);
+        self.bodies.clear();
+        self.bodies.resize(m, [None; 2]);
+        self.body_count = 0;
+        let mut run = 0;
+        while run < ends.len() {
+            let body = ends[run].0;
+            let end = run + ends[run..].iter().take_while(|e| e.0 == body).count();
+            let local = self.body_count;
+            self.body_count += 1;
+            for &(_, slot, side) in &ends[run..end] {
+                self.bodies[slot][usize::from(side)] = Some(local);
+                for &(_, other, other_side) in &ends[run..end] {
+                    if other == slot {
+                        continue;
+                    }
+                    let list = &mut self.couplings[slot];
+                    match list.iter_mut().find(|c| c.other == other) {
+                        Some(c) => c.sides[1] = Some((side, other_side)),
+                        None => list.push(Coupling {
+                            other,
+                            sides: [Some((side, other_side)), None],
+                        }),
+                    }
+                }
+            }
+            run = end;
+        }
+        self.adjacency
+            .resize_with(m.max(self.adjacency.len()), Vec::new);
+        for (slot, set) in self.adjacency.iter_mut().enumerate().take(m) {
+            set.clear();
+            set.extend(self.couplings[slot].iter().map(|c| c.other));
+        }
+        let adjacency = &self.adjacency;
+        let fill = minimum_degree_order(m, |i| &adjacency[i], &mut self.sets, &mut self.order);
+        self.position.clear();
+        self.position.resize(m, 0);
+        for (place, &slot) in self.order.iter().enumerate() {
+            self.position[slot] = place;
+        }
+        fill
+    }
+
+    /// One solve of the graph's system (as [`super::solve_path`] of a path): the residuals from the bodies'
+    /// velocities (`load(i)` gives member `i`'s bodies), `K` over the rows in the system, its factorisation
+    /// and solve; the solution `y` of each link in `out`, the change of its accumulated impulses being `−y`.
+    pub fn solve<'b>(
+        &mut self,
+        links: &mut [Link],
+        load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
+        out: &mut Vec<[Real; MAX_ROWS]>,
+    ) -> Solved {
+        out.clear();
+        out.resize(links.len(), [0.0; MAX_ROWS]);
+        // The blocks serve the updates (`Link::impulse`, `M⁻¹·Jᵀ` in f32) and the residuals (the lanes).
+        for link in links.iter_mut() {
+            link.fill_blocks::<MAX_ROWS>(None);
+            link.fill_lanes();
+        }
+        let shape = path_shape(links, links.len());
+        self.assemble(links);
+        let n = self.matrix.order();
+        self.rhs.clear();
+        self.rhs.resize(n, 0.0);
+        for (slot, link) in links.iter().enumerate() {
+            let r = load(slot).map_or([0.0; MAX_ROWS], |(a, b)| link.residual(a, b));
+            let at = self.offset[slot];
+            for (k, &r) in r.iter().enumerate().take(link.rows.count) {
+                self.rhs[at + k] = r;
+            }
+        }
+        if shape.uniform.is_none() {
+            // The soft step of every row at once: rhs = mass_scale∘r + impulse_scale∘(K·λ).
+            self.lambda.clear();
+            self.lambda.resize(n, 0.0);
+            for (slot, link) in links.iter().enumerate() {
+                let at = self.offset[slot];
+                let lambda = link.active_lambda();
+                self.lambda[at..at + link.rows.count].copy_from_slice(&lambda[..link.rows.count]);
+            }
+            self.k_lambda.resize(n, 0.0);
+            self.matrix.multiply(&self.lambda, &mut self.k_lambda);
+            for (slot, link) in links.iter().enumerate() {
+                let (at, count) = (self.offset[slot], link.rows.count);
+                let mut r = [0.0; MAX_ROWS];
+                let mut k_lambda = [0.0; MAX_ROWS];
+                r[..count].copy_from_slice(&self.rhs[at..at + count]);
+                k_lambda[..count].copy_from_slice(&self.k_lambda[at..at + count]);
+                let soft = link.soft_rhs(&r, &k_lambda);
+                self.rhs[at..at + count].copy_from_slice(&soft[..count]);
+            }
+        }
+        self.ldl.factor(&self.matrix);
+        self.ldl.solve(&mut self.rhs);
+        let mut released = false;
+        for ((slot, link), out) in links.iter().enumerate().zip(out.iter_mut()) {
+            let (at, count) = (self.offset[slot], link.rows.count);
+            let mut x = [0.0; MAX_ROWS];
+            x[..count].copy_from_slice(&self.rhs[at..at + count]);
+            *out = link.finish(x, shape.uniform);
+            released |= link.would_deactivate(out);
+        }
+        Solved {
+            left_out: shape.left_out,
+            released,
+        }
+    }
+
+    /// `K` over the links' rows in elimination order (each link's rows together), upper triangle by
+    /// column: a link's own block (over both its bodies, each diagonal entry regularised as a path's, with
+    /// a stiffening row's compliance in a projection) and its couplings with the links before it in the
+    /// order. A row not in the system has a 1 on the diagonal and nothing else.
+    ///
+    /// The entries are computed in f64 from the rows' f32 Jacobians and the bodies' inverse masses: rows
+    /// that are redundant (a loop of hinges constrains its out-of-plane motion more than once) are then
+    /// dependent to the rounding of their Jacobians, and their pivots fall to the regularisation, far
+    /// below [`RELATIVE_PIVOT`](super::factor::RELATIVE_PIVOT) of their diagonal. Summed in f32, as a
+    /// path's blocks are, the rounding of thin bars' large inverse inertias left such a pivot above it in
+    /// some poses, and the solve turned it into impulses that tore a four-bar loop apart.
+    fn assemble(&mut self, links: &[Link]) {
+        self.offset.clear();
+        self.offset.resize(links.len(), 0);
+        let mut rows = 0;
+        for &slot in &self.order {
+            self.offset[slot] = rows;
+            rows += links[slot].rows.count;
+        }
+        self.inverse.clear();
+        self.inverse.extend(links.iter().map(inverse_jacobians));
+        let a = &mut self.matrix;
+        a.clear();
+        for (place, &q) in self.order.iter().enumerate() {
+            let link = &links[q];
+            let live = link.live_rows();
+            let inverse = &self.inverse[q];
+            let own = [Some((false, false)), Some((true, true))];
+            // The diagonal (regularised, with a stiffening row's compliance in a projection; 1 for a row
+            // not in the system) and the link's largest one, which its rows' pivots are measured against:
+            // a row's own entry would not do, as a redundant row's pivot is the regularisation of the rows
+            // it depends on, which for a thin bar's angular rows is large next to a linear row's entry.
+            let diagonals: [Real; MAX_ROWS] =
+                core::array::from_fn(|l| match link.rows.rows().get(l) {
+                    Some(row) if live[l] => {
+                        let mut d = coupling(row, &inverse[l], own) * (1.0 + GRAPH_REGULARIZATION);
+                        if link.mode == Mode::Position {
+                            d += link.compliance[l];
+                        }
+                        d
+                    }
+                    _ => 1.0,
+                });
+            let scale = diagonals
+                .iter()
+                .take(link.rows.count)
+                .fold(0.0, |m: Real, &d| m.max(d));
+            for l in 0..link.rows.count {
+                if live[l] {
+                    for c in &self.couplings[q] {
+                        if self.position[c.other] >= place {
+                            continue;
+                        }
+                        let other = &links[c.other];
+                        let other_live = other.live_rows();
+                        for (k, row) in other.rows.rows().iter().enumerate() {
+                            if other_live[k] {
+                                let value = coupling(row, &inverse[l], c.sides);
+                                a.entries.push((self.offset[c.other] + k, value));
+                            }
+                        }
+                    }
+                }
+                let column = self.offset[q];
+                for (k, row) in link.rows.rows().iter().enumerate().take(l) {
+                    if live[k] && live[l] {
+                        a.entries
+                            .push((column + k, coupling(row, &inverse[l], own)));
+                    }
+                }
+                a.entries.push((column + l, diagonals[l]));
+                a.end_column(scale);
+            }
+        }
+    }
+
+    /// Activates every row bounded at 0 left out of the system that the solution `out` of the others would
+    /// violate (see [`super::activate_violations`]): its `Ċ + bias` (or `C` in a projection) with the
+    /// bodies' changes from every link's update. `load(i)` gives member `i`'s bodies. Returns whether any
+    /// row was activated.
+    pub fn activate_violations<'b>(
+        &mut self,
+        links: &mut [Link],
+        out: &[[Real; MAX_ROWS]],
+        load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
+    ) -> bool {
+        self.deltas.clear();
+        self.deltas.resize(self.body_count, [Vec3::ZERO; 2]);
+        for (slot, (link, x)) in links.iter().zip(out).enumerate() {
+            let mut change = [Vec4::ZERO; 4];
+            for k in 0..link.rows.count {
+                if link.active[k] {
+                    let amount = link.increment(k, x[k]);
+                    for (change, &unit) in change.iter_mut().zip(&link.impulse[k]) {
+                        *change += unit * amount;
+                    }
+                }
+            }
+            for (side, body) in self.bodies[slot].iter().enumerate() {
+                if let Some(body) = body {
+                    let delta = &mut self.deltas[*body];
+                    delta[0] += change[2 * side].truncate();
+                    delta[1] += change[2 * side + 1].truncate();
+                }
+            }
+        }
+        let mut any = false;
+        for (slot, link) in links.iter_mut().enumerate() {
+            let left_out = link.left_out();
+            if !left_out.contains(&true) {
+                continue;
+            }
+            let bodies = load(slot);
+            let zero = [Vec3::ZERO; 2];
+            let [da, db] = self.bodies[slot].map(|b| b.map_or(zero, |b| self.deltas[b]));
+            for r in (0..MAX_ROWS).filter(|&r| left_out[r]) {
+                let row = &link.rows.rows[r];
+                let mut free = row.target.bias
+                    + (row.a.linear.dot(da[0]) + row.a.angular.dot(da[1]))
+                    + (row.b.linear.dot(db[0]) + row.b.angular.dot(db[1]));
+                if link.mode == Mode::Velocity
+                    && let Some((a, b)) = bodies
+                {
+                    free += row.velocity(a, b);
+                }
+                let violated = if row.upper == 0.0 {
+                    free > 0.0
+                } else {
+                    free < 0.0
+                };
+                if violated {
+                    link.active[r] = true;
+                    any = true;
+                }
+            }
+        }
+        any
+    }
+}
+
+/// `M⁻¹·Jᵀ` of each row of `link` in f64, `[m_a⁻¹·J_a,linear, I_a⁻¹·J_a,angular, m_b⁻¹·J_b,linear,
+/// I_b⁻¹·J_b,angular]`, from its f32 Jacobians and inverse masses (see [`DirectGraph::assemble`]).
+fn inverse_jacobians(link: &Link) -> [[DVec3; 4]; MAX_ROWS] {
+    let (ma, mb) = (&link.rows.mass_a, &link.rows.mass_b);
+    let (ia, ib) = (ma.inertia.as_dmat3(), mb.inertia.as_dmat3());
+    let (wa, wb) = (f64::from(ma.mass), f64::from(mb.mass));
+    core::array::from_fn(|k| match link.rows.rows().get(k) {
+        Some(row) => [
+            row.a.linear.as_dvec3() * wa,
+            ia * row.a.angular.as_dvec3(),
+            row.b.linear.as_dvec3() * wb,
+            ib * row.b.angular.as_dvec3(),
+        ],
+        None => [DVec3::ZERO; 4],
+    })
+}
+
+/// The entry of `K` between a row of one link (`row`) and a row of another (or the same) link given by its
+/// `M⁻¹·Jᵀ` (`inverse`, [`inverse_jacobians`]), through the bodies they share (`sides`: on each, the side
+/// of the other row's link and the side of `row`'s link, `true` = body B): `Σ s_row·(M⁻¹·s_otherᵀ)`.
+fn coupling(row: &Row, inverse: &[DVec3; 4], sides: [Option<(bool, bool)>; 2]) -> Real {
+    let mut sum = 0.0;
+    for (other_b, row_b) in sides.into_iter().flatten() {
+        let side = if row_b { &row.b } else { &row.a };
+        let at = if other_b { 2 } else { 0 };
+        sum +=
+            side.linear.as_dvec3().dot(inverse[at]) + side.angular.as_dvec3().dot(inverse[at + 1]);
+    }
+    sum
+}

@@ -1,0 +1,335 @@
+//! The sparse factorisation behind the direct solve of joint graphs (every solve and relax pass and the
+//! projection of a graph, [`crate::path`]): `A = L·D·Lᵀ` of a symmetric positive semi-definite matrix given
+//! by its upper triangle column by column, without pivoting, and the solve of `A·x = b` with its factors.
+//!
+//! The algorithm is the up-looking one (Davis, *Direct Methods for Sparse Linear Systems*, SIAM 2006, §4.4
+//! and §4.7): row `k` of `L` is the solution of a triangular system with the rows before it, whose pattern is
+//! the set of nodes reached from the entries of column `k` of `A` by walking up the elimination tree. The
+//! symbolic pass (the tree and each column's count) and the numeric one run together per matrix: the
+//! pattern of a joint graph's `K` changes only with its row counts, and the symbolic work is a small part of
+//! the numeric one for the few hundred rows a graph has. Written here rather than taken from a crate: the
+//! sparse crates that do this (faer, sprs with sprs-ldl) are large for a system this size, and this one is
+//! a hundred lines that give the same bits for the same calls.
+//!
+//! A pivot at or below [`RELATIVE_PIVOT`] × its column's scale (the caller's: for a joint graph, the
+//! largest diagonal entry of the joint's rows, as a path's block measures its pivots) — a row redundant
+//! with the rows before it (a loop of hinges constrains more than its bodies' degrees of freedom), or a row
+//! of zeros — counts as zero: its unknown solves to 0 and its column of `L` is 0, never a NaN or a huge
+//! impulse.
+
+#![allow(
+    clippy::needless_range_loop,
+    reason = "sparse triangular algebra reads as the formulas with indices"
+)]
+
+use super::factor::RELATIVE_PIVOT;
+use super::row::Real;
+
+/// `A = L·D·Lᵀ` of one matrix, and the buffers it is made in (reused from factorisation to factorisation).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct SparseLdl {
+    /// The order of the matrix.
+    n: usize,
+    /// The elimination tree: each column's parent (`usize::MAX` for a root).
+    parent: Vec<usize>,
+    /// Where each column of `L` starts in `rows` and `values`, and how many entries it has so far.
+    start: Vec<usize>,
+    count: Vec<usize>,
+    /// The strictly lower part of the unit lower triangular `L`, by column: row indices and values.
+    rows: Vec<usize>,
+    values: Vec<Real>,
+    /// `D⁻¹`, 0 for a vanishing pivot.
+    inv_pivot: Vec<Real>,
+    /// Scratch: the row being solved for, which column last marked a node, and the pattern of a row.
+    work: Vec<Real>,
+    flag: Vec<usize>,
+    pattern: Vec<usize>,
+}
+
+/// A symmetric matrix by the upper triangle of its columns: column `j`'s entries (row `i ≤ j`, value) are
+/// `entries[start[j]..start[j + 1]]`, in any order, each `(i, j)` at most once; `scale[j]` is what column
+/// `j`'s pivot is measured against ([`RELATIVE_PIVOT`]).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct UpperColumns {
+    pub start: Vec<usize>,
+    pub entries: Vec<(usize, Real)>,
+    pub scale: Vec<Real>,
+}
+
+impl UpperColumns {
+    /// Empties the matrix (keeping its buffers) for one of order 0; columns are then added in order.
+    pub fn clear(&mut self) {
+        self.start.clear();
+        self.start.push(0);
+        self.entries.clear();
+        self.scale.clear();
+    }
+
+    /// Ends the current column: the entries pushed since the last call are its own, and its pivot counts as
+    /// zero at or below [`RELATIVE_PIVOT`] × `scale`.
+    pub fn end_column(&mut self, scale: Real) {
+        self.start.push(self.entries.len());
+        self.scale.push(scale);
+    }
+
+    /// The order of the matrix (the number of columns ended).
+    pub fn order(&self) -> usize {
+        self.start.len().saturating_sub(1)
+    }
+
+    /// Column `j`'s entries.
+    pub fn column(&self, j: usize) -> &[(usize, Real)] {
+        let (Some(&from), Some(&to)) = (self.start.get(j), self.start.get(j + 1)) else {
+            return &[];
+        };
+        self.entries.get(from..to).unwrap_or_default()
+    }
+
+    /// `out = A·x` for the symmetric matrix (both triangles from the stored one).
+    pub fn multiply(&self, x: &[Real], out: &mut [Real]) {
+        out.fill(0.0);
+        for j in 0..self.order() {
+            for &(i, value) in self.column(j) {
+                if let (Some(&xi), Some(&xj)) = (x.get(i), x.get(j)) {
+                    out[j] += value * xi;
+                    if i != j {
+                        out[i] += value * xj;
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl SparseLdl {
+    /// Factorises `a` (symmetric positive semi-definite): the elimination tree and column counts, then the
+    /// rows of `L` and `D` one after another. Returns the number of entries of `L`.
+    pub fn factor(&mut self, a: &UpperColumns) -> usize {
+        let n = a.order();
+        self.n = n;
+        self.symbolic(a);
+        let Self {
+            parent,
+            start,
+            count,
+            rows,
+            values,
+            inv_pivot,
+            work,
+            flag,
+            pattern,
+            ..
+        } = self;
+        inv_pivot.clear();
+        inv_pivot.resize(n, 0.0);
+        work.clear();
+        work.resize(n, 0.0);
+        flag.clear();
+        flag.resize(n, usize::MAX);
+        pattern.clear();
+        pattern.resize(n, 0);
+        count.fill(0);
+        for k in 0..n {
+            // Scatter column k of A into `work`, and gather the pattern of row k of L (the nodes reached
+            // from the column's entries up the tree), in topological order at `pattern[top..]`.
+            let mut top = n;
+            flag[k] = k;
+            for &(i, value) in a.column(k) {
+                work[i] += value;
+                let mut length = 0;
+                let mut node = i;
+                while flag[node] != k {
+                    pattern[length] = node;
+                    length += 1;
+                    flag[node] = k;
+                    node = parent[node];
+                }
+                // The walk from `i` sits below what earlier walks found: push it on the stack whole.
+                while length > 0 {
+                    top -= 1;
+                    length -= 1;
+                    pattern[top] = pattern[length];
+                }
+            }
+            // Row k of L: a sparse triangular solve with the rows before it; D_k what remains of A_kk.
+            let mut d = work[k];
+            work[k] = 0.0;
+            for &i in &pattern[top..n] {
+                let y = work[i];
+                work[i] = 0.0;
+                let column = start[i]..start[i] + count[i];
+                for (&row, &l) in rows[column.clone()].iter().zip(&values[column]) {
+                    work[row] -= l * y;
+                }
+                let l = y * inv_pivot[i];
+                d -= l * y;
+                let slot = start[i] + count[i];
+                rows[slot] = k;
+                values[slot] = l;
+                count[i] += 1;
+            }
+            let scale = a.scale.get(k).copied().unwrap_or(0.0);
+            inv_pivot[k] = if d > RELATIVE_PIVOT * scale && d > 0.0 {
+                1.0 / d
+            } else {
+                0.0
+            };
+        }
+        start.get(n).copied().unwrap_or(0)
+    }
+
+    /// The elimination tree of `a` and the number of entries of each column of `L`, with the columns' starts.
+    fn symbolic(&mut self, a: &UpperColumns) {
+        let n = self.n;
+        let Self {
+            parent,
+            start,
+            count,
+            flag,
+            rows,
+            values,
+            ..
+        } = self;
+        parent.clear();
+        parent.resize(n, usize::MAX);
+        count.clear();
+        count.resize(n, 0);
+        flag.clear();
+        flag.resize(n, usize::MAX);
+        for k in 0..n {
+            flag[k] = k;
+            for &(i, _) in a.column(k) {
+                let mut node = i;
+                while node < k && flag[node] != k {
+                    if parent[node] == usize::MAX {
+                        parent[node] = k;
+                    }
+                    count[node] += 1;
+                    flag[node] = k;
+                    node = parent[node];
+                }
+            }
+        }
+        start.clear();
+        start.push(0);
+        let mut total = 0;
+        for &c in count.iter() {
+            total += c;
+            start.push(total);
+        }
+        rows.clear();
+        rows.resize(total, 0);
+        values.clear();
+        values.resize(total, 0.0);
+    }
+
+    /// Solves `A·x = b` in place with the factors (`x` holds `b` on entry); an unknown whose pivot vanished
+    /// is 0.
+    pub fn solve(&self, x: &mut [Real]) {
+        let n = self.n.min(x.len());
+        // L·y = b
+        for j in 0..n {
+            let column = self.start[j]..self.start[j] + self.count[j];
+            let xj = x[j];
+            for (&row, &l) in self.rows[column.clone()].iter().zip(&self.values[column]) {
+                x[row] -= l * xj;
+            }
+        }
+        // D·z = y
+        for (x, &inv) in x.iter_mut().zip(&self.inv_pivot).take(n) {
+            *x *= inv;
+        }
+        // Lᵀ·x = z
+        for j in (0..n).rev() {
+            let column = self.start[j]..self.start[j] + self.count[j];
+            let mut sum = x[j];
+            for (&row, &l) in self.rows[column.clone()].iter().zip(&self.values[column]) {
+                sum -= l * x[row];
+            }
+            x[j] = sum;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{SparseLdl, UpperColumns};
+    use crate::path::row::Real;
+
+    /// A symmetric positive definite matrix with a sparse pattern (a band and a corner, as a loop gives),
+    /// dense, row-major.
+    fn matrix(n: usize) -> Vec<Vec<Real>> {
+        let mut a = vec![vec![0.0; n]; n];
+        let mut seed = 12345u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 33) as Real) / ((1u64 << 31) as Real) - 0.5
+        };
+        // A = Bᵀ·B + I with B sparse: rows i couple to i + 1 and to n − 1.
+        let mut b = vec![vec![0.0; n]; n];
+        for i in 0..n {
+            b[i][i] = 1.0 + next();
+            b[i][(i + 1) % n] = next();
+            b[i][n - 1] += next();
+        }
+        for i in 0..n {
+            for j in 0..n {
+                a[i][j] = (0..n).map(|k| b[k][i] * b[k][j]).sum::<Real>();
+            }
+            a[i][i] += 1.0;
+        }
+        a
+    }
+
+    fn upper(a: &[Vec<Real>]) -> UpperColumns {
+        let mut m = UpperColumns::default();
+        m.clear();
+        for j in 0..a.len() {
+            for i in (0..=j).rev() {
+                if a[i][j] != 0.0 {
+                    m.entries.push((i, a[i][j]));
+                }
+            }
+            m.end_column(a[j][j]);
+        }
+        m
+    }
+
+    #[test]
+    fn the_factorisation_solves_a_sparse_system_to_rounding() {
+        for n in [1, 2, 5, 12, 40] {
+            let a = matrix(n);
+            let m = upper(&a);
+            let mut ldl = SparseLdl::default();
+            ldl.factor(&m);
+            let b: Vec<Real> = (0..n).map(|i| (i as Real * 0.37).sin()).collect();
+            let mut x = b.clone();
+            ldl.solve(&mut x);
+            let mut ax = vec![0.0; n];
+            m.multiply(&x, &mut ax);
+            for (ax, b) in ax.iter().zip(&b) {
+                assert!((ax - b).abs() < 1e-10, "n = {n}: {ax} for {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_redundant_row_solves_to_zero_and_the_rest_hold() {
+        // Rows 0 and 2 are the same constraint: K has rank 2.
+        let a = vec![
+            vec![2.0, 1.0, 2.0],
+            vec![1.0, 3.0, 1.0],
+            vec![2.0, 1.0, 2.0],
+        ];
+        let mut ldl = SparseLdl::default();
+        ldl.factor(&upper(&a));
+        let mut x = vec![1.0, 2.0, 1.0];
+        ldl.solve(&mut x);
+        assert!(x.iter().all(|v| v.is_finite()));
+        assert!(x[2].abs() < 1e-12, "{x:?}");
+        // The first two rows hold (the third is the first).
+        assert!((2.0 * x[0] + x[1] - 1.0).abs() < 1e-12 && (x[0] + 3.0 * x[1] - 2.0).abs() < 1e-12);
+    }
+}
