@@ -362,3 +362,49 @@ fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
     world.restore(&snapshot).unwrap();
     assert!(moved(&world), "restore");
 }
+
+/// The body revision, by which an observer notices body edits (mass properties, gravity scale) without
+/// comparing bodies, moves on with every insertion, mutable access, removal and restore, and not with a
+/// step; a body setter reached through the facade moves it too.
+#[test]
+fn the_body_revision_moves_with_every_edit_and_restore_but_not_a_step() {
+    let mut world = scene();
+    let snapshot = world.snapshot();
+    let mut last = world.bodies().revision();
+    let mut moved = |world: &PhysicsWorld| {
+        let now = world.bodies().revision();
+        let changed = now != last;
+        last = now;
+        changed
+    };
+    for _ in 0..30 {
+        world.step(DT);
+        assert!(!moved(&world), "a step changed the revision");
+    }
+    let body = world.insert_body(BodyDesc::dynamic()).unwrap();
+    assert!(moved(&world), "insertion");
+    world
+        .insert_collider(ColliderDesc::ball(0.5), body)
+        .unwrap();
+    assert!(
+        moved(&world),
+        "a collider with a density changed the body's mass"
+    );
+    world
+        .body_mut(body)
+        .unwrap()
+        .set_gravity_scale(0.5)
+        .unwrap();
+    assert!(moved(&world), "gravity scale");
+    let mass = *world.body(body).unwrap().mass_properties();
+    world.set_body_mass_properties(body, mass).unwrap();
+    assert!(moved(&world), "mass properties");
+    assert!(world.body_mut(body).is_some());
+    assert!(moved(&world), "a mutable access counts as an edit");
+    world.remove_body(body).unwrap();
+    assert!(moved(&world), "removal");
+    assert!(world.body_mut(body).is_none());
+    assert!(!moved(&world), "a stale handle edits nothing");
+    world.restore(&snapshot).unwrap();
+    assert!(moved(&world), "restore");
+}
