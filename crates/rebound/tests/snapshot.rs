@@ -332,15 +332,20 @@ fn two_worlds_built_by_the_same_calls_step_identically() {
     }
 }
 
-/// The collider revision, by which an observer notices edits without comparing descriptions, moves on with
-/// every insertion, edit, removal and restore, and not with a step.
-#[test]
-fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
+/// The scene with a snapshot of it, stepped 30 times while checking that `revision` does not move, and a
+/// check that tells whether `revision` moved since it was last called.
+fn stepped_scene(
+    revision: fn(&PhysicsWorld) -> u64,
+) -> (
+    PhysicsWorld,
+    PhysicsSnapshot,
+    impl FnMut(&PhysicsWorld) -> bool,
+) {
     let mut world = scene();
     let snapshot = world.snapshot();
-    let mut last = world.colliders().revision();
-    let mut moved = |world: &PhysicsWorld| {
-        let now = world.colliders().revision();
+    let mut last = revision(&world);
+    let mut moved = move |world: &PhysicsWorld| {
+        let now = revision(world);
         let changed = now != last;
         last = now;
         changed
@@ -349,6 +354,14 @@ fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
         world.step(DT);
         assert!(!moved(&world), "a step changed the revision");
     }
+    (world, snapshot, moved)
+}
+
+/// The collider revision, by which an observer notices edits without comparing descriptions, moves on with
+/// every insertion, edit, removal and restore, and not with a step.
+#[test]
+fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
+    let (mut world, snapshot, mut moved) = stepped_scene(|w| w.colliders().revision());
     let body = world.insert_body(BodyDesc::dynamic()).unwrap();
     assert!(!moved(&world), "a body without colliders changed it");
     let collider = world
@@ -368,19 +381,7 @@ fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
 /// step; a body setter reached through the facade moves it too.
 #[test]
 fn the_body_revision_moves_with_every_edit_and_restore_but_not_a_step() {
-    let mut world = scene();
-    let snapshot = world.snapshot();
-    let mut last = world.bodies().revision();
-    let mut moved = |world: &PhysicsWorld| {
-        let now = world.bodies().revision();
-        let changed = now != last;
-        last = now;
-        changed
-    };
-    for _ in 0..30 {
-        world.step(DT);
-        assert!(!moved(&world), "a step changed the revision");
-    }
+    let (mut world, snapshot, mut moved) = stepped_scene(|w| w.bodies().revision());
     let body = world.insert_body(BodyDesc::dynamic()).unwrap();
     assert!(moved(&world), "insertion");
     world
