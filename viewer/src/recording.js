@@ -1,4 +1,4 @@
-// Reads a Rebound recording (`.rrec`, format version 1) as docs/recording.md specifies it, into the model the
+// Reads a Rebound recording (`.rrec`, format version 2) as docs/recording.md specifies it, into the model the
 // viewer draws. The whole file is checked once when it is opened (every length prefix, count, flag, index and
 // JSON block), so a bad file is refused up front with a RecordingError naming the byte offset and what is
 // wrong; after that, frames are decoded on demand, mostly as typed-array views into the file's bytes.
@@ -6,15 +6,17 @@
 // No DOM and no three.js here: node's test runner exercises this module directly.
 
 const MAGIC = [0x52, 0x42, 0x52, 0x45, 0x43, 0x0d, 0x0a, 0x1a];
-const VERSION = 1;
+const VERSION = 2;
 const HEADER_BYTES = 84;
 const CONTACT_BYTES = 40;
 const JOINT_BYTES = 40;
 const EVENT_BYTES = 16;
+const FORCE_BYTES = 40;
+const CONTACT_FORCE_KIND = 8;
 const NONE = 0xffffffff;
 const BODY_KINDS = ['dynamic', 'fixed', 'kinematic'];
 const JOINT_KINDS = ['spring', 'rope', 'rod', 'ball', 'hinge', 'fixed', 'prismatic', 'wheel', 'six_dof'];
-const EVENT_KINDS = 7;
+const EVENT_KINDS = 8;
 
 /** A file that is not a readable recording; the message says what is wrong and where. */
 export class RecordingError extends Error {
@@ -113,12 +115,13 @@ function checkFrame(buffer, view, p, length, index, world, previousBodies, previ
   const nj = view.getUint32(p + 24, true);
   const ne = view.getUint32(p + 28, true);
   const x = view.getUint32(p + 32, true);
+  const nf = view.getUint32(p + 36, true);
   if (x % 4 !== 0) throw new RecordingError(`${where}: changes length ${x} is not a multiple of 4`);
-  const expected = HEADER_BYTES + x + 52 * nb + pad4(nb) + CONTACT_BYTES * nc + JOINT_BYTES * nj + EVENT_BYTES * ne;
+  const expected = HEADER_BYTES + x + 52 * nb + pad4(nb) + CONTACT_BYTES * nc + JOINT_BYTES * nj + EVENT_BYTES * ne + FORCE_BYTES * nf;
   if (expected !== length) {
     throw new RecordingError(
       `${where}: payload length ${length} disagrees with its counts (${nb} bodies, ${nc} contacts, ${nj} joints, ` +
-        `${ne} events, ${x} bytes of changes need ${expected})`,
+        `${ne} events, ${nf} contact forces, ${x} bytes of changes need ${expected})`,
     );
   }
   if (x > 0) world.applyChanges(parseJson(buffer, p + HEADER_BYTES, x, `changes of ${where}`), where);
@@ -150,12 +153,18 @@ function checkFrame(buffer, view, p, length, index, world, previousBodies, previ
   }
   const jointsAt = contactsAt + CONTACT_BYTES * nc;
   const eventsAt = jointsAt + JOINT_BYTES * nj;
+  let forceEvents = 0;
   for (let e = 0; e < ne; e++) {
     const kind = view.getUint32(eventsAt + EVENT_BYTES * e, true);
     if (kind < 1 || kind > EVENT_KINDS) {
       throw new RecordingError(`${where}: event ${e} at byte ${eventsAt + EVENT_BYTES * e} has unknown kind ${kind}`);
     }
+    if (kind === CONTACT_FORCE_KIND) forceEvents++;
   }
+  if (forceEvents !== nf) {
+    throw new RecordingError(`${where}: ${nf} contact force entries but ${forceEvents} contact force events`);
+  }
+  const forcesAt = eventsAt + EVENT_BYTES * ne;
   return {
     offset: p,
     step: Number(view.getBigUint64(p, true)),
@@ -164,11 +173,13 @@ function checkFrame(buffer, view, p, length, index, world, previousBodies, previ
     nc,
     nj,
     ne,
+    nf,
     bodies,
     flagsAt,
     contactsAt,
     jointsAt,
     eventsAt,
+    forcesAt,
   };
 }
 
@@ -510,15 +521,34 @@ export class Recording {
     return joints;
   }
 
-  /** The events of frame `i`: `{kind, a, b, value}` with `NONE` as -1. */
+  /**
+   * The events of frame `i`: `{kind, a, b, value}` with `NONE` as -1; a contact force event (kind 8) also has
+   * `force: {colliderA, colliderB, normal, totalImpulse, maxImpulsePoint, maxImpulse}` from its FORCE entry.
+   */
   events(i) {
     const f = this.frames[i];
     const words = new Uint32Array(this.buffer, f.eventsAt, 4 * f.ne);
     const floats = new Float32Array(this.buffer, f.eventsAt, 4 * f.ne);
+    const forceCount = f.nf * (FORCE_BYTES / 4);
+    const forceWords = new Uint32Array(this.buffer, f.forcesAt, forceCount);
+    const forceFloats = new Float32Array(this.buffer, f.forcesAt, forceCount);
+    const id = (w) => (w === NONE ? -1 : w);
     const out = [];
+    let k = 0;
     for (let e = 0; e < f.ne; e++) {
-      const id = (w) => (w === NONE ? -1 : w);
-      out.push({ kind: words[4 * e], a: id(words[4 * e + 1]), b: id(words[4 * e + 2]), value: floats[4 * e + 3] });
+      const event = { kind: words[4 * e], a: id(words[4 * e + 1]), b: id(words[4 * e + 2]), value: floats[4 * e + 3] };
+      if (event.kind === CONTACT_FORCE_KIND) {
+        const o = (FORCE_BYTES / 4) * k++;
+        event.force = {
+          colliderA: id(forceWords[o]),
+          colliderB: id(forceWords[o + 1]),
+          normal: [forceFloats[o + 2], forceFloats[o + 3], forceFloats[o + 4]],
+          totalImpulse: forceFloats[o + 5],
+          maxImpulsePoint: [forceFloats[o + 6], forceFloats[o + 7], forceFloats[o + 8]],
+          maxImpulse: forceFloats[o + 9],
+        };
+      }
+      out.push(event);
     }
     return out;
   }

@@ -44,13 +44,16 @@ export function ballsManifest(balls) {
 
 /**
  * One frame payload. `bodies` entries: {position, rotation, linearVelocity, angularVelocity, flags};
- * `contacts`: {a, b, point, normal, impulse, separation}; `events`: {kind, a, b, value}.
+ * `contacts`: {a, b, point, normal, impulse, separation}; `events`: {kind, a, b, value}, and for a contact force
+ * event (kind 8) `force`: {colliderA, colliderB, normal, totalImpulse, maxImpulsePoint, maxImpulse}, written to the
+ * FORCE block.
  */
 export function framePayload({ step = 0, time = 0, energy = [0, 0, 0], bodies = [], contacts = [], events = [],
   changes = null }) {
   const x = changes === null ? new Uint8Array(0) : paddedJson(changes);
   const nb = bodies.length;
-  const length = 84 + x.length + 52 * nb + pad4(nb) + 40 * contacts.length + 16 * events.length;
+  const forces = events.filter((e) => e.kind === 8).map((e) => e.force);
+  const length = 84 + x.length + 52 * nb + pad4(nb) + 40 * contacts.length + 16 * events.length + 40 * forces.length;
   const bytes = new Uint8Array(length);
   const view = new DataView(bytes.buffer);
   view.setBigUint64(0, BigInt(step), true);
@@ -60,6 +63,7 @@ export function framePayload({ step = 0, time = 0, energy = [0, 0, 0], bodies = 
   view.setUint32(24, 0, true);
   view.setUint32(28, events.length, true);
   view.setUint32(32, x.length, true);
+  view.setUint32(36, forces.length, true);
   energy.forEach((e, i) => view.setFloat32(40 + 4 * i, e, true));
   bytes.set(x, 84);
   let at = 84 + x.length;
@@ -86,11 +90,19 @@ export function framePayload({ step = 0, time = 0, energy = [0, 0, 0], bodies = 
     view.setFloat32(at + 12, e.value, true);
     at += 16;
   }
+  for (const f of forces) {
+    view.setUint32(at, f.colliderA, true);
+    view.setUint32(at + 4, f.colliderB, true);
+    [...f.normal, f.totalImpulse, ...f.maxImpulsePoint, f.maxImpulse].forEach((v, k) =>
+      view.setFloat32(at + 8 + 4 * k, v, true),
+    );
+    at += 40;
+  }
   return bytes;
 }
 
 /** A whole file: header, manifest and the given frame payloads with their length prefixes. */
-export function recordingFile(manifest, payloads, { version = 1 } = {}) {
+export function recordingFile(manifest, payloads, { version = 2 } = {}) {
   const m = paddedJson(manifest);
   const total = 16 + m.length + payloads.reduce((n, p) => n + 4 + p.length, 0);
   const bytes = new Uint8Array(total);

@@ -47,6 +47,28 @@ test('a well-formed file reads back its numbers bit for bit', () => {
   assert.equal(r.truncated, null);
 });
 
+test('a contact force event reads back with its FORCE entry, and a count that disagrees is refused', () => {
+  const force = { colliderA: 0, colliderB: 0xffffffff, normal: [0, 1, 0], totalImpulse: 1.635, maxImpulsePoint: [0.25, 0, -0.5],
+    maxImpulse: 0.5 };
+  const frame = (events) => framePayload({ bodies: [{ position: [0, 0, 0] }, { position: [0, 1, 0] }], events });
+  const events = [
+    { kind: 1, a: 0, b: 1, value: 2 },
+    { kind: 8, a: 0, b: 1, value: 98.1, force },
+  ];
+  const r = readRecording(recordingFile(ballsManifest(2), [frame(events)]));
+  assert.deepEqual(r.events(0), [
+    { kind: 1, a: 0, b: 1, value: 2 },
+    { kind: 8, a: 0, b: 1, value: f32(98.1), force: { colliderA: 0, colliderB: -1, normal: [0, 1, 0],
+      totalImpulse: f32(1.635), maxImpulsePoint: [0.25, 0, -0.5], maxImpulse: 0.5 } },
+  ]);
+  // NF one too many, with the payload length grown to match: the count must equal the kind-8 events.
+  const payload = frame(events);
+  const grown = new Uint8Array(payload.length + 40);
+  grown.set(payload);
+  new DataView(grown.buffer).setUint32(36, 2, true);
+  refuses(recordingFile(ballsManifest(2), [grown]), /2 contact force entries but 1 contact force events/);
+});
+
 test('bodies inserted later are absent from the earlier frames', () => {
   const manifest = ballsManifest(1);
   const later = ballsManifest(2).bodies[1];
@@ -84,7 +106,7 @@ test('broken files are refused with what and where', () => {
 
   refuses(new Uint8Array(8), /16-byte file header/);
   refuses(new TextEncoder().encode('this is just some text, not a recording'), /wrong magic bytes at offset 0/);
-  refuses(recordingFile(ballsManifest(1), [], { version: 2 }), /unsupported format version 2 at offset 8/);
+  refuses(recordingFile(ballsManifest(1), [], { version: 1 }), /unsupported format version 1 at offset 8/);
   refuses(recordingFile(ballsManifest(1), []), /no frames/);
   refuses(good.slice(0, 40), /truncated: the manifest runs to byte/);
 

@@ -63,7 +63,7 @@ fn plugin_app() -> App {
                 let y = 0.6 + j as f32 * balls::SPACING;
                 let z = (k as f32 - centre) * balls::SPACING + jz;
                 app.world_mut().spawn((
-                    Body::dynamic().with_can_sleep(options.sleep),
+                    Body::new(BodyDesc::dynamic().with_can_sleep(options.sleep)),
                     Collider::new(ColliderDesc::ball(balls::RADIUS).with_density(1.0)),
                     Transform::from_xyz(x, y, z),
                 ));

@@ -1,4 +1,4 @@
-//! The body components: [`Body`] (type, damping, gravity scale, sleep settings), [`Velocity`], [`Sleeping`],
+//! The body components: [`Body`] (a [`BodyDesc`]: type, damping, gravity scale, sleep settings), [`Velocity`], [`Sleeping`],
 //! [`MassOverride`] and [`KinematicTarget`]. Read by the prepare systems (insertion and edits), written by the
 //! writeback systems (velocity and sleep state after each step).
 //!
@@ -9,31 +9,28 @@ use bevy_ecs::component::Component;
 use bevy_transform::components::Transform;
 use rebound::prelude::{BodyDesc, BodyType, MassProperties, Pose, Quat, Vec3};
 
-/// A rigid body. The entity's [`Transform`] (translation and rotation) is the body's pose in world space
-/// (m); editing it teleports the body, and each step writes the new pose back.
+/// A rigid body: a [`BodyDesc`] on an entity. The entity's [`Transform`] (translation and rotation) is the
+/// body's pose in world space (m); editing it teleports the body, and each step writes the new pose back.
+///
+/// The description gives the body type, gravity scale, damping, integrator, gyroscopic term, sleep setting
+/// and locked axes, each with the engine's default; build it with [`BodyDesc`]'s `with_*` setters. Its
+/// pose, velocities, `sleeping` and mass properties belong to other components ([`Transform`],
+/// [`Velocity`], [`Sleeping`], [`MassOverride`]) and must stay at their defaults: a body that sets one is
+/// refused with a [`crate::PhysicsError::BodyField`] naming it, as an invalid value is refused with a
+/// [`crate::PhysicsError::Refused`]. Editing the component applies the new description, all of it or none.
 ///
 /// ```
-/// use rebound_bevy::Body;
-/// let crate_box = Body::dynamic().with_linear_damping(0.1).with_gravity_scale(0.5);
+/// use rebound_bevy::prelude::*;
+/// let crate_box = Body::new(BodyDesc::dynamic().with_linear_damping(0.1).with_gravity_scale(0.5));
 /// let ground = Body::fixed();
-/// assert_eq!(crate_box.gravity_scale, 0.5);
+/// assert_eq!(crate_box.desc.gravity_scale, 0.5);
 /// assert!(!ground.is_dynamic());
 /// ```
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
 #[require(Transform, Velocity, Sleeping)]
 pub struct Body {
-    /// Dynamic, fixed or kinematic. Default: dynamic.
-    pub body_type: BodyType,
-    /// Multiplier on the world's gravity (dimensionless; may be negative or 0). Default: 1.0.
-    pub gravity_scale: f32,
-    /// Linear damping coefficient (1/s, ≥ 0): `v ← v / (1 + c·h)` each substep. Default: 0.0.
-    pub linear_damping: f32,
-    /// Angular damping coefficient (1/s, ≥ 0). Default: 0.0.
-    pub angular_damping: f32,
-    /// Whether the body may fall asleep when it comes to rest. Default: true.
-    pub can_sleep: bool,
-    /// Whether the gyroscopic term `ω × I·ω` is integrated. Default: true.
-    pub gyroscopic: bool,
+    /// The engine's description of the body (see the type's documentation for the fields it may set).
+    pub desc: BodyDesc,
 }
 
 impl Default for Body {
@@ -42,68 +39,81 @@ impl Default for Body {
     }
 }
 
+impl From<BodyDesc> for Body {
+    fn from(desc: BodyDesc) -> Self {
+        Self::new(desc)
+    }
+}
+
 impl Body {
+    /// A body from a full description.
+    #[must_use]
+    pub const fn new(desc: BodyDesc) -> Self {
+        Self { desc }
+    }
+
     /// A dynamic body: moved by gravity, forces, contacts and joints.
     #[must_use]
-    pub const fn dynamic() -> Self {
-        Self::of_type(BodyType::Dynamic)
+    pub fn dynamic() -> Self {
+        Self::new(BodyDesc::dynamic())
     }
 
     /// A fixed body: never moves (ground, walls).
     #[must_use]
-    pub const fn fixed() -> Self {
-        Self::of_type(BodyType::Fixed)
+    pub fn fixed() -> Self {
+        Self::new(BodyDesc::fixed())
     }
 
     /// A kinematic body: moved by its [`Velocity`] or a [`KinematicTarget`], pushes dynamic bodies.
     #[must_use]
-    pub const fn kinematic() -> Self {
-        Self::of_type(BodyType::Kinematic)
-    }
-
-    const fn of_type(body_type: BodyType) -> Self {
-        Self {
-            body_type,
-            gravity_scale: 1.0,
-            linear_damping: 0.0,
-            angular_damping: 0.0,
-            can_sleep: true,
-            gyroscopic: true,
-        }
+    pub fn kinematic() -> Self {
+        Self::new(BodyDesc::kinematic())
     }
 
     /// Whether this is a dynamic body.
     #[must_use]
     pub fn is_dynamic(&self) -> bool {
-        self.body_type == BodyType::Dynamic
+        self.desc.body_type == BodyType::Dynamic
     }
 
-    /// Sets the gravity scale (dimensionless).
-    #[must_use]
-    pub const fn with_gravity_scale(mut self, gravity_scale: f32) -> Self {
-        self.gravity_scale = gravity_scale;
-        self
-    }
-
-    /// Sets the linear damping (1/s).
-    #[must_use]
-    pub const fn with_linear_damping(mut self, damping: f32) -> Self {
-        self.linear_damping = damping;
-        self
-    }
-
-    /// Sets the angular damping (1/s).
-    #[must_use]
-    pub const fn with_angular_damping(mut self, damping: f32) -> Self {
-        self.angular_damping = damping;
-        self
-    }
-
-    /// Sets whether the body may fall asleep.
-    #[must_use]
-    pub const fn with_can_sleep(mut self, can_sleep: bool) -> Self {
-        self.can_sleep = can_sleep;
-        self
+    /// The first field of the description that another component gives, with its value and that
+    /// component's name: `(field, value, component)`; `None` if all of them are at their defaults.
+    pub(crate) fn foreign_field(&self) -> Option<(&'static str, String, &'static str)> {
+        let (d, e) = (&self.desc, BodyDesc::default());
+        type Check<'a> = (&'static str, &'static str, bool, &'a dyn Fn() -> String);
+        let checks: [Check<'_>; 6] = [
+            ("position", "Transform", d.position != e.position, &|| {
+                d.position.to_string()
+            }),
+            ("rotation", "Transform", d.rotation != e.rotation, &|| {
+                d.rotation.to_string()
+            }),
+            (
+                "linear_velocity",
+                "Velocity",
+                d.linear_velocity != e.linear_velocity,
+                &|| d.linear_velocity.to_string(),
+            ),
+            (
+                "angular_velocity",
+                "Velocity",
+                d.angular_velocity != e.angular_velocity,
+                &|| d.angular_velocity.to_string(),
+            ),
+            ("sleeping", "Sleeping", d.sleeping != e.sleeping, &|| {
+                d.sleeping.to_string()
+            }),
+            (
+                "mass_properties",
+                "MassOverride",
+                d.mass_properties != e.mass_properties,
+                &|| format!("{:?}", d.mass_properties),
+            ),
+        ];
+        checks
+            .into_iter()
+            .find(|&(_, _, differs, _)| differs)
+            .map(|(field, component, _, value)| (field, value(), component))
     }
 
     /// The engine's description of this body at `pose`, moving at `velocity`.
@@ -115,18 +125,12 @@ impl Body {
         mass: Option<MassProperties>,
     ) -> BodyDesc {
         let mut desc = BodyDesc {
-            body_type: self.body_type,
             position: pose.position,
             rotation: pose.rotation,
             linear_velocity: velocity.linear,
             angular_velocity: velocity.angular,
-            gravity_scale: self.gravity_scale,
-            linear_damping: self.linear_damping,
-            angular_damping: self.angular_damping,
-            gyroscopic: self.gyroscopic,
             sleeping,
-            can_sleep: self.can_sleep,
-            ..BodyDesc::default()
+            ..self.desc
         };
         if let Some(mass) = mass {
             desc.mass_properties = mass;

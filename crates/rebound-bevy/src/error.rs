@@ -20,6 +20,22 @@ pub enum PhysicsError {
         /// What the engine said.
         source: rebound::Error,
     },
+    /// A [`crate::Body`]'s description sets a field that another component of the entity gives (the pose
+    /// is the `Transform`, the velocities the `Velocity`, ...); the body is not inserted or edited.
+    #[error(
+        "entity {entity}: `Body.desc.{field}` is {value}; a body's {field} comes from its `{component}` (leave the description's at its default)"
+    )]
+    BodyField {
+        /// The body entity.
+        entity: Entity,
+        /// The description's field (`"position"`, `"rotation"`, `"linear_velocity"`,
+        /// `"angular_velocity"`, `"sleeping"`, `"mass_properties"`).
+        field: &'static str,
+        /// Its value.
+        value: String,
+        /// The component that gives it (`"Transform"`, `"Velocity"`, `"Sleeping"`, `"MassOverride"`).
+        component: &'static str,
+    },
     /// A joint names an entity that has no [`crate::Body`] (or does not exist).
     #[error("entity {entity}: `PhysicsJoint.{field}` names entity {target}, which has no `Body`")]
     NotABody {

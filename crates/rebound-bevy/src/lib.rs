@@ -42,7 +42,8 @@ pub use joint::PhysicsJoint;
 pub use physics::Physics;
 pub use plugin::{PhysicsSystems, ReboundPlugin};
 pub use query::{
-    EntityPickHit, EntityPointHit, EntityRayHit, EntityShapeHit, SpatialQuery, SpatialQueryFilter,
+    EntityHit, EntityPickHit, EntityPointHit, EntityRayHit, EntityShapeHit, SpatialQuery,
+    SpatialQueryFilter,
 };
 pub use settings::PhysicsSettings;
 pub use snapshot::PhysicsState;
@@ -56,8 +57,8 @@ pub mod prelude {
         TransformInterpolation, Velocity,
     };
     pub use rebound::prelude::{
-        BallJoint, BodyType, ColliderDesc, ColliderShape, CollisionGroups, CombineRule, FixedJoint,
-        HingeJoint, Joint, Limits, MassProperties, Motor, Pose, PrismaticJoint, Quat, Rod, Rope,
-        Spring, Vec3, WheelJoint, WorldSettings,
+        BallJoint, BodyDesc, BodyType, ColliderDesc, ColliderShape, CollisionGroups, CombineRule,
+        FixedJoint, HingeJoint, Joint, Limits, MassProperties, Motor, Pose, PrismaticJoint, Quat,
+        Rod, Rope, Spring, Vec3, WheelJoint, WorldSettings,
     };
 }

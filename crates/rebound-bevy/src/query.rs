@@ -42,65 +42,48 @@ impl SpatialQueryFilter {
     }
 }
 
-/// Where a ray hit a collider.
+/// A facade query result ([`rebound::RayHit`], [`rebound::ShapeHit`], [`rebound::PointHit`],
+/// [`rebound::PickHit`]) with the entities of the collider and the body it names.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EntityRayHit {
+pub struct EntityHit<H> {
     /// The collider's entity.
     pub collider: Entity,
     /// Its body's entity.
     pub body: Entity,
-    /// Distance along the (normalised) direction (m); 0 when the origin is inside.
-    pub distance: f32,
-    /// The hit point (m, world space).
-    pub point: Vec3,
-    /// The surface normal there (unit, world space; zero when the origin is inside).
-    pub normal: Vec3,
+    /// The facade's result: distance, point, normal and the rest, each documented there (its handles name
+    /// the same collider and body).
+    pub hit: H,
 }
 
-/// Where a cast shape first touched a collider.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EntityShapeHit {
-    /// The collider's entity.
-    pub collider: Entity,
-    /// Its body's entity.
-    pub body: Entity,
-    /// How far the shape travelled before touching (m); 0 if it overlapped at the start.
-    pub distance: f32,
-    /// The contact point on the collider hit (m, world space).
-    pub point: Vec3,
-    /// The collider's outward normal there (world space).
-    pub normal: Vec3,
+/// Where a ray hit a collider (see [`rebound::RayHit`]).
+pub type EntityRayHit = EntityHit<rebound::RayHit>;
+/// Where a cast shape first touched a collider (see [`rebound::ShapeHit`]).
+pub type EntityShapeHit = EntityHit<rebound::ShapeHit>;
+/// The closest point of a collider to a query point (see [`rebound::PointHit`]).
+pub type EntityPointHit = EntityHit<rebound::PointHit>;
+/// A dynamic body under a ray, and where to hold it (see [`rebound::PickHit`]).
+pub type EntityPickHit = EntityHit<rebound::PickHit>;
+
+/// A facade query result that names a collider and its body.
+trait Hit {
+    fn handles(&self) -> (rebound::ColliderHandle, rebound::BodyHandle);
 }
 
-/// The closest point of a collider to a query point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EntityPointHit {
-    /// The collider's entity.
-    pub collider: Entity,
-    /// Its body's entity.
-    pub body: Entity,
-    /// The closest point (m, world space); the query point itself when it is inside.
-    pub point: Vec3,
-    /// Distance from the query point (m); 0 inside.
-    pub distance: f32,
-    /// Whether the query point is inside the collider.
-    pub is_inside: bool,
+macro_rules! impl_hit {
+    ($($hit:ty),*) => {$(
+        impl Hit for $hit {
+            fn handles(&self) -> (rebound::ColliderHandle, rebound::BodyHandle) {
+                (self.collider, self.body)
+            }
+        }
+    )*};
 }
-
-/// A dynamic body under a ray, and where to hold it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct EntityPickHit {
-    /// The body's entity.
-    pub body: Entity,
-    /// The collider's entity.
-    pub collider: Entity,
-    /// The hit point (m, world space).
-    pub point: Vec3,
-    /// The hit point in the body's frame (m): the anchor for a drag joint.
-    pub local_point: Vec3,
-    /// Distance along the ray (m).
-    pub distance: f32,
-}
+impl_hit!(
+    rebound::RayHit,
+    rebound::ShapeHit,
+    rebound::PointHit,
+    rebound::PickHit
+);
 
 /// Scene queries in a system: `fn aim(query: SpatialQuery) { ... }`. Each method is the facade's
 /// ([`rebound::PhysicsWorld::cast_ray`] and its siblings) with entities in the results; hits on colliders that
@@ -125,15 +108,14 @@ impl SpatialQuery<'_> {
         }
     }
 
-    fn entities(
-        &self,
-        collider: rebound::ColliderHandle,
-        body: rebound::BodyHandle,
-    ) -> Option<(Entity, Entity)> {
-        Some((
-            self.physics.collider_entity(collider)?,
-            self.physics.body_entity(body)?,
-        ))
+    /// `hit` with the entities it names (`None` if one is not the plugin's).
+    fn named<H: Hit>(&self, hit: H) -> Option<EntityHit<H>> {
+        let (collider, body) = hit.handles();
+        Some(EntityHit {
+            collider: self.physics.collider_entity(collider)?,
+            body: self.physics.body_entity(body)?,
+            hit,
+        })
     }
 
     /// The first collider a ray from `origin` along `direction` hits within `max_distance` (m, may be +∞).
@@ -151,18 +133,7 @@ impl SpatialQuery<'_> {
             self.physics
                 .world
                 .cast_ray(origin, direction, max_distance, &self.filter(filter))?;
-        Ok(hit.and_then(|hit| self.ray_hit(hit)))
-    }
-
-    fn ray_hit(&self, hit: rebound::RayHit) -> Option<EntityRayHit> {
-        let (collider, body) = self.entities(hit.collider, hit.body)?;
-        Some(EntityRayHit {
-            collider,
-            body,
-            distance: hit.distance,
-            point: hit.point,
-            normal: hit.normal,
-        })
+        Ok(hit.and_then(|hit| self.named(hit)))
     }
 
     /// Every collider the ray hits within `max_distance`, nearest first.
@@ -182,10 +153,7 @@ impl SpatialQuery<'_> {
             max_distance,
             &self.filter(filter),
         )?;
-        Ok(hits
-            .into_iter()
-            .filter_map(|hit| self.ray_hit(hit))
-            .collect())
+        Ok(hits.into_iter().filter_map(|hit| self.named(hit)).collect())
     }
 
     /// Sweeps `shape` from `pose` along `direction` for up to `max_distance` (m) and returns the first collider
@@ -208,16 +176,7 @@ impl SpatialQuery<'_> {
             max_distance,
             &self.filter(filter),
         )?;
-        Ok(hit.and_then(|hit| {
-            let (collider, body) = self.entities(hit.collider, hit.body)?;
-            Some(EntityShapeHit {
-                collider,
-                body,
-                distance: hit.distance,
-                point: hit.point,
-                normal: hit.normal,
-            })
-        }))
+        Ok(hit.and_then(|hit| self.named(hit)))
     }
 
     /// The collider closest to `point` within `max_distance` (m, may be +∞).
@@ -234,16 +193,7 @@ impl SpatialQuery<'_> {
             .physics
             .world
             .project_point(point, max_distance, &self.filter(filter))?;
-        Ok(hit.and_then(|hit| {
-            let (collider, body) = self.entities(hit.collider, hit.body)?;
-            Some(EntityPointHit {
-                collider,
-                body,
-                point: hit.point,
-                distance: hit.distance,
-                is_inside: hit.is_inside,
-            })
-        }))
+        Ok(hit.and_then(|hit| self.named(hit)))
     }
 
     /// The collider entities overlapping `shape` at `pose`, in collider-handle order.
@@ -280,15 +230,6 @@ impl SpatialQuery<'_> {
             .physics
             .world
             .pick_body(origin, direction, max_distance)?;
-        Ok(hit.and_then(|hit| {
-            let (collider, body) = self.entities(hit.collider, hit.body)?;
-            Some(EntityPickHit {
-                body,
-                collider,
-                point: hit.point,
-                local_point: hit.local_point,
-                distance: hit.distance,
-            })
-        }))
+        Ok(hit.and_then(|hit| self.named(hit)))
     }
 }

@@ -111,8 +111,19 @@ impl Physics {
                 .copied()
         };
         Some(match event {
-            // Not forwarded to Bevy yet: read them from the world's events.
-            Event::ContactForce { .. } => return None,
+            Event::ContactForce { colliders, force } => PhysicsEvent::ContactForce {
+                entity_a: body(force.body_a)?,
+                entity_b: body(force.body_b)?,
+                colliders: match colliders {
+                    Some((a, b)) => Some((collider(a)?, collider(b)?)),
+                    None => None,
+                },
+                normal: force.normal,
+                total_impulse: force.total_impulse,
+                total_force: force.total_force,
+                max_impulse_point: force.max_impulse_point,
+                max_impulse: force.max_impulse,
+            },
             Event::ContactBegan {
                 body_a,
                 body_b,

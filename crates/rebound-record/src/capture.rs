@@ -46,6 +46,8 @@ pub(crate) struct Tracker {
     /// The world's collider revision when the colliders were last compared (`None` before the first
     /// time): while it holds, no collider was inserted, edited or removed, and none is compared.
     collider_revision: Option<u64>,
+    /// The world's body revision when the bodies were last compared, likewise for the bodies.
+    body_revision: Option<u64>,
     joint_index: HandleIndex,
     joints: Vec<WrittenJoint>,
     /// By body index: the pose of the last sample, for the contact points.
@@ -74,6 +76,23 @@ impl Tracker {
     /// What changed in `world` since the last call, now remembered as written.
     pub(crate) fn changes(&mut self, world: &PhysicsWorld) -> Changes {
         let mut changes = Changes::default();
+        let revision = world.bodies().revision();
+        if self.body_revision != Some(revision) {
+            self.body_revision = Some(revision);
+            self.body_changes(world, &mut changes);
+        }
+        let revision = world.colliders().revision();
+        if self.collider_revision != Some(revision) {
+            self.collider_revision = Some(revision);
+            self.collider_changes(world, &mut changes);
+        }
+        self.joint_changes(world, &mut changes);
+        changes
+    }
+
+    /// Adds to `changes` the bodies inserted (with their colliders) and those whose mass properties or
+    /// gravity scale changed since the last comparison.
+    fn body_changes(&mut self, world: &PhysicsWorld, changes: &mut Changes) {
         for (handle, body) in world.bodies().iter() {
             let written = (*body.mass_properties(), body.gravity_scale());
             match self.body(handle) {
@@ -104,13 +123,6 @@ impl Tracker {
                 }
             }
         }
-        let revision = world.colliders().revision();
-        if self.collider_revision != Some(revision) {
-            self.collider_revision = Some(revision);
-            self.collider_changes(world, &mut changes);
-        }
-        self.joint_changes(world, &mut changes);
-        changes
     }
 
     /// Adds to `changes` the colliders inserted, edited or removed since the last comparison.
@@ -288,12 +300,23 @@ impl Tracker {
         })
     }
 
-    /// An engine event with handles as indices; `None` for contact force events and quarantines, which the
-    /// format does not record (a quarantined body shows in the frames as a body at rest).
+    /// An engine event with handles as indices; `None` for quarantines, which the format does not record (a
+    /// quarantined body shows in the frames as a body at rest).
     fn event(&self, event: &Event) -> Option<RecordedEvent> {
         let collider = |h: ColliderHandle| self.collider_index.get(h.into_raw_parts());
         Some(match *event {
-            Event::ContactForce { .. } | Event::BodyQuarantined { .. } => return None,
+            Event::BodyQuarantined { .. } => return None,
+            Event::ContactForce { colliders, force } => RecordedEvent::ContactForce {
+                body_a: self.body(force.body_a),
+                body_b: self.body(force.body_b),
+                collider_a: colliders.and_then(|(a, _)| collider(a)),
+                collider_b: colliders.and_then(|(_, b)| collider(b)),
+                normal: force.normal,
+                total_impulse: force.total_impulse,
+                total_force: force.total_force,
+                max_impulse_point: force.max_impulse_point,
+                max_impulse: force.max_impulse,
+            },
             Event::ContactBegan {
                 body_a,
                 body_b,

@@ -21,6 +21,7 @@ pub(crate) struct BodyFrame {
 
 impl BodyFrame {
     /// The frame of a body sampled as `sample`.
+    #[inline]
     pub(crate) fn of(sample: &BodySample) -> Self {
         Self {
             rotation: Mat3A::from_quat(sample.rotation),

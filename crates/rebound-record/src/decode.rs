@@ -8,8 +8,8 @@ use crate::catalog::Catalog;
 use crate::contacts::contact_entry;
 use crate::error::RecordingError;
 use crate::format::{
-    BODY_KIND_SHIFT, BODY_LEN, BODY_PRESENT, BODY_SLEEPING, CONTACT_LEN, FRAME_HEADER_LEN,
-    JOINT_BROKEN, JOINT_PRESENT, pad4, payload_len,
+    BODY_KIND_SHIFT, BODY_LEN, BODY_PRESENT, BODY_SLEEPING, CONTACT_FORCE_KIND, CONTACT_LEN,
+    FRAME_HEADER_LEN, JOINT_BROKEN, JOINT_PRESENT, pad4, payload_len,
 };
 use crate::frame::{BodySample, Diagnostics, Frame, JointSample, RecordedEvent};
 use crate::manifest::{BodyKind, Changes};
@@ -175,7 +175,7 @@ pub(crate) fn decode_frame(
     let nj = c.u32()? as usize;
     let ne = c.u32()? as usize;
     let changes_len = c.u32()? as usize;
-    let _reserved = c.u32()?;
+    let nf = c.u32()? as usize;
     if !changes_len.is_multiple_of(4) {
         return Err(RecordingError::BadLength {
             what: "changes length",
@@ -184,7 +184,7 @@ pub(crate) fn decode_frame(
             expected: pad4(changes_len) as u64,
         });
     }
-    let expected = payload_len(changes_len, nb, nc, nj, ne);
+    let expected = payload_len(changes_len, nb, nc, nj, ne, nf);
     if expected != Some(payload.len()) {
         return Err(RecordingError::BadLength {
             what: "frame payload length",
@@ -280,6 +280,37 @@ pub(crate) fn decode_frame(
     let mut events = Vec::with_capacity(ne);
     for _ in 0..ne {
         events.push(decode_event(&mut c, nb, nj, colliders)?);
+    }
+    let force_events = events
+        .iter()
+        .filter(|e| matches!(e, RecordedEvent::ContactForce { .. }))
+        .count();
+    if force_events != nf {
+        return Err(bad(
+            "contact force count",
+            base + 36,
+            format!("{nf} (the frame has {force_events} contact force events)"),
+        ));
+    }
+    for event in &mut events {
+        if let RecordedEvent::ContactForce {
+            collider_a,
+            collider_b,
+            normal,
+            total_impulse,
+            max_impulse_point,
+            max_impulse,
+            ..
+        } = event
+        {
+            let at = c.offset();
+            *collider_a = optional_index("contact force collider A", at, c.u32()?, colliders)?;
+            *collider_b = optional_index("contact force collider B", at + 4, c.u32()?, colliders)?;
+            *normal = c.vec3()?;
+            *total_impulse = c.f32()?;
+            *max_impulse_point = c.vec3()?;
+            *max_impulse = c.f32()?;
+        }
     }
     if let Some(updated) = next_catalog {
         *catalog = updated;
@@ -406,6 +437,18 @@ fn decode_event(
             sensor: collider("event sensor", a, at + 4)?,
             collider: collider("event collider", b, at + 8)?,
         },
-        other => return Err(bad("event kind", at, format!("{other} (1 to 7)"))),
+        CONTACT_FORCE_KIND => RecordedEvent::ContactForce {
+            body_a: body("event body A", a, at + 4)?,
+            body_b: body("event body B", b, at + 8)?,
+            total_force: value,
+            // The rest is the frame's FORCE entry for this event, read after the events.
+            collider_a: None,
+            collider_b: None,
+            normal: Vec3::ZERO,
+            total_impulse: 0.0,
+            max_impulse_point: Vec3::ZERO,
+            max_impulse: 0.0,
+        },
+        other => return Err(bad("event kind", at, format!("{other} (1 to 8)"))),
     })
 }

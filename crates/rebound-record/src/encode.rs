@@ -4,12 +4,12 @@
 use crate::NONE;
 use crate::error::RecordingError;
 use crate::format::{
-    BODY_KIND_SHIFT, BODY_PRESENT, BODY_SLEEPING, JOINT_BROKEN, JOINT_PRESENT, MAGIC, VERSION,
-    pad4, payload_len,
+    BODY_KIND_SHIFT, BODY_LEN, BODY_PRESENT, BODY_SLEEPING, CONTACT_FORCE_KIND, JOINT_BROKEN,
+    JOINT_PRESENT, MAGIC, VERSION, pad4, payload_len,
 };
-use crate::frame::{Frame, RecordedEvent};
+use crate::frame::{BodySample, Frame, RecordedEvent};
 use crate::manifest::Manifest;
-use rebound::{Quat, Vec3};
+use rebound::Vec3;
 use std::ops::Range;
 
 /// Appends `value` as JSON padded with spaces to a multiple of 4 bytes; returns the padded length.
@@ -53,12 +53,40 @@ pub(crate) fn put_words<const N: usize>(out: &mut Vec<u8>, values: [u32; N]) {
     out.extend_from_slice(values.map(u32::to_le_bytes).as_flattened());
 }
 
-fn put_vec3(out: &mut Vec<u8>, v: Vec3) {
-    put_words(out, v.to_array().map(f32::to_bits));
+/// Appends the body block of `bodies` (`docs/recording.md`: positions, rotations, linear and angular
+/// velocities, each an array in index order, then the flag bytes and their padding), reserved once: it
+/// is a third of a frame, an entry per body, so each entry is appended inline.
+fn put_bodies(out: &mut Vec<u8>, bodies: &[BodySample]) {
+    let nb = bodies.len();
+    out.reserve(BODY_LEN * nb + pad4(nb));
+    let vec3 = |v: Vec3| v.to_array().map(f32::to_bits);
+    for b in bodies {
+        put_words(out, vec3(b.position));
+    }
+    for b in bodies {
+        put_words(out, b.rotation.to_array().map(f32::to_bits));
+    }
+    for b in bodies {
+        put_words(out, vec3(b.linear_velocity));
+    }
+    for b in bodies {
+        put_words(out, vec3(b.angular_velocity));
+    }
+    out.extend(bodies.iter().map(|b| {
+        let mut flags = b.kind.code() << BODY_KIND_SHIFT;
+        if b.present {
+            flags |= BODY_PRESENT;
+        }
+        if b.sleeping {
+            flags |= BODY_SLEEPING;
+        }
+        flags
+    }));
+    out.resize(out.len() + (pad4(nb) - nb), 0);
 }
 
-fn put_quat(out: &mut Vec<u8>, q: Quat) {
-    put_words(out, q.to_array().map(f32::to_bits));
+fn put_vec3(out: &mut Vec<u8>, v: Vec3) {
+    put_words(out, v.to_array().map(f32::to_bits));
 }
 
 /// Writes the 16-byte file header and the padded manifest into `out` (cleared first).
@@ -105,7 +133,12 @@ pub(crate) fn encode_frame(
     let nb = frame.bodies.len();
     let nj = frame.joints.len();
     let ne = frame.events.len();
-    let estimate = payload_len(0, nb, 0, nj, ne).unwrap_or(0);
+    let nf = frame
+        .events
+        .iter()
+        .filter(|e| matches!(e, RecordedEvent::ContactForce { .. }))
+        .count();
+    let estimate = payload_len(0, nb, 0, nj, ne, nf).unwrap_or(0);
     out.reserve(estimate + 4);
     put_u32(out, 0); // payload length, filled in below
     out.extend_from_slice(&frame.step.to_le_bytes());
@@ -115,7 +148,7 @@ pub(crate) fn encode_frame(
     put_u32(out, count("joints", nj)?);
     put_u32(out, count("events", ne)?);
     put_u32(out, 0); // changes length, filled in below
-    put_u32(out, 0); // reserved
+    put_u32(out, count("contact forces", nf)?);
     let d = &frame.diagnostics;
     put_f32(out, d.kinetic_energy);
     put_f32(out, d.potential_energy);
@@ -129,29 +162,7 @@ pub(crate) fn encode_frame(
         let len = count("changes bytes", len)?;
         out[4 + 32..4 + 36].copy_from_slice(&len.to_le_bytes());
     }
-    for b in &frame.bodies {
-        put_vec3(out, b.position);
-    }
-    for b in &frame.bodies {
-        put_quat(out, b.rotation);
-    }
-    for b in &frame.bodies {
-        put_vec3(out, b.linear_velocity);
-    }
-    for b in &frame.bodies {
-        put_vec3(out, b.angular_velocity);
-    }
-    for b in &frame.bodies {
-        let mut flags = b.kind.code() << BODY_KIND_SHIFT;
-        if b.present {
-            flags |= BODY_PRESENT;
-        }
-        if b.sleeping {
-            flags |= BODY_SLEEPING;
-        }
-        out.push(flags);
-    }
-    out.resize(out.len() + (pad4(nb) - nb), 0);
+    put_bodies(out, &frame.bodies);
     let contacts_at = out.len();
     let totals = write_contacts(out);
     let contacts = contacts_at..out.len();
@@ -191,6 +202,36 @@ pub(crate) fn encode_frame(
             [kind, a.unwrap_or(NONE), b.unwrap_or(NONE), value.to_bits()],
         );
     }
+    for e in &frame.events {
+        if let RecordedEvent::ContactForce {
+            collider_a,
+            collider_b,
+            normal,
+            total_impulse,
+            max_impulse_point,
+            max_impulse,
+            ..
+        } = *e
+        {
+            let [nx, ny, nz] = normal.to_array().map(f32::to_bits);
+            let [px, py, pz] = max_impulse_point.to_array().map(f32::to_bits);
+            put_words(
+                out,
+                [
+                    collider_a.unwrap_or(NONE),
+                    collider_b.unwrap_or(NONE),
+                    nx,
+                    ny,
+                    nz,
+                    total_impulse.to_bits(),
+                    px,
+                    py,
+                    pz,
+                    max_impulse.to_bits(),
+                ],
+            );
+        }
+    }
     let len = count("frame payload bytes", out.len() - 4)?;
     out[0..4].copy_from_slice(&len.to_le_bytes());
     Ok((totals, contacts))
@@ -210,5 +251,11 @@ pub(crate) fn event_fields(event: &RecordedEvent) -> (u32, Option<u32>, Option<u
         RecordedEvent::BodyWoke { body } => (5, body, None, 0.0),
         RecordedEvent::SensorEntered { sensor, collider } => (6, sensor, collider, 0.0),
         RecordedEvent::SensorExited { sensor, collider } => (7, sensor, collider, 0.0),
+        RecordedEvent::ContactForce {
+            body_a,
+            body_b,
+            total_force,
+            ..
+        } => (CONTACT_FORCE_KIND, body_a, body_b, total_force),
     }
 }

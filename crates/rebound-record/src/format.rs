@@ -5,8 +5,9 @@
 /// text-mode transfer, as PNG's signature does.
 pub const MAGIC: [u8; 8] = *b"RBREC\r\n\x1a";
 
-/// The format version this crate writes and the only one it reads.
-pub const VERSION: u32 = 1;
+/// The format version this crate writes and the only one it reads. 2: contact force events (EVENT kind 8
+/// and the FORCE block, counted in the frame header's former reserved word).
+pub const VERSION: u32 = 2;
 
 /// The file extension of recordings (without the dot).
 pub const EXTENSION: &str = "rrec";
@@ -30,6 +31,10 @@ pub(crate) const CONTACT_LEN: usize = 40;
 pub(crate) const JOINT_LEN: usize = 40;
 /// Bytes per event entry.
 pub(crate) const EVENT_LEN: usize = 16;
+/// Bytes per contact force entry.
+pub(crate) const FORCE_LEN: usize = 40;
+/// The EVENT kind of a contact force event, whose details are a FORCE entry.
+pub(crate) const CONTACT_FORCE_KIND: u32 = 8;
 
 /// Body flag: the body exists at this frame.
 pub(crate) const BODY_PRESENT: u8 = 1;
@@ -55,6 +60,7 @@ pub(crate) fn payload_len(
     contacts: usize,
     joints: usize,
     events: usize,
+    forces: usize,
 ) -> Option<usize> {
     let parts = [
         Some(FRAME_HEADER_LEN),
@@ -64,6 +70,7 @@ pub(crate) fn payload_len(
         contacts.checked_mul(CONTACT_LEN),
         joints.checked_mul(JOINT_LEN),
         events.checked_mul(EVENT_LEN),
+        forces.checked_mul(FORCE_LEN),
     ];
     parts
         .into_iter()

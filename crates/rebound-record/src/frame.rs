@@ -138,6 +138,28 @@ pub enum RecordedEvent {
         /// The body.
         body: Option<u32>,
     },
+    /// A contact pushed with at least a collider's force event threshold over the step (the engine's
+    /// `Event::ContactForce`).
+    ContactForce {
+        /// Body A of the manifold.
+        body_a: Option<u32>,
+        /// Body B of the manifold.
+        body_b: Option<u32>,
+        /// The pair's collider on body A (`None`: not named by the engine, or never seen).
+        collider_a: Option<u32>,
+        /// The pair's collider on body B.
+        collider_b: Option<u32>,
+        /// The manifold's unit normal, world axes, from A to B.
+        normal: Vec3,
+        /// The normal impulse of the step, summed over its points and substeps (N·s).
+        total_impulse: f32,
+        /// The mean normal force of the step, `total_impulse / dt` (N).
+        total_force: f32,
+        /// The point that applied the largest impulse, world space at the end of the step (m).
+        max_impulse_point: Vec3,
+        /// That point's impulse over the step (N·s).
+        max_impulse: f32,
+    },
     /// A collider started overlapping a sensor.
     SensorEntered {
         /// The sensor collider.

@@ -15,9 +15,9 @@ use std::ops::Range;
 ///
 /// Call [`Recorder::record`] after each step (and once before the first, for the initial state), or let
 /// [`Recorder::step`] do both. Bodies, colliders and joints inserted, edited or removed between calls are
-/// noticed and written as the frame's changes (give it the same world each time: collider edits are
-/// noticed by the world's [`rebound::ColliderSet::revision`]). [`Recorder::finish`] flushes the writer and
-/// hands it back.
+/// noticed and written as the frame's changes (give it the same world each time: edits are noticed by the
+/// world's [`rebound::ColliderSet::revision`] and [`rebound::BodySet::revision`]). [`Recorder::finish`]
+/// flushes the writer and hands it back.
 ///
 /// ```
 /// # fn main() -> Result<(), Box<dyn std::error::Error>> {

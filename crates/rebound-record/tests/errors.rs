@@ -22,19 +22,19 @@ fn a_wrong_magic_is_refused() {
 #[test]
 fn another_version_is_refused_naming_both_versions() {
     let mut bytes = small();
-    bytes[8..12].copy_from_slice(&2u32.to_le_bytes());
+    bytes[8..12].copy_from_slice(&1u32.to_le_bytes());
     let error = Recording::read(bytes.as_slice()).unwrap_err();
     assert!(
         matches!(
             error,
             RecordingError::UnsupportedVersion {
-                found: 2,
-                supported: 1
+                found: 1,
+                supported: 2
             }
         ),
         "{error}"
     );
-    assert!(error.to_string().contains("version 2"), "{error}");
+    assert!(error.to_string().contains("version 1"), "{error}");
 }
 
 #[test]

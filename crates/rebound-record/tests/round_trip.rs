@@ -254,7 +254,7 @@ fn the_layout_matches_the_documented_offsets() {
     let mut world = menagerie();
     let (bytes, written) = record(&mut world, 3);
     assert_eq!(&bytes[..8], b"RBREC\r\n\x1a");
-    assert_eq!(u32::from_le_bytes(bytes[8..12].try_into().unwrap()), 1);
+    assert_eq!(u32::from_le_bytes(bytes[8..12].try_into().unwrap()), 2);
     let m = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
     assert_eq!(m % 4, 0);
     let frame = 16 + m;
@@ -267,9 +267,10 @@ fn the_layout_matches_the_documented_offsets() {
     let nj = word(p + 24) as usize;
     let ne = word(p + 28) as usize;
     let x = word(p + 32) as usize;
+    let nf = word(p + 36) as usize;
     assert_eq!(
         len,
-        84 + x + 52 * nb + nb.div_ceil(4) * 4 + 40 * nc + 40 * nj + 16 * ne
+        84 + x + 52 * nb + nb.div_ceil(4) * 4 + 40 * nc + 40 * nj + 16 * ne + 40 * nf
     );
     let first = &written[0];
     assert_eq!(nb, first.bodies.len());
@@ -322,4 +323,120 @@ fn a_restored_snapshot_is_noticed_as_edits() {
     assert_eq!(restored.colliders[0].index, edited.colliders[0].index);
     assert!((restored.colliders[0].friction - desc.friction).abs() < 1e-7);
     assert!(frames[3].changes.is_none());
+}
+
+/// A 10 kg box resting on the ground with a force event threshold: every frame after it settles holds
+/// one contact force event carrying its weight, m·g = 98.1 N (±1 %), with the step's own numbers bit for
+/// bit — in the frame the recorder keeps, in the bytes where docs/recording.md puts them, and read back.
+#[test]
+fn contact_force_events_are_recorded_field_by_field() {
+    let settings = WorldSettings {
+        sleep_enabled: false,
+        ..WorldSettings::default()
+    };
+    let mut world = PhysicsWorld::new(settings).unwrap();
+    let ground = world
+        .insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -0.5, 0.0)))
+        .unwrap();
+    world
+        .insert_collider(ColliderDesc::cuboid(Vec3::new(10.0, 0.5, 10.0)), ground)
+        .unwrap();
+    let body = world
+        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 0.5, 0.0)))
+        .unwrap();
+    world
+        .insert_collider(
+            ColliderDesc::cuboid(Vec3::splat(0.5))
+                .with_density(10.0)
+                .with_force_event_threshold(0.0),
+            body,
+        )
+        .unwrap();
+    let mut recorder = Recorder::new(&world, Vec::new()).unwrap();
+    recorder.record(&world).unwrap();
+    let mut expected = Vec::new();
+    for step in 1..=120 {
+        recorder.step(&mut world, DT).unwrap();
+        let forces: Vec<ContactForce> = world
+            .events()
+            .iter()
+            .filter_map(|e| match *e {
+                Event::ContactForce { force, .. } => Some(force),
+                _ => None,
+            })
+            .collect();
+        let frame = recorder.last_frame().unwrap();
+        let recorded: Vec<RecordedEvent> = frame
+            .events
+            .iter()
+            .copied()
+            .filter(|e| matches!(e, RecordedEvent::ContactForce { .. }))
+            .collect();
+        assert_eq!(recorded.len(), forces.len(), "step {step}");
+        for (event, force) in recorded.iter().zip(&forces) {
+            let RecordedEvent::ContactForce {
+                body_a,
+                body_b,
+                collider_a,
+                collider_b,
+                normal,
+                total_impulse,
+                total_force,
+                max_impulse_point,
+                max_impulse,
+            } = *event
+            else {
+                unreachable!("filtered above");
+            };
+            // Ground: body 0 with collider 0; the box: body 1 with collider 1.
+            assert_eq!((body_a, body_b), (Some(0), Some(1)));
+            assert_eq!((collider_a, collider_b), (Some(0), Some(1)));
+            let bits3 = |v: Vec3| v.to_array().map(f32::to_bits);
+            assert_eq!(bits3(normal), bits3(force.normal));
+            assert_eq!(bits3(max_impulse_point), bits3(force.max_impulse_point));
+            assert_eq!(
+                [total_impulse, total_force, max_impulse].map(f32::to_bits),
+                [force.total_impulse, force.total_force, force.max_impulse].map(f32::to_bits)
+            );
+            if step > 60 {
+                assert!(
+                    (total_force - 98.1).abs() < 0.981,
+                    "step {step}: {total_force} N"
+                );
+            }
+        }
+        if step > 60 {
+            assert_eq!(recorded.len(), 1, "step {step}");
+        }
+        expected.push(frame.events.clone());
+    }
+    let bytes = recorder.finish().unwrap();
+    let recording = Recording::read(bytes.as_slice()).unwrap();
+    for (i, (read, wrote)) in recording.frames()[1..].iter().zip(&expected).enumerate() {
+        assert_eq!(&read.events, wrote, "frame {}", i + 1);
+    }
+    // The last frame's bytes: NF = 1, the event of kind 8, then its FORCE entry.
+    let last = recording.frames().last().unwrap();
+    let RecordedEvent::ContactForce {
+        total_force,
+        total_impulse,
+        max_impulse,
+        ..
+    } = last.events[0]
+    else {
+        panic!("{:?}", last.events);
+    };
+    let payload_len = 84 + 52 * 2 + 4 + 40 * last.contacts.len() + 16 * last.events.len() + 40;
+    let p = bytes.len() - payload_len;
+    let word = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+    assert_eq!(word(p - 4) as usize, payload_len);
+    assert_eq!(word(p + 36), 1, "NF");
+    let events = p + payload_len - 40 - 16 * last.events.len();
+    assert_eq!(word(events), 8);
+    assert_eq!((word(events + 4), word(events + 8)), (0, 1));
+    assert_eq!(word(events + 12), total_force.to_bits());
+    let force = p + payload_len - 40;
+    assert_eq!((word(force), word(force + 4)), (0, 1));
+    assert_eq!(word(force + 20), total_impulse.to_bits());
+    assert_eq!(word(force + 36), max_impulse.to_bits());
 }

@@ -7,7 +7,7 @@
 
 use crate::{RunSettings, Scene, SceneBody, SceneCamera, SceneJoint};
 use rebound::prelude::*;
-use rebound::{Integrator, JointSettings, StepLimits};
+use rebound::{JointSettings, StepLimits};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -53,129 +53,106 @@ impl Fields {
     }
 }
 
+/// Adds to `$fields` each listed field of `$value` whose text differs from the same field of `$default`
+/// (the one comparison every description kind makes, field by field, in the listed order).
+macro_rules! differing {
+    ($fields:expr, $value:expr, $default:expr, [$($field:ident),* $(,)?]) => {{
+        let (value, default) = ($value, &$default);
+        $( $fields.differ(stringify!($field), &value.$field, &default.$field); )*
+    }};
+}
+
 fn body_desc(desc: &BodyDesc) -> String {
-    let d = BodyDesc::default();
     let mut f = Fields::new();
-    f.differ("body_type", &desc.body_type, &d.body_type);
-    f.differ("position", &desc.position, &d.position);
-    f.differ("rotation", &desc.rotation, &d.rotation);
-    f.differ("linear_velocity", &desc.linear_velocity, &d.linear_velocity);
-    f.differ(
-        "angular_velocity",
-        &desc.angular_velocity,
-        &d.angular_velocity,
+    differing!(
+        f,
+        desc,
+        BodyDesc::default(),
+        [
+            body_type,
+            position,
+            rotation,
+            linear_velocity,
+            angular_velocity,
+            mass_properties,
+            gravity_scale,
+            linear_damping,
+            angular_damping,
+            integrator,
+            gyroscopic,
+            sleeping,
+            can_sleep,
+            locked_axes,
+        ]
     );
-    f.differ("mass_properties", &desc.mass_properties, &d.mass_properties);
-    f.differ("gravity_scale", &desc.gravity_scale, &d.gravity_scale);
-    f.differ("linear_damping", &desc.linear_damping, &d.linear_damping);
-    f.differ("angular_damping", &desc.angular_damping, &d.angular_damping);
-    f.differ::<Integrator>("integrator", &desc.integrator, &d.integrator);
-    f.differ("gyroscopic", &desc.gyroscopic, &d.gyroscopic);
-    f.differ("sleeping", &desc.sleeping, &d.sleeping);
-    f.differ("can_sleep", &desc.can_sleep, &d.can_sleep);
-    f.differ("locked_axes", &desc.locked_axes, &d.locked_axes);
     f.finish()
 }
 
 fn collider_desc(desc: &ColliderDesc) -> String {
-    let d = ColliderDesc::default();
     let mut f = Fields::new();
     f.always("shape", &desc.shape);
-    f.differ("local_pose", &desc.local_pose, &d.local_pose);
-    f.differ("density", &desc.density, &d.density);
-    f.differ("friction", &desc.friction, &d.friction);
-    f.differ(
-        "friction_combine_rule",
-        &desc.friction_combine_rule,
-        &d.friction_combine_rule,
-    );
-    f.differ("restitution", &desc.restitution, &d.restitution);
-    f.differ(
-        "restitution_combine_rule",
-        &desc.restitution_combine_rule,
-        &d.restitution_combine_rule,
-    );
-    f.differ(
-        "rolling_friction",
-        &desc.rolling_friction,
-        &d.rolling_friction,
-    );
-    f.differ("groups", &desc.groups, &d.groups);
-    f.differ("is_sensor", &desc.is_sensor, &d.is_sensor);
-    f.differ("enabled", &desc.enabled, &d.enabled);
-    f.differ(
-        "force_event_threshold",
-        &desc.force_event_threshold,
-        &d.force_event_threshold,
+    differing!(
+        f,
+        desc,
+        ColliderDesc::default(),
+        [
+            local_pose,
+            density,
+            friction,
+            friction_combine_rule,
+            restitution,
+            restitution_combine_rule,
+            rolling_friction,
+            groups,
+            is_sensor,
+            enabled,
+            force_event_threshold,
+        ]
     );
     f.finish()
 }
 
 fn joint_settings(s: &JointSettings) -> String {
-    let d = JointSettings::default();
     let mut f = Fields::new();
-    f.differ("frequency_hz", &s.frequency_hz, &d.frequency_hz);
-    f.differ("damping_ratio", &s.damping_ratio, &d.damping_ratio);
-    f.differ(
-        "max_frequency_ratio",
-        &s.max_frequency_ratio,
-        &d.max_frequency_ratio,
+    differing!(
+        f,
+        s,
+        JointSettings::default(),
+        [
+            frequency_hz,
+            damping_ratio,
+            max_frequency_ratio,
+            solve_iterations,
+            relax_iterations,
+            tethers,
+            direct_chains,
+        ]
     );
-    f.differ("solve_iterations", &s.solve_iterations, &d.solve_iterations);
-    f.differ("relax_iterations", &s.relax_iterations, &d.relax_iterations);
-    f.differ("tethers", &s.tethers, &d.tethers);
-    f.differ("direct_chains", &s.direct_chains, &d.direct_chains);
     f.finish()
 }
 
 fn world_settings(s: &WorldSettings) -> String {
-    let d = WorldSettings::default();
     let mut f = Fields::new();
-    f.differ("gravity", &s.gravity, &d.gravity);
-    f.differ("substep_count", &s.substep_count, &d.substep_count);
-    f.differ(
-        "contact_frequency_hz",
-        &s.contact_frequency_hz,
-        &d.contact_frequency_hz,
-    );
-    f.differ(
-        "contact_damping_ratio",
-        &s.contact_damping_ratio,
-        &d.contact_damping_ratio,
-    );
-    f.differ(
-        "max_push_out_speed",
-        &s.max_push_out_speed,
-        &d.max_push_out_speed,
-    );
-    f.differ(
-        "restitution_threshold",
-        &s.restitution_threshold,
-        &d.restitution_threshold,
-    );
-    f.differ("warm_starting", &s.warm_starting, &d.warm_starting);
-    f.differ(
-        "speculative_margin",
-        &s.speculative_margin,
-        &d.speculative_margin,
-    );
-    f.differ("sleep_enabled", &s.sleep_enabled, &d.sleep_enabled);
-    f.differ(
-        "linear_sleep_threshold",
-        &s.linear_sleep_threshold,
-        &d.linear_sleep_threshold,
-    );
-    f.differ(
-        "angular_sleep_threshold",
-        &s.angular_sleep_threshold,
-        &d.angular_sleep_threshold,
-    );
-    f.differ("time_to_sleep", &s.time_to_sleep, &d.time_to_sleep);
-    f.differ("fixed_dt", &s.fixed_dt, &d.fixed_dt);
-    f.differ(
-        "max_steps_per_advance",
-        &s.max_steps_per_advance,
-        &d.max_steps_per_advance,
+    differing!(
+        f,
+        s,
+        WorldSettings::default(),
+        [
+            gravity,
+            substep_count,
+            contact_frequency_hz,
+            contact_damping_ratio,
+            max_push_out_speed,
+            restitution_threshold,
+            warm_starting,
+            speculative_margin,
+            sleep_enabled,
+            linear_sleep_threshold,
+            angular_sleep_threshold,
+            time_to_sleep,
+            fixed_dt,
+            max_steps_per_advance,
+        ]
     );
     let joints = joint_settings(&s.joints);
     if joints != "()" {
@@ -189,33 +166,25 @@ fn world_settings(s: &WorldSettings) -> String {
 }
 
 fn step_limits(s: &StepLimits) -> String {
-    let d = StepLimits::default();
     let mut f = Fields::new();
-    f.differ("max_speed", &s.max_speed, &d.max_speed);
-    f.differ(
-        "max_angular_speed",
-        &s.max_angular_speed,
-        &d.max_angular_speed,
-    );
-    f.differ("max_position", &s.max_position, &d.max_position);
-    f.differ(
-        "max_candidate_pairs",
-        &s.max_candidate_pairs,
-        &d.max_candidate_pairs,
-    );
-    f.differ(
-        "max_contact_points",
-        &s.max_contact_points,
-        &d.max_contact_points,
+    differing!(
+        f,
+        s,
+        StepLimits::default(),
+        [
+            max_speed,
+            max_angular_speed,
+            max_position,
+            max_candidate_pairs,
+            max_contact_points,
+        ]
     );
     f.finish()
 }
 
 fn run_settings(r: &RunSettings) -> String {
-    let d = RunSettings::default();
     let mut f = Fields::new();
-    f.differ("dt", &r.dt, &d.dt);
-    f.differ("steps", &r.steps, &d.steps);
+    differing!(f, r, RunSettings::default(), [dt, steps]);
     f.finish()
 }
 

@@ -27,13 +27,43 @@ pub(crate) struct BodyEntry {
 }
 
 /// The bodies of a world. Iteration is in handle-slot order, which is deterministic.
-#[derive(Debug, Clone, PartialEq, Default)]
+///
+/// Two sets are equal when they hold the same bodies under the same handles; their
+/// [`BodySet::revision`]s, a count of the edits that led there, are not compared.
+#[derive(Debug, Clone, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct BodySet {
     pub(crate) arena: Arena<BodyEntry>,
+    /// Bumped by every insertion, removal and mutable access from outside the step, and by a restore (see
+    /// [`BodySet::revision`]). Not saved in a snapshot: a restore moves it on from the replaced set's.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    pub(crate) revision: u64,
+}
+
+impl PartialEq for BodySet {
+    fn eq(&self, other: &Self) -> bool {
+        self.arena == other.arena
+    }
 }
 
 impl BodySet {
+    /// A number that moves on with every body inserted or removed, every mutable access to a body through
+    /// the world's API (`body_mut`, which every setter of a [`RigidBody`] is reached through: its mass
+    /// properties, gravity scale, type, pose, velocities, forces) and every restore. A step changes only what
+    /// every step changes (poses, velocities, sleep) and leaves it alone, unless continuous collision
+    /// detection puts a fast body back along its path (an edit through `body_mut`). If two reads of the same
+    /// set give the same revision, no body was inserted, removed or edited in between, so an observer
+    /// (a recorder) that compares what it copied of the bodies can skip the comparison.
+    #[must_use]
+    pub const fn revision(&self) -> u64 {
+        self.revision
+    }
+
+    /// Counts an insertion, removal, edit or restore in [`BodySet::revision`].
+    pub(crate) const fn bump_revision(&mut self) {
+        self.revision = self.revision.wrapping_add(1);
+    }
+
     /// The body behind `handle`, if it exists.
     #[must_use]
     #[inline]

@@ -122,6 +122,7 @@ impl<B: CollisionBackend> World<B> {
                 settings,
                 bodies: BodySet {
                     arena: Arena::with_generation_base(base),
+                    revision: 0,
                 },
                 joints: Arena::with_generation_base(base ^ 0x5555_5555),
                 manifolds: Vec::new(),
@@ -204,6 +205,7 @@ impl<B: CollisionBackend> World<B> {
             .insert(entry)
             .ok_or(WorldError::Full("bodies"))?;
         let handle = BodyHandle(index);
+        self.state.bodies.bump_revision();
         if desc.sleeping && desc.body_type == BodyType::Dynamic {
             // A body created asleep forms an island of its own.
             let island = islands::new_island(&mut self.state);
@@ -250,6 +252,7 @@ impl<B: CollisionBackend> World<B> {
             .arena
             .remove(handle.0)
             .ok_or(WorldError::StaleBody(handle))?;
+        self.state.bodies.bump_revision();
         self.state
             .manifolds
             .retain(|m| m.body_a != handle && m.body_b != handle);
@@ -267,9 +270,14 @@ impl<B: CollisionBackend> World<B> {
     }
 
     /// The body behind `handle`, mutably. Its setters validate their input; any change of motion (a
-    /// velocity, a force, an impulse, a teleport) wakes the body and its island at the next step.
+    /// velocity, a force, an impulse, a teleport) wakes the body and its island at the next step. Counts
+    /// as an edit in [`BodySet::revision`] (if `handle` is live).
     pub fn body_mut(&mut self, handle: BodyHandle) -> Option<&mut RigidBody> {
-        self.state.bodies.entry_mut(handle).map(|e| &mut e.body)
+        let bodies = &mut self.state.bodies;
+        if bodies.contains(handle) {
+            bodies.bump_revision();
+        }
+        bodies.entry_mut(handle).map(|e| &mut e.body)
     }
 
     /// All bodies.
@@ -578,7 +586,10 @@ impl<B: CollisionBackend> World<B> {
         }
         // A deserialised snapshot bypassed every constructor: check what the step will trust.
         snapshot_check::check_state(&snapshot.state, &snapshot.joint_rows)?;
+        let revision = self.state.bodies.revision;
         self.state = snapshot.state.clone();
+        self.state.bodies.revision = revision;
+        self.state.bodies.bump_revision();
         self.scratch
             .solver
             .joint_solver

@@ -332,15 +332,20 @@ fn two_worlds_built_by_the_same_calls_step_identically() {
     }
 }
 
-/// The collider revision, by which an observer notices edits without comparing descriptions, moves on with
-/// every insertion, edit, removal and restore, and not with a step.
-#[test]
-fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
+/// The scene with a snapshot of it, stepped 30 times while checking that `revision` does not move, and a
+/// check that tells whether `revision` moved since it was last called.
+fn stepped_scene(
+    revision: fn(&PhysicsWorld) -> u64,
+) -> (
+    PhysicsWorld,
+    PhysicsSnapshot,
+    impl FnMut(&PhysicsWorld) -> bool,
+) {
     let mut world = scene();
     let snapshot = world.snapshot();
-    let mut last = world.colliders().revision();
-    let mut moved = |world: &PhysicsWorld| {
-        let now = world.colliders().revision();
+    let mut last = revision(&world);
+    let mut moved = move |world: &PhysicsWorld| {
+        let now = revision(world);
         let changed = now != last;
         last = now;
         changed
@@ -349,6 +354,14 @@ fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
         world.step(DT);
         assert!(!moved(&world), "a step changed the revision");
     }
+    (world, snapshot, moved)
+}
+
+/// The collider revision, by which an observer notices edits without comparing descriptions, moves on with
+/// every insertion, edit, removal and restore, and not with a step.
+#[test]
+fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
+    let (mut world, snapshot, mut moved) = stepped_scene(|w| w.colliders().revision());
     let body = world.insert_body(BodyDesc::dynamic()).unwrap();
     assert!(!moved(&world), "a body without colliders changed it");
     let collider = world
@@ -359,6 +372,40 @@ fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
     assert!(moved(&world), "edit");
     world.remove_collider(collider).unwrap();
     assert!(moved(&world), "removal");
+    world.restore(&snapshot).unwrap();
+    assert!(moved(&world), "restore");
+}
+
+/// The body revision, by which an observer notices body edits (mass properties, gravity scale) without
+/// comparing bodies, moves on with every insertion, mutable access, removal and restore, and not with a
+/// step; a body setter reached through the facade moves it too.
+#[test]
+fn the_body_revision_moves_with_every_edit_and_restore_but_not_a_step() {
+    let (mut world, snapshot, mut moved) = stepped_scene(|w| w.bodies().revision());
+    let body = world.insert_body(BodyDesc::dynamic()).unwrap();
+    assert!(moved(&world), "insertion");
+    world
+        .insert_collider(ColliderDesc::ball(0.5), body)
+        .unwrap();
+    assert!(
+        moved(&world),
+        "a collider with a density changed the body's mass"
+    );
+    world
+        .body_mut(body)
+        .unwrap()
+        .set_gravity_scale(0.5)
+        .unwrap();
+    assert!(moved(&world), "gravity scale");
+    let mass = *world.body(body).unwrap().mass_properties();
+    world.set_body_mass_properties(body, mass).unwrap();
+    assert!(moved(&world), "mass properties");
+    assert!(world.body_mut(body).is_some());
+    assert!(moved(&world), "a mutable access counts as an edit");
+    world.remove_body(body).unwrap();
+    assert!(moved(&world), "removal");
+    assert!(world.body_mut(body).is_none());
+    assert!(!moved(&world), "a stale handle edits nothing");
     world.restore(&snapshot).unwrap();
     assert!(moved(&world), "restore");
 }

@@ -52,6 +52,19 @@ pub(crate) fn insert_bodies(
         let Ok((body, transform, velocity, sleeping, mass)) = query.get(entity) else {
             continue;
         };
+        if let Some((field, value, component)) = body.foreign_field() {
+            let error = PhysicsError::BodyField {
+                entity,
+                field,
+                value,
+                component,
+            };
+            if !physics.bodies.contains_key(&entity) {
+                physics.refused_bodies.insert(entity);
+            }
+            report(&mut errors, error);
+            continue;
+        }
         if let Some(record) = physics.bodies.get(&entity).copied() {
             if let Err(error) = edit_body(&mut physics.world, record.handle, &body) {
                 report(&mut errors, PhysicsError::refused(entity, "Body", error));
@@ -90,15 +103,18 @@ fn edit_body(
     handle: BodyHandle,
     body: &Body,
 ) -> Result<(), rebound::Error> {
+    let desc = &body.desc;
     edit_copy(world, handle, |edited| {
-        if edited.body_type() != body.body_type {
-            edited.set_body_type(body.body_type);
+        if edited.body_type() != desc.body_type {
+            edited.set_body_type(desc.body_type);
         }
-        edited.set_gravity_scale(body.gravity_scale)?;
-        edited.set_linear_damping(body.linear_damping)?;
-        edited.set_angular_damping(body.angular_damping)?;
-        edited.set_can_sleep(body.can_sleep);
-        edited.set_gyroscopic(body.gyroscopic);
+        edited.set_gravity_scale(desc.gravity_scale)?;
+        edited.set_linear_damping(desc.linear_damping)?;
+        edited.set_angular_damping(desc.angular_damping)?;
+        edited.set_integrator(desc.integrator);
+        edited.set_can_sleep(desc.can_sleep);
+        edited.set_gyroscopic(desc.gyroscopic);
+        edited.set_locked_axes(desc.locked_axes);
         Ok(())
     })
 }

@@ -60,7 +60,7 @@ pub(crate) fn apply_forces(
         *impulse = ExternalImpulse::default();
     }
     for (entity, target, body) in &targets {
-        if body.body_type != BodyType::Kinematic {
+        if body.desc.body_type != BodyType::Kinematic {
             continue;
         }
         let Some(handle) = physics.body_handle(entity) else {

@@ -151,3 +151,41 @@ fn refused_values_are_reported_and_change_nothing() {
         "the world is unchanged"
     );
 }
+
+/// A `Body` whose description sets what another component gives (here the position, which is the
+/// `Transform`'s) is refused at the door, naming the field, its value and that component; nothing is
+/// inserted. Its integrator and locked axes, which only the description gives, reach the world.
+#[test]
+fn a_body_description_that_sets_a_pose_is_refused_naming_the_field() {
+    let mut app = app();
+    let posed = app
+        .world_mut()
+        .spawn(Body::new(
+            BodyDesc::dynamic().with_position(Vec3::new(1.0, 2.0, 3.0)),
+        ))
+        .id();
+    app.update();
+    let errors = take_errors(&mut app);
+    assert!(
+        errors.iter().any(|e| matches!(e,
+            PhysicsError::BodyField { entity, field: "position", component: "Transform", value }
+                if *entity == posed && value.contains('2'))),
+        "{errors:?}"
+    );
+    assert_eq!(physics(&app).world().bodies().len(), 0);
+    let locked = LockedAxes::ALL_ROTATION;
+    let upright = app
+        .world_mut()
+        .spawn(Body::new(
+            BodyDesc::dynamic()
+                .with_locked_axes(locked)
+                .with_integrator(rebound::Integrator::ExplicitEuler),
+        ))
+        .id();
+    app.update();
+    assert!(take_errors(&mut app).is_empty());
+    let handle = physics(&app).body_handle(upright).unwrap();
+    let body = physics(&app).world().body(handle).unwrap();
+    assert_eq!(body.locked_axes(), locked);
+    assert_eq!(body.integrator(), rebound::Integrator::ExplicitEuler);
+}

@@ -2,7 +2,7 @@
 //! ground for contacts, the sensor's (child) entity and the ball for sensor overlaps, the ball for sleep, and
 //! the joint's entity for a broken joint.
 
-use crate::support::{app, take_events};
+use crate::support::{app, app_with, physics, take_events};
 use bevy_ecs::hierarchy::ChildOf;
 use bevy_transform::components::Transform;
 use rebound::prelude::*;
@@ -115,4 +115,75 @@ fn broken_joint_event_names_the_joint_entity() {
         seen.contains(&PhysicsEvent::JointBroken { joint }),
         "the rope broke: {seen:?}"
     );
+}
+
+/// A 10 kg box resting on the ground with a force event threshold sends a `ContactForce` message each
+/// step naming the ground and the box and their colliders' entities, carrying the box's weight,
+/// m·g = 98.1 N (±1 %), with the facade's own numbers.
+#[test]
+fn contact_force_events_name_the_entities_and_carry_the_weight() {
+    let mut app = app_with(WorldSettings {
+        sleep_enabled: false,
+        ..WorldSettings::default()
+    });
+    let ground = app
+        .world_mut()
+        .spawn((
+            Body::fixed(),
+            Collider::cuboid(Vec3::new(10.0, 0.5, 10.0)),
+            Transform::from_xyz(0.0, -0.5, 0.0),
+        ))
+        .id();
+    let crate_box = app
+        .world_mut()
+        .spawn((
+            Body::dynamic(),
+            Collider::new(
+                ColliderDesc::cuboid(Vec3::splat(0.5))
+                    .with_density(10.0)
+                    .with_force_event_threshold(50.0),
+            ),
+            Transform::from_xyz(0.0, 0.5, 0.0),
+        ))
+        .id();
+    for _ in 0..120 {
+        app.update();
+    }
+    take_events(&mut app);
+    for _ in 0..30 {
+        app.update();
+        let forces: Vec<PhysicsEvent> = take_events(&mut app)
+            .into_iter()
+            .filter(|e| matches!(e, PhysicsEvent::ContactForce { .. }))
+            .collect();
+        // Each frame steps the world once (fixed time step): one event per frame.
+        assert_eq!(forces.len(), 1, "{forces:?}");
+        let PhysicsEvent::ContactForce {
+            entity_a,
+            entity_b,
+            colliders,
+            normal,
+            total_force,
+            total_impulse,
+            ..
+        } = forces[0]
+        else {
+            unreachable!("filtered above");
+        };
+        assert_eq!((entity_a, entity_b), (ground, crate_box));
+        assert_eq!(colliders, Some((ground, crate_box)));
+        assert!(normal.abs_diff_eq(Vec3::Y, 1e-5), "{normal}");
+        assert!((total_force - 98.1).abs() < 0.981, "{total_force} N");
+        let facade = physics(&app)
+            .world()
+            .events()
+            .iter()
+            .find_map(|e| match *e {
+                Event::ContactForce { force, .. } => Some(force),
+                _ => None,
+            });
+        let facade = facade.expect("the facade's event");
+        assert_eq!(total_impulse.to_bits(), facade.total_impulse.to_bits());
+        assert_eq!(total_force.to_bits(), facade.total_force.to_bits());
+    }
 }

@@ -37,7 +37,7 @@ fn ask(query: SpatialQuery<'_>, scene: Res<'_, Scene>, mut found: ResMut<'_, Fou
         .cast_ray(top, down, 100.0, &all)
         .ok()
         .flatten()
-        .map(|hit| (hit.collider, hit.body, hit.distance));
+        .map(|hit| (hit.collider, hit.body, hit.hit.distance));
     found.ray_excluding_ball = query
         .cast_ray(top, down, 100.0, &all.excluding_body(scene.ball))
         .ok()
@@ -58,7 +58,7 @@ fn ask(query: SpatialQuery<'_>, scene: Res<'_, Scene>, mut found: ResMut<'_, Fou
         )
         .ok()
         .flatten()
-        .map(|hit| (hit.collider, hit.distance));
+        .map(|hit| (hit.collider, hit.hit.distance));
     found.shape = query
         .cast_shape(
             &ColliderShape::Ball { radius: 0.25 },
@@ -69,7 +69,7 @@ fn ask(query: SpatialQuery<'_>, scene: Res<'_, Scene>, mut found: ResMut<'_, Fou
         )
         .ok()
         .flatten()
-        .map(|hit| (hit.body, hit.distance));
+        .map(|hit| (hit.body, hit.hit.distance));
     found.pick = query
         .pick(top, down, 100.0)
         .ok()

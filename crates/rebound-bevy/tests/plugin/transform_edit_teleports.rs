@@ -65,7 +65,10 @@ fn velocity_edit_sets_the_velocity() {
     let mut app = app();
     let ball = app
         .world_mut()
-        .spawn((Body::dynamic().with_gravity_scale(0.0), Collider::ball(0.5)))
+        .spawn((
+            Body::new(BodyDesc::dynamic().with_gravity_scale(0.0)),
+            Collider::ball(0.5),
+        ))
         .id();
     app.update();
     app.world_mut().get_mut::<Velocity>(ball).unwrap().linear = Vec3::new(2.0, 0.0, 0.0);
