@@ -7,7 +7,10 @@
     reason = "test helpers build known-good scenes; a failed setup fails the test"
 )]
 
+mod support;
+
 use rebound::prelude::*;
+use support::{ball, fixed_box};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -366,18 +369,18 @@ fn the_collider_revision_moves_with_every_edit_and_restore_but_not_a_step() {
 /// A ball dropped 0.3 m onto a ground, stepped until it sleeps.
 fn sleeping_ball() -> (PhysicsWorld, BodyHandle) {
     let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
-    let ground = world
-        .insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -0.5, 0.0)))
-        .unwrap();
-    world
-        .insert_collider(ColliderDesc::cuboid(Vec3::new(10.0, 0.5, 10.0)), ground)
-        .unwrap();
-    let ball = world
-        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 0.8, 0.0)))
-        .unwrap();
-    world
-        .insert_collider(ColliderDesc::ball(0.5), ball)
-        .unwrap();
+    fixed_box(
+        &mut world,
+        Vec3::new(0.0, -0.5, 0.0),
+        Vec3::new(10.0, 0.5, 10.0),
+    );
+    let ball = ball(
+        &mut world,
+        Vec3::new(0.0, 0.8, 0.0),
+        0.5,
+        Vec3::ZERO,
+        Vec3::ZERO,
+    );
     for _ in 0..600 {
         world.step(DT);
         if world.is_sleeping(ball) == Some(true) {
@@ -400,12 +403,12 @@ fn a_restored_world_wakes_the_same_bodies_on_an_edit_as_the_original() {
         let mut restored = PhysicsWorld::new(WorldSettings::default()).unwrap();
         restored.restore(&original.snapshot()).unwrap();
         for world in [&mut original, &mut restored] {
-            let wall = world
-                .insert_body(BodyDesc::fixed().with_position(Vec3::new(0.6 + gap, 0.5, 0.0)))
-                .unwrap();
-            let collider = world
-                .insert_collider(ColliderDesc::cuboid(Vec3::new(0.1, 0.5, 0.5)), wall)
-                .unwrap();
+            let wall = fixed_box(
+                world,
+                Vec3::new(0.6 + gap, 0.5, 0.0),
+                Vec3::new(0.1, 0.5, 0.5),
+            );
+            let collider = world.colliders().of_body(wall)[0];
             world.step(DT);
             world.set_collider_friction(collider, 0.9).unwrap();
         }
