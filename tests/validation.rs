@@ -264,22 +264,90 @@ fn force_spring_peak(dt: f32, steps: usize, model: SpringModel) -> f32 {
 }
 
 #[test]
-fn the_explicit_spring_is_bounded_below_h_omega_2_and_diverges_above() {
-    // h = dt / substeps; choose k so that h·ω = 1.9 and 2.1 with ω = √(k/m), m = 1 kg.
+fn the_explicit_spring_is_bounded_below_h_omega_2() {
+    // h = dt / substeps; choose k so that h·ω = 1.9 with ω = √(k/m), m = 1 kg.
     let substeps = WorldSettings::default().substep_count as f32;
     let h = DT / substeps;
-    let k_for = |h_omega: f32| (h_omega / h).powi(2);
-    let bounded = force_spring_peak(DT, 300, SpringModel::force(k_for(1.9), 0.0).unwrap());
+    let k = (1.9 / h).powi(2);
+    let bounded = force_spring_peak(DT, 300, SpringModel::force(k, 0.0).unwrap());
     assert!(
         bounded < 1.0,
         "h·ω = 1.9 stays bounded, peak stretch {bounded} m from 0.1 m"
     );
-    let diverged = force_spring_peak(DT, 300, SpringModel::force(k_for(2.1), 0.0).unwrap());
-    // Above the limit the stretch grows until the quarantine takes the body out at its speed bound.
-    assert!(
-        diverged > 10.0,
-        "h·ω = 2.1 grows (100 times its start at least), peak stretch {diverged} m"
-    );
+}
+
+/// `substeps` substeps of length `h` of the explicit spring on a body of mass 1 kg, `ω = √(k/m)`, from stretch
+/// `x` (m) and velocity `v` (m/s): symplectic Euler of `ẍ = −ω²·x`, `v ← v − h·ω²·x` then `x ← x + h·v`.
+fn explicit_spring_substeps(x: f64, v: f64, h: f64, omega: f64, substeps: u32) -> (f64, f64) {
+    (0..substeps).fold((x, v), |(x, v), _| {
+        let v = v - h * omega * omega * x;
+        (x + h * v, v)
+    })
+}
+
+#[test]
+fn the_explicit_spring_above_h_omega_2_grows_by_its_amplification_factor_until_quarantined() {
+    // The substep maps (x, v) by [[1 − (hω)², h], [−hω², 1]]: determinant 1, trace 2 − (hω)². Above hω = 2
+    // the eigenvalues are real and negative, and the larger in magnitude,
+    // |λ| = ((hω)² − 2 + √(((hω)² − 2)² − 4)) / 2, is the growth per substep: 1.877 at hω = 2.1, ×12.42 per
+    // step of 4 substeps (the other eigenvalue, 1/|λ|, dies out within the first step).
+    let substeps = WorldSettings::default().substep_count;
+    let h = f64::from(DT) / f64::from(substeps);
+    let h_omega = 2.1_f64;
+    let omega = h_omega / h;
+    let a = h_omega * h_omega - 2.0;
+    let per_step = ((a + (a * a - 4.0).sqrt()) / 2.0).powi(substeps as i32);
+    assert!((per_step - 12.42).abs() < 0.01, "{per_step}");
+    // A 100 m spring from a 1 mm stretch: the body swings to 51 m beyond the rest length and 27 m short of it
+    // within four steps, never past the anchor (where the spring's direction would turn), and its speed at
+    // the end of the fourth, 1.9·10⁴ m/s, is past the quarantine's bound (10⁴ m/s by default).
+    const REST: f32 = 100.0;
+    let (mut w, mass) = one_kg_without_gravity(Vec3::new(REST + 1.0e-3, 0.0, 0.0));
+    let model = SpringModel::force((omega * omega) as f32, 0.0).unwrap();
+    w.insert_world_joint(Joint::new(Spring::new(REST, model).unwrap()), mass)
+        .unwrap();
+    let max_speed = f64::from(w.settings().limits.max_speed);
+    let mut predicted = (f64::from(body(&w, mass).position().x - REST), 0.0);
+    let mut previous = predicted.0;
+    for step in 1..=10 {
+        let before = body(&w, mass).position();
+        let report = w.step(DT);
+        predicted = explicit_spring_substeps(predicted.0, predicted.1, h, omega, substeps);
+        if predicted.1.abs() > max_speed {
+            // The first step whose closed-form end speed is past the bound: the body is taken out where the
+            // step found it, at rest, after three steps that grew as predicted.
+            let event = Event::BodyQuarantined {
+                body: mass,
+                reason: rebound::QuarantineReason::Speed,
+            };
+            assert!(
+                report.quarantined_body_count == 1 && w.events().contains(&event),
+                "step {step}: predicted speed {} m/s, {report:?}",
+                predicted.1
+            );
+            assert_eq!(step, 4);
+            assert_eq!(w.is_quarantined(mass), Some(true));
+            assert_eq!(body(&w, mass).position(), before);
+            assert_eq!(body(&w, mass).linear_velocity(), Vec3::ZERO);
+            return;
+        }
+        assert_eq!(report.quarantined_body_count, 0, "step {step}");
+        let stretch = f64::from(body(&w, mass).position().x - REST);
+        assert!(
+            (stretch - predicted.0).abs() <= 0.01 * predicted.0.abs(),
+            "step {step}: stretch {stretch} m, closed form {} m",
+            predicted.0
+        );
+        if step >= 2 {
+            let growth = stretch / previous;
+            assert!(
+                (growth - per_step).abs() <= 0.01 * per_step,
+                "step {step}: growth ×{growth}, |λ|⁴ = ×{per_step}"
+            );
+        }
+        previous = stretch;
+    }
+    panic!("never quarantined");
 }
 
 #[test]

@@ -5,7 +5,7 @@ mod support;
 
 use rebound::prelude::*;
 use rebound_record::{BodyKind, FrameReader, JointKindName, RecordedEvent, Recorder, Recording};
-use support::{DT, bits, menagerie, record};
+use support::{DT, ball_on_ground, bits, menagerie, record};
 
 #[test]
 fn every_number_reads_back_bit_for_bit() {
@@ -209,17 +209,7 @@ fn inserted_edited_and_removed_objects_are_described_when_they_change() {
 
 #[test]
 fn events_name_recording_indices() {
-    let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
-    let ground = world.insert_body(BodyDesc::fixed()).unwrap();
-    world
-        .insert_collider(ColliderDesc::cuboid(Vec3::new(5.0, 0.5, 5.0)), ground)
-        .unwrap();
-    let ball = world
-        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 1.2, 0.0)))
-        .unwrap();
-    world
-        .insert_collider(ColliderDesc::ball(0.5), ball)
-        .unwrap();
+    let mut world = ball_on_ground(1.2);
     let (bytes, _) = record(&mut world, 60);
     let recording = Recording::read(bytes.as_slice()).unwrap();
     let began: Vec<_> = recording

@@ -21,8 +21,10 @@
 //! in no step (no contact, no joint row, no sleep island), as if it were not in the world. Each quarantine is
 //! reported once, by [`crate::Event::BodyQuarantined`] and the step report's count.
 //!
-//! The rerun's joint paths start from the rows the failed pass left (`rebound_constraints::KeptRows`), so bodies
-//! on a directly solved path move as without the bad body to the solver's tolerance rather than bit for bit.
+//! Each rerun's joint paths build their rows anew: the rows a failed pass left to be carried
+//! (`rebound_constraints::KeptRows`) may hold its non-finite values, and the rows kept from the last step are
+//! gone by then. So bodies on a directly solved path move as without the bad body to the solver's tolerance
+//! rather than bit for bit.
 
 use crate::body_set::BodyEntry;
 use crate::events::Event;

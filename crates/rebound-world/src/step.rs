@@ -36,6 +36,7 @@ use crate::settings::MIN_STEP_DT;
 use crate::state::WorldState;
 use crate::world::World;
 use crate::{collide, events, islands, kinematic, prepare, quarantine, solve, store};
+use rebound_constraints::KeptRows;
 use rebound_dynamics::StepContext;
 use std::time::Instant;
 
@@ -80,6 +81,17 @@ impl Pass<'_> {
         self.profile.solve += phase.elapsed();
     }
 
+    /// [`Pass::run`] again after a pass whose results were out of bounds, without the joint rows that pass
+    /// left to be carried: rows built in a failed pass may hold its non-finite values, which a carried row
+    /// would feed into this pass and the next step's (and a snapshot would hold). The paths build their
+    /// rows anew.
+    fn rerun(&mut self, state: &WorldState) {
+        self.solver
+            .joint_solver
+            .restore_kept_rows(&KeptRows::default());
+        self.run(state);
+    }
+
     /// After a pass whose results for `suspects` were out of bounds: finds which of them are to blame (see
     /// `quarantine.rs`), quarantines those, and runs the pass a last time without them. Returns how many
     /// were quarantined.
@@ -97,7 +109,7 @@ impl Pass<'_> {
                 quarantine::set_excluded(state, body, true);
             }
             suspects.append(&mut found);
-            self.run(state);
+            self.rerun(state);
             quarantine::find_bad_results(state, self.solver, &mut found);
             if found.is_empty() {
                 clean = true;
@@ -109,7 +121,7 @@ impl Pass<'_> {
         if clean && suspects.len() <= quarantine::MAX_TRIED_SUSPECTS {
             for &(body, reason) in suspects.iter() {
                 quarantine::set_excluded(state, body, false);
-                self.run(state);
+                self.rerun(state);
                 quarantine::find_bad_results(state, self.solver, &mut found);
                 if !found.is_empty() {
                     quarantine::set_excluded(state, body, true);
@@ -129,7 +141,7 @@ impl Pass<'_> {
         self.collision.drop_quarantined(&state.bodies);
         // The last pass, without the guilty and their manifolds (the store stage maps the solver's contacts
         // to the manifolds they came from).
-        self.run(state);
+        self.rerun(state);
         suspects.clear();
         guilty.len()
     }

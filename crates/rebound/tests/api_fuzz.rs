@@ -8,7 +8,7 @@
 //! CI runs 512 cases of up to 80 calls; the long run sets the count:
 //!
 //! ```sh
-//! API_FUZZ_CASES=20000 cargo test --release -p rebound --test api_fuzz
+//! API_FUZZ_CASES=100000 cargo test --release -p rebound --test api_fuzz -- --ignored --nocapture
 //! ```
 
 #![allow(
@@ -16,9 +16,12 @@
     reason = "test helpers build known-good scenes; a failed setup fails the test"
 )]
 
+mod support;
+
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use rebound::prelude::*;
+use support::{assert_finite, fixed_box};
 
 /// Mostly ordinary values, sometimes the ones that break things.
 fn scalar() -> impl Strategy<Value = f32> {
@@ -210,49 +213,6 @@ fn pick<T: Copy>(items: &[T], i: usize) -> Option<T> {
     (!items.is_empty()).then(|| items[i % items.len()])
 }
 
-fn assert_finite_state(world: &PhysicsWorld, op: &Op) {
-    for (handle, body) in world.bodies().iter() {
-        let pose = body.pose();
-        assert!(
-            pose.position.is_finite()
-                && pose.rotation.is_finite()
-                && body.linear_velocity().is_finite()
-                && body.angular_velocity().is_finite()
-                && body.mass_properties().mass().is_finite()
-                && body.mass_properties().local_inertia().is_finite(),
-            "body {handle:?} not finite after {op:?}: {body:?}"
-        );
-    }
-    for manifold in world.contacts() {
-        assert!(manifold.normal.is_finite());
-        for p in manifold.points() {
-            assert!(
-                p.normal_impulse.is_finite() && p.tangent_impulse.is_finite(),
-                "impulse not finite after {op:?}: {manifold:?}"
-            );
-        }
-    }
-    for (handle, _) in world.world().joints() {
-        let s = world.joint_state(handle).unwrap();
-        assert!(
-            s.linear_impulse.is_finite()
-                && s.angular_impulse.is_finite()
-                && [
-                    s.axial_impulse,
-                    s.lower_impulse,
-                    s.upper_impulse,
-                    s.motor_impulse,
-                    s.tether_impulse,
-                    s.reaction_force,
-                    s.reaction_torque
-                ]
-                .iter()
-                .all(|x| x.is_finite()),
-            "joint {handle:?} not finite after {op:?}: {s:?}"
-        );
-    }
-}
-
 /// Calls `f`; if it fails, the world must be as before — its whole snapshot (bodies, joints, contacts,
 /// settings, colliders) and its state digest.
 fn checked<T, E: core::fmt::Debug>(
@@ -295,14 +255,12 @@ fn run(ops: &[Op]) -> u64 {
     let mut bodies = Vec::new();
     let mut colliders = Vec::new();
     // A ground and a small pile to start from, so that random calls meet contacts.
-    let ground = world
-        .insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -2.5, 0.0)))
-        .unwrap();
-    colliders.push(
-        world
-            .insert_collider(ColliderDesc::cuboid(Vec3::new(10.0, 0.5, 10.0)), ground)
-            .unwrap(),
+    let ground = fixed_box(
+        &mut world,
+        Vec3::new(0.0, -2.5, 0.0),
+        Vec3::new(10.0, 0.5, 10.0),
     );
+    colliders.extend_from_slice(world.colliders().of_body(ground));
     bodies.push(ground);
     for i in 0..3 {
         let body = world
@@ -602,19 +560,19 @@ fn run(ops: &[Op]) -> u64 {
                 }
             }
         }
-        assert_finite_state(&world, op);
+        assert_finite(&world, op);
     }
     // Whatever happened, the world still steps.
     for _ in 0..3 {
         let step = Op::Step(1.0 / 60.0);
         timed(&step, || world.step(1.0 / 60.0));
-        assert_finite_state(&world, &step);
+        assert_finite(&world, &step);
     }
     world.step_count()
 }
 
-/// How many random sequences to run: `API_FUZZ_CASES`, else 512; from a fixed seed, so that CI runs the
-/// same sequences every time (`PROPTEST_RNG_SEED` picks another).
+/// How many random sequences to run: `API_FUZZ_CASES`, else 512; from a fixed seed, so that CI (and the
+/// long run) draws the same sequences every time (`PROPTEST_RNG_SEED` picks another).
 fn config() -> ProptestConfig {
     let cases = std::env::var("API_FUZZ_CASES")
         .ok()
@@ -652,7 +610,7 @@ fn the_long_randomised_run() {
         .unwrap_or(100_000);
     let (calls, steps) = (Cell::new(0u64), Cell::new(0u64));
     let start = std::time::Instant::now();
-    let mut runner = TestRunner::new(ProptestConfig::with_cases(cases));
+    let mut runner = TestRunner::new(ProptestConfig { cases, ..config() });
     let result = runner.run(&prop::collection::vec(op(), 1..80), |ops| {
         calls.set(calls.get() + ops.len() as u64);
         steps.set(steps.get() + run(&ops));

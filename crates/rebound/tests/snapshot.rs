@@ -7,7 +7,10 @@
     reason = "test helpers build known-good scenes; a failed setup fails the test"
 )]
 
+mod support;
+
 use rebound::prelude::*;
+use support::{ball, fixed_box};
 
 const DT: f32 = 1.0 / 60.0;
 
@@ -408,4 +411,70 @@ fn the_body_revision_moves_with_every_edit_and_restore_but_not_a_step() {
     assert!(!moved(&world), "a stale handle edits nothing");
     world.restore(&snapshot).unwrap();
     assert!(moved(&world), "restore");
+}
+
+/// A ball dropped 0.3 m onto a ground, stepped until it sleeps.
+fn sleeping_ball() -> (PhysicsWorld, BodyHandle) {
+    let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
+    fixed_box(
+        &mut world,
+        Vec3::new(0.0, -0.5, 0.0),
+        Vec3::new(10.0, 0.5, 10.0),
+    );
+    let ball = ball(
+        &mut world,
+        Vec3::new(0.0, 0.8, 0.0),
+        0.5,
+        Vec3::ZERO,
+        Vec3::ZERO,
+    );
+    for _ in 0..600 {
+        world.step(DT);
+        if world.is_sleeping(ball) == Some(true) {
+            return (world, ball);
+        }
+    }
+    panic!("the ball never slept");
+}
+
+#[test]
+fn a_restored_world_wakes_the_same_bodies_on_an_edit_as_the_original() {
+    // The original's query tree holds the fattened box the ball's leaf got while it moved; the restored
+    // world's holds the tight one. A collider inserted beside the sleeping ball, or edited, wakes what its box
+    // (grown by the speculative margin, 0.02 m) overlaps: for every gap, both worlds must wake the same
+    // bodies and step on alike.
+    let mut woke = 0;
+    for i in 0..40 {
+        let gap = 0.0025 * i as f32;
+        let (mut original, ball) = sleeping_ball();
+        let mut restored = PhysicsWorld::new(WorldSettings::default()).unwrap();
+        restored.restore(&original.snapshot()).unwrap();
+        for world in [&mut original, &mut restored] {
+            let wall = fixed_box(
+                world,
+                Vec3::new(0.6 + gap, 0.5, 0.0),
+                Vec3::new(0.1, 0.5, 0.5),
+            );
+            let collider = world.colliders().of_body(wall)[0];
+            world.step(DT);
+            world.set_collider_friction(collider, 0.9).unwrap();
+        }
+        assert_eq!(
+            original.is_sleeping(ball),
+            restored.is_sleeping(ball),
+            "gap {gap} m"
+        );
+        woke += usize::from(original.is_sleeping(ball) == Some(false));
+        for step in 0..30 {
+            original.step(DT);
+            restored.step(DT);
+            assert_eq!(
+                original.state_digest(),
+                restored.state_digest(),
+                "gap {gap} m, step {step}"
+            );
+        }
+    }
+    // The near walls woke the ball, the far ones did not.
+    assert!(woke > 0 && woke < 40, "{woke} of 40 woke the ball");
 }

@@ -17,10 +17,13 @@
     reason = "test scenes are built from known-good values; a failed setup fails the test"
 )]
 
+mod support;
+
 use proptest::prelude::RngExt;
 use proptest::test_runner::{RngAlgorithm, TestRng};
+use rebound::QuarantineReason;
 use rebound::prelude::*;
-use rebound::{JointState, QuarantineReason};
+use support::{assert_finite, fixed_box, quarantine_events};
 
 const DT: f32 = 1.0 / 60.0;
 /// The most dynamic bodies the edits keep in the scene.
@@ -137,12 +140,11 @@ fn random_joint(rng: &mut TestRng, world: &PhysicsWorld, a: BodyHandle, b: BodyH
 impl Soak {
     fn new(seed: u64) -> Self {
         let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
-        let ground = world
-            .insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -0.5, 0.0)))
-            .unwrap();
-        world
-            .insert_collider(ColliderDesc::cuboid(Vec3::new(12.0, 0.5, 12.0)), ground)
-            .unwrap();
+        fixed_box(
+            &mut world,
+            Vec3::new(0.0, -0.5, 0.0),
+            Vec3::new(12.0, 0.5, 12.0),
+        );
         // A ramp of triangles and a bumpy patch: the fixed-only shapes.
         let ramp = world
             .insert_body(BodyDesc::fixed().with_position(Vec3::new(-6.0, 0.0, -6.0)))
@@ -351,15 +353,7 @@ impl Soak {
         self.figures.contacts_seen += report.contact_count as u64;
         // A quarantined body is out of bounds (a body spun or flung beyond the limits): the run records it
         // and removes it, as a game would.
-        let quarantined: Vec<(BodyHandle, QuarantineReason)> = self
-            .world
-            .events()
-            .iter()
-            .filter_map(|e| match *e {
-                Event::BodyQuarantined { body, reason } => Some((body, reason)),
-                _ => None,
-            })
-            .collect();
+        let quarantined = quarantine_events(&self.world);
         for (body, reason) in quarantined {
             self.quarantines.push((self.figures.steps, reason));
             if let Some(i) = self.bodies.iter().position(|&b| b == body) {
@@ -373,7 +367,7 @@ impl Soak {
             self.remove(i);
         }
         self.figures.most_bodies = self.figures.most_bodies.max(self.world.bodies().len());
-        assert_finite(&self.world, self.figures.steps);
+        assert_finite(&self.world, &format_args!("step {}", self.figures.steps));
     }
 }
 
@@ -381,51 +375,6 @@ fn seed_bytes(seed: u64) -> [u8; 32] {
     let mut bytes = [0u8; 32];
     bytes[..8].copy_from_slice(&seed.to_le_bytes());
     bytes
-}
-
-fn joint_state_is_finite(s: &JointState) -> bool {
-    s.linear_impulse.is_finite()
-        && s.angular_impulse.is_finite()
-        && [
-            s.axial_impulse,
-            s.lower_impulse,
-            s.upper_impulse,
-            s.motor_impulse,
-            s.tether_impulse,
-            s.reaction_force,
-            s.reaction_torque,
-        ]
-        .iter()
-        .all(|x| x.is_finite())
-}
-
-fn assert_finite(world: &PhysicsWorld, step: u64) {
-    for (handle, body) in world.bodies().iter() {
-        let pose = body.pose();
-        assert!(
-            pose.position.is_finite()
-                && pose.rotation.is_finite()
-                && body.linear_velocity().is_finite()
-                && body.angular_velocity().is_finite(),
-            "step {step}: body {handle:?} {body:?}"
-        );
-    }
-    for m in world.contacts() {
-        assert!(
-            m.normal.is_finite()
-                && m.points().iter().all(|p| p.normal_impulse.is_finite()
-                    && p.tangent_impulse.is_finite()
-                    && p.separation.is_finite()),
-            "step {step}: {m:?}"
-        );
-    }
-    for (handle, _) in world.world().joints() {
-        let state = world.joint_state(handle).unwrap();
-        assert!(
-            joint_state_is_finite(state),
-            "step {step}: {handle:?} {state:?}"
-        );
-    }
 }
 
 /// Runs `steps` steps; every 500, the next 100 are run from a snapshot too, in lockstep, and must agree bit

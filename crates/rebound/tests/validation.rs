@@ -9,25 +9,26 @@
     reason = "test helpers build known-good scenes; a failed setup fails the test"
 )]
 
+mod support;
+
 use rebound::prelude::*;
 use rebound::{MathError, StepSkipped};
 use serde_json::{Value, json};
+use support::{ball, fixed_box};
 
 const DT: f32 = 1.0 / 60.0;
 
 /// A ball on a fixed box, a second ball held to the first by a rope, both balls with their own mass.
 fn scene() -> PhysicsWorld {
     let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
-    let ground = world.insert_body(BodyDesc::fixed()).unwrap();
-    world
-        .insert_collider(ColliderDesc::cuboid(Vec3::new(5.0, 0.5, 5.0)), ground)
-        .unwrap();
-    let ball = world
-        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 1.0, 0.0)))
-        .unwrap();
-    world
-        .insert_collider(ColliderDesc::ball(0.5), ball)
-        .unwrap();
+    fixed_box(&mut world, Vec3::ZERO, Vec3::new(5.0, 0.5, 5.0));
+    let ball = ball(
+        &mut world,
+        Vec3::new(0.0, 1.0, 0.0),
+        0.5,
+        Vec3::ZERO,
+        Vec3::ZERO,
+    );
     let other = world
         .insert_body(BodyDesc::dynamic().with_position(Vec3::new(2.0, 1.0, 0.0)))
         .unwrap();

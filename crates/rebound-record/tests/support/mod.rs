@@ -206,20 +206,27 @@ pub fn bits(frame: &Frame) -> Vec<u64> {
     out
 }
 
-/// A small recording with bodies, a joint, contacts and events: a ball dropped on the ground next to a
-/// pendulum.
-pub fn small() -> Vec<u8> {
+/// A ball of radius 0.5 m with its centre `height` (m) above the centre of a fixed 10 × 1 × 10 m box (whose
+/// top is at 0.5 m).
+pub fn ball_on_ground(height: f32) -> PhysicsWorld {
     let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
     let ground = world.insert_body(BodyDesc::fixed()).unwrap();
     world
         .insert_collider(ColliderDesc::cuboid(Vec3::new(5.0, 0.5, 5.0)), ground)
         .unwrap();
     let ball = world
-        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 1.0, 0.0)))
+        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, height, 0.0)))
         .unwrap();
     world
         .insert_collider(ColliderDesc::ball(0.5), ball)
         .unwrap();
+    world
+}
+
+/// A small recording with bodies, a joint, contacts and events: a ball dropped on the ground next to a
+/// pendulum.
+pub fn small() -> Vec<u8> {
+    let mut world = ball_on_ground(1.0);
     let bob = world
         .insert_body(BodyDesc::dynamic().with_position(Vec3::new(3.0, 3.0, 0.0)))
         .unwrap();

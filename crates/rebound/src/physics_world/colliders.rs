@@ -235,10 +235,22 @@ impl PhysicsWorld {
             |other| boxes.iter().any(|b| b.intersects(other)),
             &mut handles,
         );
+        // The tree's leaves may be larger than their colliders' boxes, by as much as the tree's history made
+        // them (a restored world's start tight): each candidate's own box at its body's pose decides, so that
+        // the same calls on the same state wake the same bodies.
+        let all = self.world.bodies();
         let mut bodies: Vec<BodyHandle> = handles
             .iter()
-            .filter_map(|&h| backend.colliders.get(h).map(Collider::body))
-            .filter(|&b| self.world.is_sleeping(b) == Some(true))
+            .filter_map(|&h| backend.colliders.get(h))
+            .filter(|c| {
+                all.get(c.body()).is_some_and(|body| {
+                    body.is_sleeping() && {
+                        let own = aabb_at(c, body.pose());
+                        boxes.iter().any(|b| b.intersects(&own))
+                    }
+                })
+            })
+            .map(Collider::body)
             .collect();
         bodies.sort_unstable();
         bodies.dedup();
