@@ -4,6 +4,7 @@
 //! cargo run --release --bin compare -- [--rounds R] [--steps N] [--scene NAME|all]... [--json]
 //! cargo run --release --bin compare -- --engine rebound [--rounds R] [--steps N] [--scene NAME|all]...
 //! cargo run --release --bin compare -- --scaling [--rounds R] [--steps N] [--json]
+//! cargo run --release --features parallel --bin compare -- --threads N [--rounds R] [--scene NAME|all]...
 //! ```
 //!
 //! It builds the rapier side (`benches/peers`, its own Cargo project) with `cargo build --release`, then, for
@@ -16,6 +17,10 @@
 //! the ratio of each engine's fastest run (the figure least touched by the machine's slow periods), both
 //! engines' quality metrics side by side, and where Rebound's step spends its time
 //! (`StepReport::profile`).
+//!
+//! `--threads N` runs both engines on N threads: Rebound (built with `--features parallel`) inside a rayon
+//! pool of N threads, rapier from a second build of `benches/peers` with rapier's `parallel` feature
+//! (`benches/peers/target/parallel/release/peers --threads N`); the table is the same.
 //!
 //! `--engine rebound` runs Rebound alone on the chosen scenes, without building or running rapier: the
 //! run to count Rebound's instructions per scene under `valgrind --tool=callgrind` (docs/performance.md,
@@ -45,7 +50,7 @@ mod scaling;
 use run::{Phases, Run, WARMUP_STEPS, rebound_engine, run_rebound};
 
 const USAGE: &str = "\
-usage: compare [--engine both|rebound] [--rounds R] [--steps N] [--scene NAME|all]... [--json]
+usage: compare [--engine both|rebound] [--rounds R] [--steps N] [--threads N] [--scene NAME|all]... [--json]
        compare --scaling [--rounds R] [--steps N] [--json]
 
   --engine E    both (default): Rebound beside rapier; rebound: Rebound alone, rapier neither built nor run
@@ -53,6 +58,8 @@ usage: compare [--engine both|rebound] [--rounds R] [--steps N] [--scene NAME|al
   --steps N     steps per run (default 600); timing statistics cover steps 60..N
   --scene NAME  balls | pyramid | chain | springs | bridge | chain_spherical | ragdolls | all
                 (repeatable; default: the five peer scenes of docs/scenes.md)
+  --threads N   both engines on N threads (Rebound built with --features parallel; rapier from a second
+                build of benches/peers with its `parallel` feature); default: one thread, serial builds
   --scaling     Rebound alone: balls at 1k, 4k, 16k and pyramid bases 20, 40, 80, with the cost-growth
                 exponent (default 180 steps, 1 round: about 3.5 minutes, most of it
                 the 16k-ball pile)
@@ -77,6 +84,8 @@ struct Args {
     scenes: Vec<String>,
     scaling: bool,
     json: bool,
+    /// `--threads N`: both engines on N threads (their parallel builds).
+    threads: Option<usize>,
 }
 
 /// Parses the command line; `Err` carries the message to print (the usage text for `--help`).
@@ -88,6 +97,7 @@ fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, String> {
         scenes: Vec::new(),
         scaling: false,
         json: false,
+        threads: None,
     };
     let positive = |flag: &str, value: Option<String>| -> Result<usize, String> {
         let value = value.ok_or_else(|| format!("{flag} needs a number"))?;
@@ -114,6 +124,15 @@ fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, String> {
             }
             "--rounds" => parsed.rounds = Some(positive("--rounds", args.next())?),
             "--steps" => parsed.steps = Some(positive("--steps", args.next())?),
+            "--threads" => {
+                let threads = positive("--threads", args.next())?;
+                if !cfg!(feature = "parallel") {
+                    return Err(format!(
+                        "--threads {threads} needs Rebound's parallel build: cargo run --release --features parallel --bin compare"
+                    ));
+                }
+                parsed.threads = Some(threads);
+            }
             "--scene" => {
                 let name = args.next().ok_or("--scene needs a scene name")?;
                 if name == "all" {
@@ -142,9 +161,18 @@ fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, String> {
 }
 
 /// Runs a scene in rapier through the peers binary and reads its `--json` line.
-fn run_rapier(peers: &Path, name: &str, steps: usize) -> Result<(Run, String), String> {
-    let output = Command::new(peers)
-        .args(["--scene", name, "--steps", &steps.to_string(), "--json"])
+fn run_rapier(
+    peers: &Path,
+    name: &str,
+    steps: usize,
+    threads: Option<usize>,
+) -> Result<(Run, String), String> {
+    let mut command = Command::new(peers);
+    command.args(["--scene", name, "--steps", &steps.to_string(), "--json"]);
+    if let Some(threads) = threads {
+        command.args(["--threads", &threads.to_string()]);
+    }
+    let output = command
         .output()
         .map_err(|e| format!("running {}: {e}", peers.display()))?;
     if !output.status.success() {
@@ -198,26 +226,37 @@ fn workspace_root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Builds the rapier side with `cargo build --release` and returns the path of its binary.
-fn build_peers() -> Result<PathBuf, String> {
+/// Builds the rapier side with `cargo build --release` and returns the path of its binary; with `parallel`,
+/// the second build, with rapier's `parallel` feature, in its own target directory.
+fn build_peers(parallel: bool) -> Result<PathBuf, String> {
     let root = workspace_root();
     let manifest = root.join("benches/peers/Cargo.toml");
     let cargo = env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-    eprintln!(
-        "compare: building the rapier side (cargo build --release --manifest-path benches/peers/Cargo.toml)"
-    );
-    let status = Command::new(&cargo)
+    let target = if parallel {
+        root.join("benches/peers/target/parallel")
+    } else {
+        root.join("benches/peers/target")
+    };
+    let mut command = Command::new(&cargo);
+    command
         .arg("build")
         .arg("--release")
         .arg("--manifest-path")
-        .arg(&manifest)
+        .arg(&manifest);
+    if parallel {
+        command
+            .args(["--features", "parallel", "--target-dir"])
+            .arg(&target);
+    }
+    eprintln!("compare: building the rapier side ({command:?})");
+    let status = command
         .status()
         .map_err(|e| format!("running cargo: {e}"))?;
     if !status.success() {
         return Err(format!("building benches/peers failed ({status})"));
     }
-    let exe = root
-        .join("benches/peers/target/release")
+    let exe = target
+        .join("release")
         .join(format!("peers{}", env::consts::EXE_SUFFIX));
     if exe.is_file() {
         Ok(exe)
@@ -285,7 +324,7 @@ impl SceneResult {
 fn compare(args: &Args) -> Result<(), String> {
     let rounds = args.rounds.unwrap_or(3);
     let steps = args.steps.unwrap_or(600);
-    let peers = build_peers()?;
+    let peers = build_peers(args.threads.is_some())?;
     let mut results: Vec<SceneResult> = args
         .scenes
         .iter()
@@ -305,9 +344,9 @@ fn compare(args: &Args) -> Result<(), String> {
             let mut rebound = None;
             for turn in 0..2 {
                 if (turn == 0) == rebound_first {
-                    rebound = Some(run_rebound(&result.name, steps)?);
+                    rebound = Some(run_rebound(&result.name, steps, args.threads)?);
                 } else {
-                    let (run, engine) = run_rapier(&peers, &result.name, steps)?;
+                    let (run, engine) = run_rapier(&peers, &result.name, steps, args.threads)?;
                     rapier_engine = engine;
                     result.rapier.push(run);
                 }
@@ -335,10 +374,18 @@ fn compare(args: &Args) -> Result<(), String> {
     } else {
         print!(
             "{}",
-            comparison_table(&results, steps, rounds, &rapier_engine)
+            comparison_table(&results, steps, rounds, &rapier_engine, args.threads)
         );
     }
     Ok(())
+}
+
+/// How many threads a table's runs used.
+fn threads_label(threads: Option<usize>) -> String {
+    match threads {
+        None => "single thread".to_owned(),
+        Some(n) => format!("{n} thread(s), parallel builds"),
+    }
 }
 
 /// Rebound alone on the chosen scenes: times, quality and phases, no rapier build.
@@ -353,15 +400,16 @@ fn rebound_alone(args: &Args) -> Result<(), String> {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{}: SCENES peer scenes alone, single thread, dt = 1/60, sleeping off, {steps} steps; \
+        "{}: SCENES peer scenes alone, {}, dt = 1/60, sleeping off, {steps} steps; \
          ms/step = median over rounds ({rounds}) of each run's median over steps {warmup}..{steps}\n",
-        rebound_engine()
+        rebound_engine(),
+        threads_label(args.threads)
     );
     let _ = writeln!(out, "| scene | bodies / joints | ms/step | quality |");
     let _ = writeln!(out, "|---|---|---|---|");
     for name in &args.scenes {
         let runs = (0..rounds)
-            .map(|_| run_rebound(name, steps))
+            .map(|_| run_rebound(name, steps, args.threads))
             .collect::<Result<Vec<_>, _>>()?;
         let ms = median(&runs.iter().map(|r| r.timing.median_ms).collect::<Vec<_>>());
         let Some(last) = runs.last() else {
@@ -446,6 +494,7 @@ fn comparison_table(
     steps: usize,
     rounds: usize,
     rapier_engine: &str,
+    threads: Option<usize>,
 ) -> String {
     let warmup = if steps > WARMUP_STEPS {
         WARMUP_STEPS
@@ -455,10 +504,11 @@ fn comparison_table(
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{} vs {rapier_engine}: peer scenes (docs/scenes.md), single thread, dt = 1/60, sleeping off, {steps} steps;\n\
+        "{} vs {rapier_engine}: peer scenes (docs/scenes.md), {}, dt = 1/60, sleeping off, {steps} steps;\n\
          ms/step = median over rounds ({rounds}) of each run's median over steps {warmup}..{steps}; \
          engines alternate scene by scene\n",
-        rebound_engine()
+        rebound_engine(),
+        threads_label(threads)
     );
     let _ = writeln!(
         out,
@@ -616,6 +666,13 @@ mod tests {
         assert!(parse_args(args(&["--engine"])).is_err());
         assert!(parse_args(args(&["--scene", "nope"])).is_err());
         assert!(parse_args(args(&["--rounds", "0"])).is_err());
+        assert!(parse_args(args(&["--threads", "0"])).is_err());
+        // Two threads need the parallel build; in it, both engines run on them.
+        let two = parse_args(args(&["--threads", "2"]));
+        assert_eq!(
+            two.map(|a| a.threads).ok(),
+            cfg!(feature = "parallel").then_some(Some(2))
+        );
         assert!(parse_args(args(&["--frobnicate"])).is_err());
     }
 }

@@ -102,12 +102,21 @@ pub(crate) fn run_scene(scene: &mut dyn Scene, steps: usize) -> (TimingStats, Ph
     )
 }
 
-/// Builds and runs a scene in Rebound.
-pub(crate) fn run_rebound(name: &str, steps: usize) -> Result<Run, String> {
+/// Builds and runs a scene in Rebound: on the current thread, or with `threads` inside a rayon pool of that
+/// many threads (the parallel build; `parse_args` refuses `--threads` in the serial one).
+pub(crate) fn run_rebound(name: &str, steps: usize, threads: Option<usize>) -> Result<Run, String> {
     let mut scene = scenes::build(name, SceneOptions::default())
         .map_err(|e| format!("building `{name}` in Rebound: {e}"))?
         .ok_or_else(|| format!("unknown scene `{name}`"))?;
-    let (timing, phases) = run_scene(scene.as_mut(), steps);
+    let (timing, phases) = match threads {
+        #[cfg(feature = "parallel")]
+        Some(threads) => rebound::math::par::rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| format!("a pool of {threads} threads: {e}"))?
+            .install(|| run_scene(scene.as_mut(), steps)),
+        _ => run_scene(scene.as_mut(), steps),
+    };
     Ok(Run {
         bodies: scene.body_count(),
         joints: scene.joint_count(),

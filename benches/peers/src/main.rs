@@ -1,9 +1,11 @@
 //! `peers`: Rebound's peer comparison. Runs the benchmark scenes of docs/scenes.md in rapier3d 0.36 — single
-//! thread, rapier's default `IntegrationParameters`, dt = 1/60 — times every `PhysicsPipeline::step` and
-//! reports ms/step next to the scenes' quality metrics.
+//! thread (or `--threads N` in a build with the `parallel` feature), rapier's default
+//! `IntegrationParameters`, dt = 1/60 — times every `PhysicsPipeline::step` and reports ms/step next to the
+//! scenes' quality metrics.
 //!
 //! ```text
 //! cargo run --release --manifest-path benches/peers/Cargo.toml -- [--scene NAME]... [--steps N] [--sleep] [--json]
+//! cargo run --release --features parallel --manifest-path benches/peers/Cargo.toml -- --threads N [--scene NAME]...
 //! cargo run --release --manifest-path benches/peers/Cargo.toml -- --params [--json]
 //! ```
 //!
@@ -42,6 +44,7 @@ usage: peers [--scene NAME]... [--steps N] [--sleep] [--json]
                 (repeatable; `all` = the five default scenes, also the default when no --scene is given)
   --steps N     steps per scene (default 600); timing statistics cover steps 60..N
   --sleep       let dynamic bodies sleep (rapier's default; off here unless given)
+  --threads N   step on a rayon pool of N threads (N > 1 needs the `parallel` feature; default 1)
   --params      print rapier's IntegrationParameters and the other settings used, then exit
   --json        machine-readable output: one JSON object per line
 ";
@@ -54,6 +57,7 @@ struct Args {
     sleep: bool,
     params: bool,
     json: bool,
+    threads: usize,
 }
 
 /// Parses the command line; `Err` carries the message to print (the usage text for `--help`).
@@ -64,6 +68,7 @@ fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, String> {
         sleep: false,
         params: false,
         json: false,
+        threads: 1,
     };
     let mut args = args.into_iter();
     while let Some(arg) = args.next() {
@@ -90,6 +95,20 @@ fn parse_args(args: impl IntoIterator<Item = String>) -> Result<Args, String> {
                     .ok()
                     .filter(|&n: &usize| n > 0)
                     .ok_or_else(|| format!("--steps: `{n}` is not a positive integer"))?;
+            }
+            "--threads" => {
+                let n = args.next().ok_or("--threads needs a number")?;
+                parsed.threads = n
+                    .parse()
+                    .ok()
+                    .filter(|&n: &usize| n > 0)
+                    .ok_or_else(|| format!("--threads: `{n}` is not a positive integer"))?;
+                if parsed.threads > 1 && !cfg!(feature = "parallel") {
+                    return Err(
+                        "--threads above 1 needs the `parallel` feature (cargo build --features parallel)"
+                            .to_owned(),
+                    );
+                }
             }
             "--sleep" => parsed.sleep = true,
             "--params" => parsed.params = true,
@@ -323,8 +342,9 @@ fn run(args: &Args) -> io::Result<()> {
         };
         writeln!(
             out,
-            "rapier3d {RAPIER_VERSION}: single thread, default IntegrationParameters, dt = 1/60, \
+            "rapier3d {RAPIER_VERSION}: {} thread(s), default IntegrationParameters, dt = 1/60, \
              {} steps, ms/step over steps {warmup}..{}, sleeping {}",
+            args.threads,
             args.steps,
             args.steps,
             if args.sleep { "allowed" } else { "off" }
@@ -335,7 +355,15 @@ fn run(args: &Args) -> io::Result<()> {
             "scene", "bodies", "joints", "ms median", "ms mean"
         )?;
     }
+    #[cfg(feature = "parallel")]
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()
+        .map_err(io::Error::other)?;
     for name in &args.scenes {
+        #[cfg(feature = "parallel")]
+        let report = pool.install(|| run_scene(name, args.steps, options));
+        #[cfg(not(feature = "parallel"))]
         let report = run_scene(name, args.steps, options);
         if args.json {
             let line = serde_json::to_string(&report).map_err(io::Error::other)?;

@@ -38,7 +38,7 @@
 use crate::{BodyParams, LockedAxes, Motion, SolverBody, StepContext};
 use rebound_math::glam::{Mat3A, Vec3A};
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
-use rebound_math::{Mat3, Quat, Vec3};
+use rebound_math::{Mat3, Quat, Vec3, par};
 
 /// Stage *integrate velocities* of one substep: gravity, applied forces and torques, damping and the
 /// gyroscopic term. Explicit-Euler bodies also advance their positions here, with the velocity from before
@@ -46,9 +46,9 @@ use rebound_math::{Mat3, Quat, Vec3};
 pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ctx: &StepContext) {
     debug_assert_eq!(bodies.len(), params.len());
     let h = ctx.h;
-    for (state, p) in bodies.iter_mut().zip(params) {
+    par::for_each_zip_mut(bodies, params, par::MIN_ITEMS_PER_TASK, |state, p| {
         match p.motion {
-            Motion::Fixed | Motion::Kinematic => continue,
+            Motion::Fixed | Motion::Kinematic => return,
             Motion::DynamicExplicit => advance_position(state, h),
             Motion::Dynamic => {}
         }
@@ -77,7 +77,7 @@ pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ct
             };
         state.linear_velocity = flush_tiny(state.linear_velocity);
         state.angular_velocity = flush_tiny(state.angular_velocity);
-    }
+    });
 }
 
 /// Sets the velocity components and the displacement along `locks`' axes to zero (the caller does it after
@@ -108,11 +108,11 @@ fn flush_tiny(v: Vec3) -> Vec3 {
 /// explicit-Euler bodies (advanced in [`integrate_velocities`]) are skipped.
 pub fn integrate_positions(bodies: &mut [SolverBody], params: &[BodyParams], ctx: &StepContext) {
     debug_assert_eq!(bodies.len(), params.len());
-    for (state, p) in bodies.iter_mut().zip(params) {
+    par::for_each_zip_mut(bodies, params, par::MIN_ITEMS_PER_TASK, |state, p| {
         if matches!(p.motion, Motion::Dynamic | Motion::Kinematic) {
             advance_position(state, ctx.h);
         }
-    }
+    });
 }
 
 #[inline]

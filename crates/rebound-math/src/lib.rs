@@ -2,6 +2,7 @@
 
 pub mod euler;
 pub mod inertia;
+pub mod par;
 pub mod pose;
 pub mod quat;
 pub mod rotation2d;

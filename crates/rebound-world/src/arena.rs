@@ -5,6 +5,8 @@
 //! the new one: a stale handle finds nothing. Free slots are kept in a LIFO list, part of the snapshot, so
 //! that a restored world hands out the same handles as the one that never stopped.
 
+use rebound_math::par;
+
 /// A slot index and the generation it was issued with.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -160,6 +162,19 @@ impl<T> Arena<T> {
                 )),
                 Slot::Free { .. } => None,
             })
+    }
+
+    /// Calls `f(slot, value)` for every stored value, each once, over the thread pool
+    /// ([`rebound_math::par::for_each_mut`]; a plain loop in slot order in the serial build).
+    pub fn for_each_value_mut(&mut self, f: impl Fn(u32, &mut T) + Sync + Send)
+    where
+        T: Send,
+    {
+        par::for_each_mut(&mut self.slots, par::MIN_ITEMS_PER_TASK, |i, slot| {
+            if let Slot::Occupied { value, .. } = slot {
+                f(i as u32, value);
+            }
+        });
     }
 
     /// The index and value stored in slot `slot`, if it is occupied.

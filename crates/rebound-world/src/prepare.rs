@@ -15,6 +15,7 @@ use rebound_dynamics::{
     BodyParams, BodyType, Contact, ContactPoint, ContactSolver, MAX_CONTACT_POINTS, SolverBody,
     StepContext,
 };
+use rebound_math::par::{self, MIN_ITEMS_PER_TASK};
 
 /// The solver index of a body that has none (a sleeping body, or a fixed one no constraint needs).
 const NO_INDEX: u32 = u32::MAX;
@@ -26,7 +27,7 @@ const NO_INDEX: u32 = u32::MAX;
 #[derive(Debug, Default)]
 pub(crate) struct Solver {
     /// Body slot → solver index, or [`NO_INDEX`].
-    solver_index: Vec<u32>,
+    pub(crate) solver_index: Vec<u32>,
     /// Solver index → body handle (`None` for the world anchor entry).
     pub(crate) solver_handles: Vec<Option<BodyHandle>>,
     /// Solver index → the body's solver state (velocities, pose deltas).
@@ -69,13 +70,25 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
             continue;
         }
         if body.locked_axes().is_any() && body.is_dynamic() {
-            s.locked.push(s.states.len());
+            s.locked.push(s.solver_handles.len());
         }
-        s.solver_index[index.index as usize] = s.states.len() as u32;
+        s.solver_index[index.index as usize] = s.solver_handles.len() as u32;
         s.solver_handles.push(Some(BodyHandle(index)));
-        s.states.push(SolverBody::from_body(body));
-        s.params.push(BodyParams::from_body(body));
     }
+    // Each body's solver state and parameters read that body alone: over the pool, kept in index order.
+    let body = |handle: &Option<BodyHandle>| handle.and_then(|h| bodies.get(h));
+    par::map_collect_in_order(
+        &s.solver_handles,
+        &mut s.states,
+        MIN_ITEMS_PER_TASK,
+        |_, h| body(h).map_or(SolverBody::STATIC, SolverBody::from_body),
+    );
+    par::map_collect_in_order(
+        &s.solver_handles,
+        &mut s.params,
+        MIN_ITEMS_PER_TASK,
+        |_, h| body(h).map_or(BodyParams::WORLD, BodyParams::from_body),
+    );
 }
 
 /// The solver index of `handle`, adding a fixed body on first use. `None` for sleeping bodies (whose

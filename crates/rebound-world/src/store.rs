@@ -13,7 +13,7 @@ use crate::prepare::Solver;
 use crate::report::StepReport;
 use crate::state::{JointEntry, WorldState};
 use rebound_constraints::{JointState, JointStates};
-use rebound_math::Vec3;
+use rebound_math::{Vec3, par};
 
 /// The world's joints as the joint solver writes their states back: joint `i` of the step is the one of
 /// handle `handles[i]`.
@@ -81,6 +81,19 @@ pub(crate) fn store_impulses(
 
 /// Stage *finalize*: poses and velocities back into the bodies.
 pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver) {
+    if par::is_parallel() {
+        // Each body reads its own solver entry: every slot over the pool, the same writes as below.
+        bodies.arena.for_each_value_mut(|slot, entry| {
+            let Some(&i) = s.solver_index.get(slot as usize) else {
+                return;
+            };
+            let i = i as usize;
+            if let (Some(state), Some(params)) = (s.states.get(i), s.params.get(i)) {
+                let _accepted = params.write_back(state, &mut entry.body);
+            }
+        });
+        return;
+    }
     for ((handle, state), params) in s.solver_handles.iter().zip(&s.states).zip(&s.params) {
         let Some(handle) = handle else { continue };
         if let Some(entry) = bodies.entry_mut(*handle) {

@@ -180,6 +180,15 @@ pub enum Error {
     /// The world cannot hold more colliders (2³² − 1).
     #[error("the world is full: no more colliders can be inserted")]
     Full,
+    /// A thread pool for the step could not be made ([`crate::PhysicsWorld::set_thread_count`]): a count of
+    /// zero, or the operating system refused the threads.
+    #[error("`thread_count` must be at least 1 and its threads must start, got {count}: {reason}")]
+    ThreadPool {
+        /// The thread count given.
+        count: usize,
+        /// Why it was refused.
+        reason: String,
+    },
     /// A snapshot could not be restored (another format version, an inconsistent table).
     #[error("snapshot cannot be restored: {0}")]
     BadSnapshot(String),

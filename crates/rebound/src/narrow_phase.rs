@@ -49,7 +49,7 @@ use parry3d::query::{
     ContactManifold as ParryManifold, ContactManifoldsWorkspace, DefaultQueryDispatcher,
     PersistentQueryDispatcher,
 };
-use rebound_math::{Pose, Vec3, rotate_inverse};
+use rebound_math::{Pose, Vec3, par, rotate_inverse};
 use rebound_world::{BodySet, ContactBasis, ContactManifold};
 
 /// Points a cached parry manifold has room for (see `PairCache::forget_history`).
@@ -97,6 +97,8 @@ pub(crate) struct NarrowPhase {
     /// The collider pair of each manifold of the last collide stage that reports contact forces, by manifold
     /// key (sorted by key once the stage is done): contact force events name colliders.
     pub(crate) force_pairs: Vec<(u64, ColliderHandle, ColliderHandle)>,
+    /// The runs of the parallel collide stage and their manifolds (empty between steps, capacity kept).
+    runs: Vec<(PairRun, Vec<ContactManifold>)>,
 }
 
 /// The key extension of a convex pair's manifold: parry's sub-shape ids of a convex pair (both 0), so that a
@@ -127,14 +129,15 @@ impl NarrowPhase {
     /// lower handle first) into `out`, in pair order; `reach` gives each collider's rotation reach this step
     /// (m/s, [`crate::prediction::rotation_reach`]). With `hooks`, each pair is filtered before and its
     /// manifolds edited after they are made ([`crate::hooks`]), and their failures counted in `failures`.
-    #[expect(
-        clippy::too_many_lines,
-        reason = "one loop over the pairs, dispatching to the generators"
-    )]
+    ///
+    /// A pair's manifolds depend on that pair alone (see the module docs), so without hooks (user code, called
+    /// in pair order) the pairs are split into runs of [`PAIRS_PER_TASK`] over the thread pool, each with its
+    /// share of the cache, and the runs' manifolds are appended in pair order: the same list for any number
+    /// of threads.
     pub(crate) fn collide(
         &mut self,
         pairs: &[(ColliderHandle, ColliderHandle)],
-        reach: impl Fn(ColliderHandle) -> f32,
+        reach: impl Fn(ColliderHandle) -> f32 + Sync,
         colliders: &ColliderSet,
         bodies: &BodySet,
         speculative_margin: f32,
@@ -145,13 +148,133 @@ impl NarrowPhase {
         out: &mut Vec<ContactManifold>,
     ) {
         core::mem::swap(&mut self.pairs, &mut self.previous);
+        self.force_pairs.clear();
+        self.pairs.clear();
+        let input = PairInput {
+            reach: &reach,
+            colliders,
+            bodies,
+            speculative_margin,
+            dt,
+            previous,
+        };
+        if hooks.is_none() && par::is_parallel() && pairs.len() >= 2 * PAIRS_PER_TASK {
+            self.collide_runs(pairs, &input, out);
+        } else {
+            let mut run = PairRun {
+                pairs: core::mem::take(&mut self.pairs),
+                force_pairs: core::mem::take(&mut self.force_pairs),
+                convex: core::mem::take(&mut self.convex),
+            };
+            let mut old = self.previous.drain(..).peekable();
+            run.collide_pairs(pairs, &mut old, &input, hooks, failures, out);
+            drop(old);
+            (self.pairs, self.force_pairs, self.convex) = (run.pairs, run.force_pairs, run.convex);
+        }
+        self.force_pairs.sort_unstable_by_key(|&(key, _, _)| key);
+    }
+
+    /// [`NarrowPhase::collide`] over the pool: `pairs` in runs of [`PAIRS_PER_TASK`], each with the cached
+    /// pairs of its range, its own scratch and its own manifold list, joined in pair order.
+    fn collide_runs(
+        &mut self,
+        pairs: &[(ColliderHandle, ColliderHandle)],
+        input: &PairInput<'_>,
+        out: &mut Vec<ContactManifold>,
+    ) {
+        let count = pairs.len().div_ceil(PAIRS_PER_TASK);
+        if self.runs.len() < count {
+            self.runs.resize_with(count, Default::default);
+        }
+        let mut tasks = Vec::with_capacity(count);
+        let mut old = &mut self.previous[..];
+        for (range, run) in pairs.chunks(PAIRS_PER_TASK).zip(&mut self.runs) {
+            // The cached pairs up to this run's last pair (both lists are sorted).
+            let last = range.last().copied();
+            let mine = old.partition_point(|(key, _)| Some(*key) <= last);
+            let (cached, rest) = old.split_at_mut(mine);
+            old = rest;
+            tasks.push((range, cached, run));
+        }
+        par::for_each_mut(&mut tasks, 1, |_, (range, cached, (run, manifolds))| {
+            run.pairs.clear();
+            run.force_pairs.clear();
+            manifolds.clear();
+            let mut old = cached
+                .iter_mut()
+                .map(|(key, cache)| (*key, core::mem::take(cache)))
+                .peekable();
+            run.collide_pairs(range, &mut old, input, None, &mut 0, manifolds);
+        });
+        drop(tasks);
+        self.previous.clear();
+        for (run, manifolds) in &mut self.runs[..count] {
+            out.append(manifolds);
+            self.pairs.append(&mut run.pairs);
+            self.force_pairs.append(&mut run.force_pairs);
+        }
+    }
+
+    /// The collider pair of the manifold of key `key` of the last collide stage, if it reports forces.
+    pub(crate) fn force_pair(&self, key: u64) -> Option<(ColliderHandle, ColliderHandle)> {
+        let i = self
+            .force_pairs
+            .binary_search_by_key(&key, |&(k, _, _)| k)
+            .ok()?;
+        self.force_pairs.get(i).map(|&(_, a, b)| (a, b))
+    }
+}
+
+/// Candidate pairs per task of the parallel narrow phase (a box pair takes about a microsecond).
+const PAIRS_PER_TASK: usize = 256;
+
+/// What every pair of a collide stage reads.
+struct PairInput<'a> {
+    reach: &'a (dyn Fn(ColliderHandle) -> f32 + Sync),
+    colliders: &'a ColliderSet,
+    bodies: &'a BodySet,
+    speculative_margin: f32,
+    dt: f32,
+    previous: &'a [ContactManifold],
+}
+
+/// What a run of consecutive candidate pairs writes besides its manifolds: the cache of its composite pairs,
+/// its force-reporting pairs, and the scratch manifold of its convex pairs.
+#[derive(Clone, Default)]
+struct PairRun {
+    pairs: Vec<((ColliderHandle, ColliderHandle), PairCache)>,
+    force_pairs: Vec<(u64, ColliderHandle, ColliderHandle)>,
+    convex: ParryManifold<(), ()>,
+}
+
+impl PairRun {
+    /// The manifolds of `pairs` (sorted) onto `out`, in pair order; `old` holds last step's cached pairs from
+    /// the first of `pairs` on, sorted.
+    #[expect(
+        clippy::too_many_lines,
+        reason = "one loop over the pairs, dispatching to the generators"
+    )]
+    fn collide_pairs<I: Iterator<Item = ((ColliderHandle, ColliderHandle), PairCache)>>(
+        &mut self,
+        pairs: &[(ColliderHandle, ColliderHandle)],
+        old: &mut core::iter::Peekable<I>,
+        input: &PairInput<'_>,
+        hooks: Option<&dyn ContactHooks>,
+        failures: &mut usize,
+        out: &mut Vec<ContactManifold>,
+    ) {
+        let PairInput {
+            reach,
+            colliders,
+            bodies,
+            speculative_margin,
+            dt,
+            previous,
+        } = *input;
         // The pair whose manifolds (from `out[first..]`) the hooks edit once they are all made.
         let mut hooked: Option<(ContactPair<'_>, usize)> = None;
         // The pair whose manifolds (from `out[first..]`) report contact forces.
         let mut reporting: Option<(ColliderHandle, ColliderHandle, usize)> = None;
-        self.force_pairs.clear();
-        self.pairs.clear();
-        let mut old = self.previous.drain(..).peekable();
         let mut cursor = 0;
         for &(h1, h2) in pairs {
             // Tested first: a world without hooks or force events pays one test per pair for each.
@@ -328,16 +451,6 @@ impl NarrowPhase {
         if let Some((a, b, first)) = reporting {
             record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
         }
-        self.force_pairs.sort_unstable_by_key(|&(key, _, _)| key);
-    }
-
-    /// The collider pair of the manifold of key `key` of the last collide stage, if it reports forces.
-    pub(crate) fn force_pair(&self, key: u64) -> Option<(ColliderHandle, ColliderHandle)> {
-        let i = self
-            .force_pairs
-            .binary_search_by_key(&key, |&(k, _, _)| k)
-            .ok()?;
-        self.force_pairs.get(i).map(|&(_, a, b)| (a, b))
     }
 }
 

@@ -22,6 +22,8 @@ use std::sync::atomic::{AtomicU32, Ordering};
 mod colliders;
 mod joints;
 mod queries;
+#[cfg(feature = "parallel")]
+mod threads;
 
 /// Counter behind the per-world collider handle generation base (as the world's own for bodies and joints).
 static NEXT_WORLD: AtomicU32 = AtomicU32::new(1);
@@ -57,6 +59,9 @@ pub struct PhysicsWorld {
     events: Vec<Event>,
     /// The rotational sweep's buffers.
     sweep: SweepScratch,
+    /// The pool the step runs on (`None`: rayon's global pool, or the one installed around the call).
+    #[cfg(feature = "parallel")]
+    thread_pool: Option<Arc<rebound_math::par::rayon::ThreadPool>>,
 }
 
 impl PhysicsWorld {
@@ -77,6 +82,8 @@ impl PhysicsWorld {
             accumulator: 0.0,
             events: Vec::new(),
             sweep: SweepScratch::default(),
+            #[cfg(feature = "parallel")]
+            thread_pool: None,
         })
     }
 
@@ -239,6 +246,15 @@ impl PhysicsWorld {
     }
 
     fn step_and_collect(&mut self, dt: f32) -> StepReport {
+        #[cfg(feature = "parallel")]
+        if let Some(pool) = self.thread_pool.clone() {
+            return pool.install(|| self.step_here(dt));
+        }
+        self.step_here(dt)
+    }
+
+    /// One step on the current thread pool (see [`PhysicsWorld::set_thread_pool`]).
+    fn step_here(&mut self, dt: f32) -> StepReport {
         let mut report = self.world.step(dt);
         report.hook_failure_count = self.world.backend().hook_failures;
         let narrow_phase = &self.world.backend().narrow_phase;

@@ -74,8 +74,8 @@ impl SceneOptions {
     }
 }
 
-/// A built scene, ready to step.
-pub trait Scene {
+/// A built scene, ready to step (`Send`: it can be stepped inside a thread pool, as `compare --threads` does).
+pub trait Scene: Send {
     /// The world.
     fn world(&self) -> &PhysicsWorld;
 

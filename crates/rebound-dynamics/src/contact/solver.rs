@@ -7,7 +7,7 @@ use super::manifold::Contact;
 use super::patch::{Patch, PatchShare};
 use super::prepared::{PrepareInput, PreparedContact};
 use super::scalar::{self, PreparedPoint, Rolling};
-use super::wide::{Batch, Coloring, PatchX4, PointX4};
+use super::wide::{self, Batch, Coloring, LaneVelocities, PatchX4, PointX4};
 use crate::{BodyParams, SolverBody, StepContext};
 use rebound_math::Vec3;
 
@@ -30,6 +30,8 @@ pub struct ContactSolver {
     /// Indices of the manifolds the scalar path solves, after the batches.
     pub(crate) scalar: Vec<usize>,
     pub(crate) coloring: Coloring,
+    /// The lanes' velocities of a colour group while it is solved on several threads (`wide::groups`).
+    pub(crate) lane_scratch: Vec<LaneVelocities>,
 }
 
 impl ContactSolver {
@@ -125,10 +127,15 @@ impl ContactSolver {
 
     /// Stage *warm start*: applies the accumulated impulses of the last substep (or the last step) again, so
     /// the iterations start from the previous answer.
-    pub fn warm_start(&self, bodies: &mut [SolverBody]) {
-        for batch in &self.batches {
-            batch.warm_start(&self.slots, &self.patches_x4, bodies);
-        }
+    pub fn warm_start(&mut self, bodies: &mut [SolverBody]) {
+        wide::warm_start_batches(
+            &self.batches,
+            &self.coloring.group_ends,
+            &mut self.slots,
+            &mut self.patches_x4,
+            bodies,
+            &mut self.lane_scratch,
+        );
         for c in self.scalar.iter().map(|&i| &self.contacts[i]) {
             scalar::warm_start(
                 c,
@@ -151,9 +158,16 @@ impl ContactSolver {
     /// Manifolds without restitution or rolling resistance are solved four at a time, in graph-coloured
     /// batches in `Vec4` lanes (`docs/physics.md`, Contacts); the rest one by one after them.
     pub fn solve(&mut self, bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
-        for batch in &self.batches {
-            batch.solve(&mut self.slots, &mut self.patches_x4, bodies, ctx, bias);
-        }
+        wide::solve_batches(
+            &self.batches,
+            &self.coloring.group_ends,
+            &mut self.slots,
+            &mut self.patches_x4,
+            bodies,
+            &mut self.lane_scratch,
+            ctx,
+            bias,
+        );
         for &index in &self.scalar {
             let c = &self.contacts[index];
             scalar::solve(

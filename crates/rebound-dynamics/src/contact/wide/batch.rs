@@ -262,6 +262,21 @@ impl Batch {
         bias: Bias,
     ) {
         let points = &mut slots[self.first_slot..][..self.slots];
+        let velocities = self.solve_lanes(points, patches.get_mut(self.patch), bodies, ctx, bias);
+        self.scatter(bodies, &velocities);
+    }
+
+    /// [`Batch::solve`] up to the write-back: the lanes' new velocities, from `points` (the batch's slots)
+    /// and its patch, with `bodies` only read.
+    #[inline(always)]
+    pub(crate) fn solve_lanes(
+        &self,
+        points: &mut [PointX4],
+        patch: Option<&mut PatchX4>,
+        bodies: &[SolverBody],
+        ctx: &StepContext,
+        bias: Bias,
+    ) -> LaneVelocities {
         let (sa, sb) = (
             self.states(&self.body_a, bodies),
             self.states(&self.body_b, bodies),
@@ -314,7 +329,7 @@ impl Batch {
         vb.add_scaled(&normal, pushed * self.inv_mass_b);
         let [t0, t1] = self.tangents;
         // The patch's rows, limited by this pass's normal impulses.
-        if let Some(p) = patches.get_mut(self.patch) {
+        if let Some(p) = patch {
             let dv = vb.sub(&va);
             let vt0 = t0.dot(&dv) + wb.dot(&p.rt_b[0]) - wa.dot(&p.rt_a[0]);
             let vt1 = t1.dot(&dv) + wb.dot(&p.rt_b[1]) - wa.dot(&p.rt_a[1]);
@@ -354,7 +369,7 @@ impl Batch {
                 wb.add_scaled(&p.twist_b, applied);
             }
         }
-        self.scatter(bodies, &va, &wa, &vb, &wb);
+        LaneVelocities { va, wa, vb, wb }
     }
 
     /// Stage *warm start* for the batch's manifolds: applies their accumulated impulses again.
@@ -364,20 +379,33 @@ impl Batch {
         patches: &[PatchX4],
         bodies: &mut [SolverBody],
     ) {
+        let points = &slots[self.first_slot..][..self.slots];
+        let velocities = self.warm_start_lanes(points, patches.get(self.patch), bodies);
+        self.scatter(bodies, &velocities);
+    }
+
+    /// [`Batch::warm_start`] up to the write-back: the lanes' new velocities, with `bodies` only read.
+    #[inline(always)]
+    pub(crate) fn warm_start_lanes(
+        &self,
+        points: &[PointX4],
+        patch: Option<&PatchX4>,
+        bodies: &[SolverBody],
+    ) -> LaneVelocities {
         let ((mut va, mut wa), (mut vb, mut wb)) = (
             LaneStates::velocities(&self.states(&self.body_a, bodies)),
             LaneStates::velocities(&self.states(&self.body_b, bodies)),
         );
         // All normal impulses act along n: their sum moves the linear velocities once.
         let mut pushed = Vec4::ZERO;
-        for p in &slots[self.first_slot..][..self.slots] {
+        for p in points {
             pushed += p.normal_impulse;
             wa.sub_scaled(&p.wn_a, p.normal_impulse);
             wb.add_scaled(&p.wn_b, p.normal_impulse);
         }
         va.sub_scaled(&self.normal, pushed * self.inv_mass_a);
         vb.add_scaled(&self.normal, pushed * self.inv_mass_b);
-        if let Some(p) = patches.get(self.patch) {
+        if let Some(p) = patch {
             let [t0, t1] = self.tangents;
             let [x, y] = p.tangent_impulse;
             let linear = t0.scale(x).add(&t1.scale(y));
@@ -392,7 +420,7 @@ impl Batch {
                 wb.add_scaled(&p.twist_b, p.twist_impulse);
             }
         }
-        self.scatter(bodies, &va, &wa, &vb, &wb);
+        LaneVelocities { va, wa, vb, wb }
     }
 
     /// The lanes' bodies, by reference (the transposes read the 16-byte groups they need, not whole states);
@@ -415,14 +443,8 @@ impl Batch {
 
     /// Writes the lanes' velocities back.
     #[inline(always)]
-    fn scatter(
-        &self,
-        bodies: &mut [SolverBody],
-        va: &Vec3x4,
-        wa: &Vec3x4,
-        vb: &Vec3x4,
-        wb: &Vec3x4,
-    ) {
+    pub(crate) fn scatter(&self, bodies: &mut [SolverBody], velocities: &LaneVelocities) {
+        let LaneVelocities { va, wa, vb, wb } = velocities;
         let (va, wa, vb, wb) = (va.lanes(), wa.lanes(), vb.lanes(), wb.lanes());
         for lane in 0..self.lanes {
             let a = &mut bodies[self.body_a[lane]];
@@ -490,6 +512,16 @@ impl Batch {
                 (index, impulses)
             })
     }
+}
+
+/// A pass's result for a batch before it is written back: each lane's new linear and angular velocities of
+/// body A and body B (m/s, rad/s).
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct LaneVelocities {
+    pub(crate) va: Vec3x4,
+    pub(crate) wa: Vec3x4,
+    pub(crate) vb: Vec3x4,
+    pub(crate) wb: Vec3x4,
 }
 
 /// What an empty lane holds: zero masses, so it applies zero impulses.

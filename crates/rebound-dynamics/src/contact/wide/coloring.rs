@@ -32,6 +32,9 @@ pub(crate) struct Coloring {
     pub(crate) used: Vec<u32>,
     /// Manifold indices per colour, in manifold order, for the chunk being coloured (see [`CHUNK`]).
     pub(crate) members: [Vec<usize>; COLORS],
+    /// The end (one past the last index into the batches) of each colour of each chunk, in batch order: the
+    /// batches of one such group share no moving body (`super::groups` solves them on several threads).
+    pub(crate) group_ends: Vec<usize>,
     /// Leave every manifold to the scalar path (tests compare the two paths).
     pub(crate) scalar_only: bool,
 }
@@ -53,6 +56,7 @@ impl Coloring {
         slots.clear();
         patches.clear();
         scalar.clear();
+        self.group_ends.clear();
         self.used.clear();
         self.used.resize(params.len(), 0);
         for members in &mut self.members {
@@ -99,6 +103,9 @@ impl Coloring {
         for members in &mut self.members {
             for group in members.chunks(LANES) {
                 batches.push(Batch::new(group, contacts, input, slots, patches));
+            }
+            if !members.is_empty() {
+                self.group_ends.push(batches.len());
             }
             members.clear();
         }

@@ -1,0 +1,150 @@
+//! The step's one dispatch between a plain loop and the thread pool. Each parallel stage of the step calls
+//! one of these helpers; the serial build (without the `parallel` feature) compiles every call to the plain
+//! loop it replaces, and so does the parallel build when the current rayon pool has one thread.
+//!
+//! Results never depend on the number of threads: every helper hands each item to its closure alone and
+//! keeps the items' results in index order, so nothing is summed or combined in an order the scheduler
+//! chooses. A stage whose items are not independent (the coloured contact batches, where an item writes the
+//! bodies it reads) splits its items into groups that are, and calls a helper once per group.
+
+#[cfg(feature = "parallel")]
+pub use rayon;
+
+#[cfg(feature = "parallel")]
+use rayon::prelude::*;
+
+/// Items per task below which splitting further costs more than it saves (a solver body integrates in
+/// tens of nanoseconds; a rayon task costs about a microsecond). Where items are split does not change
+/// any result.
+pub const MIN_ITEMS_PER_TASK: usize = 64;
+
+/// Whether the helpers spread work over threads here: the parallel build inside a pool of more than one
+/// thread (the pool installed around the call, else rayon's global pool). Always `false` in the serial
+/// build.
+#[inline]
+#[must_use]
+pub fn is_parallel() -> bool {
+    #[cfg(feature = "parallel")]
+    {
+        rayon::current_num_threads() > 1
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        false
+    }
+}
+
+/// Calls `f(index, item)` for every item of `items`, each once, on as many threads as the pool has.
+#[inline]
+pub fn for_each_mut<T, F>(items: &mut [T], min_len: usize, f: F)
+where
+    T: Send,
+    F: Fn(usize, &mut T) + Sync + Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() && items.len() > min_len {
+        items
+            .par_iter_mut()
+            .with_min_len(min_len.max(1))
+            .enumerate()
+            .for_each(|(i, item)| f(i, item));
+        return;
+    }
+    let _ = min_len;
+    for (i, item) in items.iter_mut().enumerate() {
+        f(i, item);
+    }
+}
+
+/// Calls `f(item, with)` for every pair of `items` and `with` (zipped: the shorter sets the length), each
+/// once, on as many threads as the pool has.
+#[inline]
+pub fn for_each_zip_mut<T, U, F>(items: &mut [T], with: &[U], min_len: usize, f: F)
+where
+    T: Send,
+    U: Sync,
+    F: Fn(&mut T, &U) + Sync + Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() && items.len() > min_len {
+        items
+            .par_iter_mut()
+            .zip(with)
+            .with_min_len(min_len.max(1))
+            .for_each(|(item, w)| f(item, w));
+        return;
+    }
+    let _ = min_len;
+    for (item, w) in items.iter_mut().zip(with) {
+        f(item, w);
+    }
+}
+
+/// `out` becomes `[f(0, &items[0]), f(1, &items[1]), …]`, in index order whichever thread computed each
+/// (`out`'s allocation is reused).
+#[inline]
+pub fn map_collect_in_order<T, U, F>(items: &[T], out: &mut Vec<U>, min_len: usize, f: F)
+where
+    T: Sync,
+    U: Send,
+    F: Fn(usize, &T) -> U + Sync + Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() && items.len() > min_len {
+        items
+            .par_iter()
+            .with_min_len(min_len.max(1))
+            .enumerate()
+            .map(|(i, item)| f(i, item))
+            .collect_into_vec(out);
+        return;
+    }
+    let _ = min_len;
+    out.clear();
+    out.extend(items.iter().enumerate().map(|(i, item)| f(i, item)));
+}
+
+/// Runs `a` and `b`, on two threads if the pool has them, and returns both results.
+#[inline]
+pub fn join<A, B, RA, RB>(a: A, b: B) -> (RA, RB)
+where
+    A: FnOnce() -> RA + Send,
+    B: FnOnce() -> RB + Send,
+    RA: Send,
+    RB: Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() {
+        return rayon::join(a, b);
+    }
+    (a(), b())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn map_collect_keeps_index_order() {
+        let items: Vec<u32> = (0..1000).collect();
+        let mut out = Vec::new();
+        map_collect_in_order(&items, &mut out, 8, |i, &x| (i as u32) * 2 + x);
+        assert_eq!(out.len(), 1000);
+        assert!(out.iter().enumerate().all(|(i, &y)| y == 3 * i as u32));
+    }
+
+    #[test]
+    fn for_each_visits_every_item_once() {
+        let mut items = vec![0_u32; 1000];
+        for_each_mut(&mut items, 8, |i, x| *x += i as u32 + 1);
+        assert!(items.iter().enumerate().all(|(i, &x)| x == i as u32 + 1));
+        let with: Vec<u32> = (0..1000).collect();
+        for_each_zip_mut(&mut items, &with, 8, |x, &w| *x -= w);
+        assert!(items.iter().all(|&x| x == 1));
+    }
+
+    #[test]
+    fn join_returns_both() {
+        assert_eq!(join(|| 2 + 2, || "four"), (4, "four"));
+    }
+}

@@ -1,0 +1,121 @@
+//! The `parallel` feature gives the same bits for any number of threads: the five peer scenes of
+//! docs/scenes.md stepped on pools of 1, 2, 3 and 8 threads end in the same state digest. A pool of one
+//! thread runs the serial build's code (every `rebound_math::par` helper is then the plain loop the serial
+//! build compiles), so equal digests also mean equal to the serial build.
+//!
+//! Run with `cargo test -p rebound-suite --features parallel --test thread_count` (the serial
+//! `cargo test --workspace` skips it).
+
+use rebound::math::par::rayon::{ThreadPool, ThreadPoolBuilder};
+use rebound::prelude::*;
+use rebound_suite::scenes::{self, DEFAULT_SCENES, SceneOptions};
+use std::sync::Arc;
+
+/// Steps per scene: the balls' lowest layers land and the pile starts to press (contacts in every colour
+/// group large enough to be split among threads), the pyramid and the joints load up.
+const STEPS: usize = 40;
+
+/// The thread counts compared; 1 is the serial code.
+const THREADS: [usize; 4] = [1, 2, 3, 8];
+
+fn pool(threads: usize) -> ThreadPool {
+    ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("the test machine starts threads")
+}
+
+/// The scene's digest after [`STEPS`] steps run inside `pool`, and its contact count at the end.
+fn digest_on(name: &str, pool: &ThreadPool) -> (u64, usize) {
+    let mut scene = scenes::build(name, SceneOptions::default())
+        .expect("the scene builds")
+        .expect("a peer scene");
+    let mut contacts = 0;
+    for _ in 0..STEPS {
+        contacts = pool.install(|| scene.step()).contact_count;
+    }
+    (scene.world().state_digest(), contacts)
+}
+
+#[test]
+fn peer_scenes_have_one_digest_for_1_2_3_and_8_threads() {
+    let pools = THREADS.map(pool);
+    for name in DEFAULT_SCENES {
+        let (serial, contacts) = digest_on(name, &pools[0]);
+        for (threads, pool) in THREADS.iter().zip(&pools).skip(1) {
+            let (digest, _) = digest_on(name, pool);
+            assert_eq!(
+                digest, serial,
+                "{name}: {threads} threads end in another state than 1 thread"
+            );
+        }
+        if name == "balls" || name == "pyramid" {
+            assert!(
+                contacts > 200,
+                "{name}: only {contacts} contacts were solved"
+            );
+        }
+    }
+}
+
+/// 256 balls over the ground, touching it and each other (the ball–ground manifolds make one colour of 64
+/// batches: split among threads).
+fn ball_pile() -> PhysicsWorld {
+    let mut world = PhysicsWorld::new(WorldSettings::default()).expect("default settings");
+    let ground = world.insert_body(BodyDesc::fixed()).expect("a fixed body");
+    world
+        .insert_collider(ColliderDesc::cuboid(Vec3::new(50.0, 0.5, 50.0)), ground)
+        .expect("a box");
+    for i in 0..256_u16 {
+        let (x, z, y) = (f32::from(i % 8), f32::from((i / 8) % 8), f32::from(i / 64));
+        let ball = world
+            .insert_body(BodyDesc::dynamic().with_position(Vec3::new(
+                x,
+                1.0 + y * 1.01,
+                z + 0.1 * y,
+            )))
+            .expect("a ball");
+        world
+            .insert_collider(ColliderDesc::ball(0.5), ball)
+            .expect("a ball collider");
+    }
+    world
+}
+
+#[test]
+fn a_world_steps_on_its_own_pool_with_the_same_bits() {
+    let run = |pool: Option<Arc<ThreadPool>>| {
+        let mut world = ball_pile();
+        world.set_thread_pool(pool);
+        for _ in 0..STEPS {
+            world.step(scenes::DT);
+        }
+        world.state_digest()
+    };
+    let one = run(Some(Arc::new(pool(1))));
+    assert_eq!(run(Some(Arc::new(pool(3)))), one);
+    let mut world = ball_pile();
+    world.set_thread_count(2).expect("two threads start");
+    assert!(
+        world
+            .thread_pool()
+            .is_some_and(|p| p.current_num_threads() == 2)
+    );
+    let mut contacts = 0;
+    for _ in 0..STEPS {
+        contacts = world.step(scenes::DT).contact_count;
+    }
+    assert!(contacts >= 256, "only {contacts} contacts");
+    assert_eq!(world.state_digest(), one);
+}
+
+#[test]
+fn a_thread_count_of_zero_is_refused_and_changes_nothing() {
+    let mut world = PhysicsWorld::new(WorldSettings::default()).expect("default settings");
+    let error = world.set_thread_count(0);
+    assert!(
+        matches!(error, Err(Error::ThreadPool { count: 0, .. })),
+        "{error:?}"
+    );
+    assert!(world.thread_pool().is_none());
+}
