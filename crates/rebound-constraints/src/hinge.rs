@@ -170,7 +170,7 @@ impl HingeJoint {
 #[must_use]
 pub fn twist_angle(frame_a: Quat, frame_b: Quat) -> f32 {
     let q = frame_a.conjugate() * frame_b;
-    wrap_angle(2.0 * q.x.atan2(q.w))
+    wrap_angle(2.0 * rebound_math::real::atan2(q.x, q.w))
 }
 
 /// `angle` wrapped to (−π, π] (for inputs in (−3π, 3π]).

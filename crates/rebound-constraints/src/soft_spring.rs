@@ -181,7 +181,7 @@ impl OscillatorStep {
             };
         }
         let resolution = omega_squared * h * h;
-        let physical = (-2.0 * sigma * h).exp();
+        let physical = rebound_math::real::exp(-2.0 * sigma * h);
         let velocity_factor = if resolution > 1.0 {
             physical.min(1.0 / resolution)
         } else {

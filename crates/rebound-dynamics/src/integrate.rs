@@ -398,7 +398,8 @@ mod tests {
         let mut states = [SolverBody::from_body(&body)];
         let decay = 1.0 / (1.0 + ctx.h * 30.0);
         // 2.0 m/s · decay^n < 1e-15 m/s after this many substeps; run twice as long.
-        let needed = ((1e-15_f32 / 2.0).ln() / decay.ln()).ceil() as usize;
+        let needed = (rebound_math::real::ln(1e-15_f32 / 2.0) / rebound_math::real::ln(decay))
+            .ceil() as usize;
         for substep in 0..2 * needed {
             let before = states[0].linear_velocity;
             integrate_velocities(&mut states, &params, &ctx);

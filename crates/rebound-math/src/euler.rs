@@ -269,7 +269,7 @@ fn angle_about_axis(m: Mat3, axis: Vec3) -> f32 {
     let u = Vec3::new(axis.z, axis.x, axis.y);
     let v = axis.cross(u);
     let image = m * u;
-    image.dot(v).atan2(image.dot(u))
+    crate::real::atan2(image.dot(v), image.dot(u))
 }
 
 #[cfg(test)]

@@ -1,10 +1,14 @@
 #![doc = include_str!("../README.md")]
+// sin, atan2, exp… only through `rebound_math::real` (the same bits on every platform under
+// `enhanced-determinism`); clippy.toml lists them.
+#![warn(clippy::disallowed_methods)]
 
 pub mod euler;
 pub mod inertia;
 pub mod par;
 pub mod pose;
 pub mod quat;
+pub mod real;
 pub mod rotation2d;
 pub mod transform;
 pub mod validity;

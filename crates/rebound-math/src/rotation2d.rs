@@ -21,7 +21,7 @@ use crate::{Mat2, Vec2};
 #[inline]
 #[must_use]
 pub fn rotation_2d(angle: f32) -> Mat2 {
-    let (sin, cos) = angle.sin_cos();
+    let (sin, cos) = crate::real::sin_cos(angle);
     // Columns: the images of (1, 0) and (0, 1).
     Mat2::from_cols(Vec2::new(cos, sin), Vec2::new(-sin, cos))
 }

@@ -1,4 +1,7 @@
 #![doc = include_str!("../README.md")]
+// sin, atan2, exp… only through `rebound_math::real` (the same bits on every platform under
+// `enhanced-determinism`); clippy.toml lists them.
+#![warn(clippy::disallowed_methods)]
 
 mod backend;
 mod ball_ball;

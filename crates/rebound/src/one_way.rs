@@ -62,7 +62,7 @@ impl OneWayPlatform {
                 max: core::f32::consts::FRAC_PI_2,
             });
         }
-        self.cos_max_angle = max_angle.cos();
+        self.cos_max_angle = rebound_math::real::cos(max_angle);
         Ok(self)
     }
 

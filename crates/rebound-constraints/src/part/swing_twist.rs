@@ -18,7 +18,7 @@
 //! cone's normal and its rate leaves out the turning of `u`, a first-order approximation that the position
 //! error `C`, measured exactly every pass, corrects.
 
-use rebound_math::{Quat, Vec2, Vec3};
+use rebound_math::{Quat, Vec2, Vec3, real};
 
 /// Below this `|(y_s, z_s)|` (the sine of half the swing) the swing direction is taken as A's Y axis.
 const MIN_SWING_SINE: f32 = 1e-7;
@@ -50,7 +50,7 @@ impl SwingTwist {
         let twist_len = (q.w * q.w + q.x * q.x).sqrt();
         let (twist, swing_quat) = if twist_len > MIN_SWING_SINE {
             let t = Quat::from_xyzw(q.x / twist_len, 0.0, 0.0, q.w / twist_len);
-            (2.0 * t.x.atan2(t.w), q * t.conjugate())
+            (2.0 * real::atan2(t.x, t.w), q * t.conjugate())
         } else {
             // A swing of π: no twist can be told apart from the swing.
             (0.0, q)
@@ -64,7 +64,7 @@ impl SwingTwist {
         };
         Self {
             twist,
-            swing: 2.0 * sine_len.atan2(swing_quat.w.abs()),
+            swing: 2.0 * real::atan2(sine_len, swing_quat.w.abs()),
             swing_direction,
         }
     }

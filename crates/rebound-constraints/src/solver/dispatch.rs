@@ -22,7 +22,7 @@ use crate::stage::Stage;
 use crate::state::JointState;
 use crate::wheel::PreparedWheel;
 use rebound_dynamics::{Bias, SolverBody, StepContext};
-use rebound_math::Vec3;
+use rebound_math::{Vec3, real};
 
 /// A joint kind prepared for the substeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -395,9 +395,10 @@ pub(super) fn reaction_impulses(kind: &Prepared, s: &JointState) -> (f32, f32) {
         Prepared::Ball => (s.linear_impulse.length(), 0.0),
         Prepared::LimitedBall(_) => (
             s.linear_impulse.length(),
-            s.angular_impulse
-                .length()
-                .hypot(s.axial_impulse.hypot(s.lower_impulse + s.upper_impulse)),
+            real::hypot(
+                s.angular_impulse.length(),
+                real::hypot(s.axial_impulse, s.lower_impulse + s.upper_impulse),
+            ),
         ),
         Prepared::Hinge(_) => (
             s.linear_impulse.length(),

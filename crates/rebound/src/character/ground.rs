@@ -44,7 +44,7 @@ pub struct Ground {
 /// character (the top of a step under an edge contact), else the contact normal.
 pub(crate) fn surface_normal(probe: &Probe<'_>, hit: &SweepHit) -> Vec3 {
     if probe.is_walkable(hit.normal)
-        || hit.normal.dot(probe.settings.up) < MAX_EDGE_CONTACT_ANGLE.cos()
+        || hit.normal.dot(probe.settings.up) < rebound_math::real::cos(MAX_EDGE_CONTACT_ANGLE)
     {
         return hit.normal;
     }

@@ -222,6 +222,6 @@ impl CharacterSettings {
 
     /// `cos(max_slope_angle)`: a surface whose normal `n` has `n·up` at least this is walkable.
     pub(crate) fn min_walkable_cos(&self) -> f32 {
-        self.max_slope_angle.cos()
+        rebound_math::real::cos(self.max_slope_angle)
     }
 }

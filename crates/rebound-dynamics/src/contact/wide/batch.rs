@@ -3,13 +3,12 @@
 //! *warm start* and its passes (*solve*, *relax*) are the scalar path's equations in four lanes; its results
 //! are read back per manifold for *store impulses*.
 
-use super::lanes::{LANES, LaneStates, Mat3x4, PointLanes, Vec3x4, gather1, gather3};
+use super::lanes::{LANES, LaneStates, Mask4, Mat3x4, PointLanes, Vec3x4, gather1, gather3};
 use crate::contact::bias::Bias;
 use crate::contact::manifold::ContactPoint;
 use crate::contact::patch::{PatchShare, patch_sums};
 use crate::contact::prepared::{PrepareInput, PreparedContact};
 use crate::{SolverBody, StepContext};
-use rebound_math::glam::BVec4A;
 use rebound_math::{Mat3, Vec3, Vec4};
 
 /// One point slot of a batch: a [`PreparedPoint`]'s solve data in each lane.
@@ -138,7 +137,7 @@ impl Batch {
         };
         let (inertia_a, inertia_b) = (inertia(|c| c.body_a), inertia(|c| c.body_b));
         let mass_sum = inv_mass_a + inv_mass_b;
-        let invert = |k: Vec4, present: BVec4A| {
+        let invert = |k: Vec4, present: Mask4| {
             Vec4::select(k.cmpgt(Vec4::ZERO) & present, Vec4::ONE / k, Vec4::ZERO)
         };
         // The patch centres, and the friction the points carry from the last step, lane by lane; in a batch of
@@ -156,7 +155,7 @@ impl Batch {
         let (mut spread, mut warm_twist) = (Vec4::ZERO, Vec4::ZERO);
         for slot in 0..slot_count {
             let points = lanes.map(|c| c.and_then(|c| input.contacts[c.source].points().get(slot)));
-            let here = BVec4A::from_array(points.map(|p| p.is_some()));
+            let here = Mask4::from_array(points.map(|p| p.is_some()));
             let PointLanes {
                 anchor_a,
                 anchor_b,
@@ -303,7 +302,7 @@ impl Batch {
         for p in points.iter_mut() {
             let s = p.separation + shift + turn_b.dot(&p.anchor_b) - turn_a.dot(&p.anchor_a);
             let vn = u + wb.dot(&p.rn_b) - wa.dot(&p.rn_a);
-            let speculative: BVec4A = s.cmpgt(zero);
+            let speculative: Mask4 = s.cmpgt(zero);
             let (velocity_bias, mass_scale, impulse_scale) = match bias {
                 Bias::On => (
                     Vec4::select(speculative, s * inv_h, (self.bias_rate * s).max(max_push)),

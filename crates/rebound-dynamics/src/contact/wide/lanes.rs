@@ -4,8 +4,16 @@
 
 use crate::SolverBody;
 use crate::contact::manifold::ContactPoint;
-use rebound_math::glam::BVec4A;
 use rebound_math::{Mat4, Vec3, Vec4};
+
+/// The mask `Vec4`'s comparisons return: glam's `BVec4A` on its SIMD paths, `BVec4` under its `scalar-math`
+/// (which the `enhanced-determinism` feature turns on).
+#[cfg(not(feature = "enhanced-determinism"))]
+pub(crate) type Mask4 = rebound_math::glam::BVec4A;
+/// The mask `Vec4`'s comparisons return: glam's `BVec4A` on its SIMD paths, `BVec4` under its `scalar-math`
+/// (which the `enhanced-determinism` feature turns on).
+#[cfg(feature = "enhanced-determinism")]
+pub(crate) type Mask4 = rebound_math::glam::BVec4;
 
 /// Lanes per batch.
 pub(crate) const LANES: usize = 4;
@@ -102,7 +110,7 @@ impl Vec3x4 {
 
     /// The lanes of `self` where `mask` is set, zero elsewhere.
     #[inline(always)]
-    pub(crate) fn select(&self, mask: BVec4A) -> Self {
+    pub(crate) fn select(&self, mask: Mask4) -> Self {
         Self {
             x: Vec4::select(mask, self.x, Vec4::ZERO),
             y: Vec4::select(mask, self.y, Vec4::ZERO),
