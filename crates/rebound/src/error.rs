@@ -180,8 +180,8 @@ pub enum Error {
     /// The world cannot hold more colliders (2³² − 1).
     #[error("the world is full: no more colliders can be inserted")]
     Full,
-    /// A thread pool for the step could not be made (`PhysicsWorld::set_thread_count`, with the `parallel` feature): a count of
-    /// zero, or the operating system refused the threads.
+    /// A thread pool for the step could not be made (`PhysicsWorld::set_thread_count`, with the `parallel`
+    /// feature): a count of zero, or the operating system refused the threads.
     #[error("`thread_count` must be at least 1 and its threads must start, got {count}: {reason}")]
     ThreadPool {
         /// The thread count given.
