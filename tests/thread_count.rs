@@ -119,3 +119,48 @@ fn a_thread_count_of_zero_is_refused_and_changes_nothing() {
     );
     assert!(world.thread_pool().is_none());
 }
+
+/// 256 balls resting on one kinematic plate that turns about +Y and has velocity components of −0: every
+/// ball–plate manifold of a colour shares the plate, so several batches on several threads each add `0·λ`
+/// to the plate's velocity; the plate must come out of the step with the same bits for any thread count.
+fn balls_on_a_turning_plate() -> PhysicsWorld {
+    let mut world = PhysicsWorld::new(WorldSettings::default()).expect("default settings");
+    let plate = world
+        .insert_body(
+            BodyDesc::kinematic()
+                .with_linear_velocity(Vec3::new(-0.0, -0.0, -0.0))
+                .with_angular_velocity(Vec3::new(-0.0, 0.2, -0.0)),
+        )
+        .expect("a kinematic plate");
+    world
+        .insert_collider(ColliderDesc::cuboid(Vec3::new(20.0, 0.5, 20.0)), plate)
+        .expect("a box");
+    for i in 0..256_u16 {
+        let (x, z) = (f32::from(i % 16), f32::from(i / 16));
+        let ball = world
+            .insert_body(BodyDesc::dynamic().with_position(Vec3::new(x - 7.5, 0.99, z - 7.5)))
+            .expect("a ball");
+        world
+            .insert_collider(ColliderDesc::ball(0.5), ball)
+            .expect("a ball collider");
+    }
+    world
+}
+
+#[test]
+fn a_kinematic_body_shared_by_batches_on_threads_keeps_the_bits_of_one_thread() {
+    let run = |threads: usize| {
+        let mut world = balls_on_a_turning_plate();
+        world.set_thread_pool(Some(Arc::new(pool(threads))));
+        let mut contacts = 0;
+        for _ in 0..STEPS {
+            contacts = world.step(scenes::DT).contact_count;
+        }
+        assert!(contacts >= 256, "only {contacts} contacts");
+        world.state_digest()
+    };
+    let one = run(1);
+    for threads in [2, 3, 8] {
+        assert_eq!(run(threads), one, "{threads} threads");
+    }
+}

@@ -54,8 +54,9 @@ fn fixture(name: &str) -> (TempDir, PathBuf, Vec<u8>) {
         THREE,
     )
     .expect("write");
-    let mut recording = b"RBREC\r\n\x1a".to_vec();
-    recording.extend_from_slice(&1u32.to_le_bytes());
+    // The header `rebound view` checks before serving (magic and format version), then bytes it passes on.
+    let mut recording = rebound_record::MAGIC.to_vec();
+    recording.extend_from_slice(&rebound_record::VERSION.to_le_bytes());
     recording.extend_from_slice(&[7u8; 100]);
     let file = dir.0.join("the run.rrec");
     std::fs::write(&file, &recording).expect("write");

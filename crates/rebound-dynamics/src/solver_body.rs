@@ -38,12 +38,25 @@ impl SolverBody {
     };
 
     /// The solver state of `body` at the start of a step.
+    ///
+    /// A kinematic body's velocity components of −0 enter as +0 (`v + 0`, every other value unchanged). A
+    /// contact lane adds `0·λ` to a kinematic body's velocity, which turns −0 into +0 or not depending on the
+    /// sign of `λ`; with no −0 to start from, every lane leaves it as it was, so the batches of one colour that
+    /// share a kinematic body give the same bits solved one after another or side by side on threads.
     #[must_use]
     pub fn from_body(body: &RigidBody) -> Self {
+        let (linear_velocity, angular_velocity) = if body.body_type() == BodyType::Kinematic {
+            (
+                body.linear_velocity() + Vec3::ZERO,
+                body.angular_velocity() + Vec3::ZERO,
+            )
+        } else {
+            (body.linear_velocity(), body.angular_velocity())
+        };
         Self {
             delta_rotation: Quat::IDENTITY,
-            linear_velocity: body.linear_velocity(),
-            angular_velocity: body.angular_velocity(),
+            linear_velocity,
+            angular_velocity,
             delta_position: Vec3::ZERO,
         }
     }

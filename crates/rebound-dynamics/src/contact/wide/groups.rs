@@ -5,9 +5,9 @@
 //! order once all are done. A dynamic body is written by one batch of the group only, so the result is the
 //! bit pattern of solving the batches one after the other, for any number of threads. Fixed and kinematic
 //! bodies, which several batches of a group may share, get back the velocity they held: a lane adds `0·λ`
-//! to it (their inverse masses are 0). The one bit that can differ is the sign of a velocity component of
-//! exactly −0 of a kinematic body touched in several batches of one group (−0 − (−0) is +0 in the lane
-//! that adds a negative zero, and only the last lane's write is kept).
+//! to it (their inverse masses are 0), and that velocity holds no −0 component (`SolverBody::from_body`
+//! turns a kinematic body's −0 into +0, the one value `0·λ` could change), so which lane's write is kept
+//! does not matter.
 //!
 //! In the serial build, and in a pool of one thread, a pass is the plain loop over the batches.
 
