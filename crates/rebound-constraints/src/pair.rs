@@ -188,3 +188,13 @@ impl BodyPair {
         )
     }
 }
+
+/// The joint's bodies that the solver moves (dynamic: a non-zero inverse mass or inertia); `None` for a
+/// fixed or kinematic side, which couples nothing.
+pub(crate) fn dynamic_bodies(pair: &BodyPair) -> [Option<usize>; 2] {
+    let moves = |inv_mass: f32, inv_inertia: &Mat3| inv_mass > 0.0 || *inv_inertia != Mat3::ZERO;
+    [
+        moves(pair.inv_mass_a, &pair.inv_inertia_a).then_some(pair.index_a),
+        moves(pair.inv_mass_b, &pair.inv_inertia_b).then_some(pair.index_b),
+    ]
+}

@@ -7,8 +7,9 @@
 //! bodies have degrees of freedom (redundant rows, which the exact solve does not hold).
 
 use super::graph::{DirectGraph, MAX_GRAPH_FILL, MAX_GRAPH_JOINTS};
-use super::topology::{Topology, dynamic_bodies};
+use super::topology::Topology;
 use crate::pair::BodyPair;
+use crate::pair::dynamic_bodies;
 
 /// The root of `body` in the union-find forest `parent` (path halving).
 fn root(parent: &mut [usize], mut body: usize) -> usize {

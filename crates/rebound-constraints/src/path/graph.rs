@@ -15,12 +15,11 @@
 )]
 
 use super::link::{Link, Mode};
-use super::min_degree::minimum_degree_order;
+use super::min_degree::{OrderScratch, minimum_degree_order};
 use super::row::{MAX_ROWS, Real, Row};
 use super::sparse_ldl::{SparseLdl, UpperColumns};
 use super::sweep::{Solved, path_shape};
-use super::topology::dynamic_bodies;
-use crate::pair::BodyPair;
+use crate::pair::{BodyPair, dynamic_bodies};
 use rebound_dynamics::SolverBody;
 use rebound_math::glam::DVec3;
 use rebound_math::{Vec3, Vec4};
@@ -68,9 +67,10 @@ pub(crate) struct DirectGraph {
     lambda: Vec<Real>,
     k_lambda: Vec<Real>,
     deltas: Vec<[Vec3; 2]>,
-    /// Scratch of `build`: the adjacency by slot and the order's sets.
+    /// Scratch of `build`: the joints' dynamic sides sorted by body, the adjacency by slot and the order's.
+    ends: Vec<(usize, usize, bool)>,
     adjacency: Vec<Vec<usize>>,
-    sets: Vec<Vec<usize>>,
+    order_scratch: OrderScratch,
 }
 
 impl DirectGraph {
@@ -79,7 +79,8 @@ impl DirectGraph {
     pub fn build<'p>(&mut self, members: &[usize], pair: impl Fn(usize) -> &'p BodyPair) -> usize {
         let m = members.len();
         // (body, slot, side) for every dynamic side, sorted by body: each run is the joints on one body.
-        let mut ends: Vec<(usize, usize, bool)> = Vec::with_capacity(2 * m);
+        let mut ends = core::mem::take(&mut self.ends);
+        ends.clear();
         for (slot, &index) in members.iter().enumerate() {
             let [a, b] = dynamic_bodies(pair(index));
             ends.extend(a.map(|body| (body, slot, false)));
@@ -117,6 +118,7 @@ impl DirectGraph {
             }
             run = end;
         }
+        self.ends = ends;
         self.adjacency
             .resize_with(m.max(self.adjacency.len()), Vec::new);
         for (slot, set) in self.adjacency.iter_mut().enumerate().take(m) {
@@ -124,7 +126,12 @@ impl DirectGraph {
             set.extend(self.couplings[slot].iter().map(|c| c.other));
         }
         let adjacency = &self.adjacency;
-        let fill = minimum_degree_order(m, |i| &adjacency[i], &mut self.sets, &mut self.order);
+        let fill = minimum_degree_order(
+            m,
+            |i| &adjacency[i],
+            &mut self.order_scratch,
+            &mut self.order,
+        );
         self.position.clear();
         self.position.resize(m, 0);
         for (place, &slot) in self.order.iter().enumerate() {

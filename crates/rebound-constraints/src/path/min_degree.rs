@@ -10,15 +10,29 @@
 //! form with explicit adjacency sets (no quotient graph, no multiple elimination) is quick enough, once a
 //! step.
 
+/// The scratch of [`minimum_degree_order`], kept from step to step so that ordering allocates nothing once
+/// it has grown: each node's adjacency set, which nodes are eliminated, and the clique being formed.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct OrderScratch {
+    sets: Vec<Vec<usize>>,
+    eliminated: Vec<bool>,
+    clique: Vec<usize>,
+}
+
 /// The minimum degree order of the graph of `nodes` nodes whose edges are `adjacency(i)` (each node's
 /// neighbours, both ways, no self-loops), written into `order`; returns the fill of the elimination, the sum
-/// over the nodes of their degree when eliminated (the block entries of `L`). `sets` is scratch.
+/// over the nodes of their degree when eliminated (the block entries of `L`).
 pub(crate) fn minimum_degree_order<'n>(
     nodes: usize,
     adjacency: impl Fn(usize) -> &'n [usize],
-    sets: &mut Vec<Vec<usize>>,
+    scratch: &mut OrderScratch,
     order: &mut Vec<usize>,
 ) -> usize {
+    let OrderScratch {
+        sets,
+        eliminated,
+        clique,
+    } = scratch;
     sets.resize_with(nodes.max(sets.len()), Vec::new);
     for (i, set) in sets.iter_mut().enumerate().take(nodes) {
         set.clear();
@@ -32,9 +46,9 @@ pub(crate) fn minimum_degree_order<'n>(
         set.dedup();
     }
     order.clear();
-    let mut eliminated = vec![false; nodes];
+    eliminated.clear();
+    eliminated.resize(nodes, false);
     let mut fill = 0;
-    let mut clique = Vec::new();
     for _ in 0..nodes {
         let Some(pivot) = (0..nodes)
             .filter(|&i| !eliminated[i])
@@ -48,10 +62,10 @@ pub(crate) fn minimum_degree_order<'n>(
         clique.extend(sets[pivot].iter().copied());
         fill += clique.len();
         // The neighbours become one clique, without the pivot.
-        for &i in &clique {
+        for &i in clique.iter() {
             let set = &mut sets[i];
             set.retain(|&j| j != pivot);
-            for &j in &clique {
+            for &j in clique.iter() {
                 if j != i
                     && let Err(at) = set.binary_search(&j)
                 {
@@ -66,7 +80,7 @@ pub(crate) fn minimum_degree_order<'n>(
 
 #[cfg(test)]
 mod tests {
-    use super::minimum_degree_order;
+    use super::{OrderScratch, minimum_degree_order};
 
     /// The order and fill of the graph with `edges` on `nodes` nodes.
     fn order(nodes: usize, edges: &[(usize, usize)]) -> (Vec<usize>, usize) {
@@ -75,8 +89,8 @@ mod tests {
             adjacency[a].push(b);
             adjacency[b].push(a);
         }
-        let (mut sets, mut order) = (Vec::new(), Vec::new());
-        let fill = minimum_degree_order(nodes, |i| &adjacency[i], &mut sets, &mut order);
+        let (mut scratch, mut order) = (OrderScratch::default(), Vec::new());
+        let fill = minimum_degree_order(nodes, |i| &adjacency[i], &mut scratch, &mut order);
         (order, fill)
     }
 

@@ -5,9 +5,8 @@
 //! whether a joint's rows can join a path, and whether all of them do.
 
 use super::graph::DirectGraph;
-use crate::pair::BodyPair;
+use crate::pair::{BodyPair, dynamic_bodies};
 use core::ops::Range;
-use rebound_math::Mat3;
 
 /// The paths of one step and the scratch of their search, reused from step to step.
 #[derive(Debug, Clone, Default)]
@@ -234,16 +233,6 @@ impl Topology {
             all_rows && alone
         }));
     }
-}
-
-/// The joint's bodies that the solver moves (dynamic: a non-zero inverse mass or inertia); `None` for a
-/// fixed or kinematic side, which couples nothing.
-pub(crate) fn dynamic_bodies(pair: &BodyPair) -> [Option<usize>; 2] {
-    let moves = |inv_mass: f32, inv_inertia: &Mat3| inv_mass > 0.0 || *inv_inertia != Mat3::ZERO;
-    [
-        moves(pair.inv_mass_a, &pair.inv_inertia_a).then_some(pair.index_a),
-        moves(pair.inv_mass_b, &pair.inv_inertia_b).then_some(pair.index_b),
-    ]
 }
 
 /// Adds (`add`) or takes off one count per joint of `members` from each of its dynamic bodies in `touches`.
