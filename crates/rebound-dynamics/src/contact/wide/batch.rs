@@ -21,6 +21,8 @@ pub(crate) struct PointX4 {
     pub(crate) normal_impulse: Vec4,
     pub(crate) max_normal_impulse: Vec4,
     pub(crate) normal_mass: Vec4,
+    /// The soft row's preload as a velocity bias (m/s, `PreparedContact::preload`).
+    pub(crate) preload: Vec4,
     /// The point's distance from the patch centre (m): its lever against twist.
     pub(crate) twist_radius: Vec4,
     pub(crate) rn_a: Vec3x4,
@@ -190,6 +192,12 @@ impl Batch {
                 },
                 max_normal_impulse: Vec4::ZERO,
                 normal_mass,
+                preload: {
+                    let masses = normal_mass.to_array();
+                    Vec4::from_array(core::array::from_fn(|i| {
+                        headers[i].preload(masses[i], input.ctx)
+                    }))
+                },
                 twist_radius: rho2.sqrt(),
                 rn_a,
                 rn_b,
@@ -291,7 +299,11 @@ impl Batch {
             let speculative: BVec4A = s.cmpgt(zero);
             let (velocity_bias, mass_scale, impulse_scale) = match bias {
                 Bias::On => (
-                    Vec4::select(speculative, s * inv_h, (self.bias_rate * s).max(max_push)),
+                    Vec4::select(
+                        speculative,
+                        s * inv_h,
+                        (self.bias_rate * s).max(max_push) - p.preload,
+                    ),
                     Vec4::select(speculative, one, self.mass_scale),
                     Vec4::select(speculative, zero, self.impulse_scale),
                 ),
@@ -511,6 +523,7 @@ const EMPTY_LANE: PreparedContact = PreparedContact {
     max_push_out_speed: 0.0,
     both_dynamic: false,
     moving_surface: false,
+    load: 0.0,
 };
 
 /// What an empty lane's point reads: zeros.
