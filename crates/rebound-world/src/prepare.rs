@@ -172,7 +172,7 @@ pub(crate) fn build_contacts(
     }
     if ctx.resting_overlap.is_some() {
         s.stack_loads
-            .compute(&mut s.contacts, &s.params, ctx.gravity);
+            .compute(&mut s.contacts, &s.params, ctx.gravity, ctx.h);
     }
     report.rejected_contact_count +=
         s.contact_solver

@@ -63,6 +63,22 @@ fn support(
     (level[other] < level[body] && cosine >= SUPPORT_COSINE).then_some((other, cosine))
 }
 
+/// Scales the warm-start impulses of `c`'s points so that they sum to its load over a substep `h` (s),
+/// keeping how they share it (equal shares if none pushed): the substeps start from the impulse that holds
+/// the load instead of building it pass by pass, which a light body between a heavy one and the ground
+/// cannot do (a pass moves the heavy body by about the mass ratio of the error).
+fn warm_start_with_load(c: &mut Contact, h: f32) {
+    let target = c.load * h;
+    let count = c.point_count.min(c.points.len());
+    let points = &mut c.points[..count];
+    let total: f32 = points.iter().map(|p| p.normal_impulse.max(0.0)).sum();
+    if total <= 0.0 && count > 0 {
+        for p in points.iter_mut() {
+            p.normal_impulse = target / count as f32;
+        }
+    }
+}
+
 impl StackLoads {
     /// An empty propagation.
     #[must_use]
@@ -73,7 +89,13 @@ impl StackLoads {
     /// Sets [`Contact::load`] of every manifold in `contacts` (solver indices into `params`): the normal
     /// force (N) its resting bodies press it with under `gravity` (m/s²), 0 for a manifold that carries no
     /// body's weight.
-    pub fn compute(&mut self, contacts: &mut [Contact], params: &[BodyParams], gravity: Vec3) {
+    pub fn compute(
+        &mut self,
+        contacts: &mut [Contact],
+        params: &[BodyParams],
+        gravity: Vec3,
+        h: f32,
+    ) {
         for c in contacts.iter_mut() {
             c.load = 0.0;
         }
@@ -117,6 +139,9 @@ impl StackLoads {
                     self.weight[other] += share;
                 }
             }
+        }
+        for c in contacts.iter_mut().filter(|c| c.load > 0.0) {
+            warm_start_with_load(c, h);
         }
     }
 
