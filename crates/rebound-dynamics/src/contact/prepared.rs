@@ -93,7 +93,7 @@ impl PreparedContact {
     /// without a load or without `ε`.
     #[inline]
     pub(crate) fn preload(&self, normal_mass: f32, ctx: &StepContext) -> f32 {
-        let Some(resting_overlap) = ctx.resting_overlap else {
+        let (Some(resting_overlap), true) = (ctx.resting_overlap, self.load > 0.0) else {
             return 0.0;
         };
         let h = ctx.h;

@@ -36,6 +36,10 @@ pub struct StackLoads {
     cursor: Vec<u32>,
     /// The bodies in breadth-first order from the fixed ones.
     queue: Vec<u32>,
+    /// One body's supports: manifold, supporting body, upward cosine of the normal.
+    supports: Vec<(u32, u32, f32)>,
+    /// Manifold → whether it rests.
+    resting: Vec<bool>,
 }
 
 /// Whether manifold `c` rests: it pushed in the last step and a point is within [`RESTING_GAP`].
@@ -96,18 +100,23 @@ impl StackLoads {
         gravity: Vec3,
         h: f32,
     ) {
-        for c in contacts.iter_mut() {
-            c.load = 0.0;
-        }
         let g = gravity.length();
         if !(g > 0.0 && g.is_finite()) {
+            for c in contacts.iter_mut() {
+                c.load = 0.0;
+            }
             return;
         }
         let up = -gravity / g;
         let body_count = params.len();
         let valid =
             |c: &Contact| c.body_a < body_count && c.body_b < body_count && c.body_a != c.body_b;
-        self.link(contacts, body_count, |c| valid(c) && resting(c));
+        self.resting.clear();
+        self.resting.extend(contacts.iter_mut().map(|c| {
+            c.load = 0.0;
+            valid(c) && resting(c)
+        }));
+        self.link(contacts, body_count);
         self.level_bodies(contacts, params);
         self.weight.clear();
         self.weight.extend(params.iter().map(|p| {
@@ -125,19 +134,19 @@ impl StackLoads {
                 continue;
             }
             let row = self.start[body] as usize..self.start[body + 1] as usize;
-            let count = self.links[row.clone()]
-                .iter()
-                .filter(|&&m| support(contacts, &self.level, body, m, up).is_some())
-                .count();
-            if count == 0 {
-                continue;
-            }
-            let share = weight / count as f32;
+            self.supports.clear();
             for &m in &self.links[row] {
                 if let Some((other, cosine)) = support(contacts, &self.level, body, m, up) {
-                    contacts[m as usize].load += share * cosine;
-                    self.weight[other] += share;
+                    self.supports.push((m, other as u32, cosine));
                 }
+            }
+            if self.supports.is_empty() {
+                continue;
+            }
+            let share = weight / self.supports.len() as f32;
+            for &(m, other, cosine) in &self.supports {
+                contacts[m as usize].load += share * cosine;
+                self.weight[other as usize] += share;
             }
         }
         for c in contacts.iter_mut().filter(|c| c.load > 0.0) {
@@ -145,11 +154,11 @@ impl StackLoads {
         }
     }
 
-    /// Compressed rows of the manifolds `keep` accepts, per body.
-    fn link(&mut self, contacts: &[Contact], body_count: usize, keep: impl Fn(&Contact) -> bool) {
+    /// Compressed rows of the resting manifolds, per body.
+    fn link(&mut self, contacts: &[Contact], body_count: usize) {
         self.start.clear();
         self.start.resize(body_count + 1, 0);
-        for c in contacts.iter().filter(|c| keep(c)) {
+        for (c, _) in contacts.iter().zip(&self.resting).filter(|(_, r)| **r) {
             self.start[c.body_a + 1] += 1;
             self.start[c.body_b + 1] += 1;
         }
@@ -160,7 +169,12 @@ impl StackLoads {
         self.links.resize(self.start[body_count] as usize, 0);
         self.cursor.clear();
         self.cursor.extend_from_slice(&self.start[..body_count]);
-        for (m, c) in contacts.iter().enumerate().filter(|(_, c)| keep(c)) {
+        for (m, (c, _)) in contacts
+            .iter()
+            .zip(&self.resting)
+            .enumerate()
+            .filter(|(_, (_, r))| **r)
+        {
             for body in [c.body_a, c.body_b] {
                 self.links[self.cursor[body] as usize] = m as u32;
                 self.cursor[body] += 1;

@@ -146,6 +146,7 @@ impl Batch {
         // The patch centres, and the friction the points carry from the last step, lane by lane; in a batch of
         // one-point manifolds (a pile of balls), the point itself and its friction — the same bits.
         let single = slot_count == 1;
+        let loaded = headers.iter().any(|c| c.load > 0.0);
         let mut sums = (!single).then(|| {
             let sums = lanes.map(|c| {
                 c.map_or([Vec3::ZERO; 3], |c| {
@@ -192,11 +193,13 @@ impl Batch {
                 },
                 max_normal_impulse: Vec4::ZERO,
                 normal_mass,
-                preload: {
+                preload: if loaded {
                     let masses = normal_mass.to_array();
                     Vec4::from_array(core::array::from_fn(|i| {
                         headers[i].preload(masses[i], input.ctx)
                     }))
+                } else {
+                    Vec4::ZERO
                 },
                 twist_radius: rho2.sqrt(),
                 rn_a,
