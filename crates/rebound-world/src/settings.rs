@@ -52,7 +52,8 @@ pub struct WorldSettings {
     /// The overlap (m) a loaded resting contact may keep: `Some(ε)` preloads each resting manifold's soft
     /// rows with the weight it carries, so a stack holds its height whatever its load (each interface
     /// overlaps `min(ε, load / stiffness)`); `None` leaves the overlap at `load / stiffness`. Positive and
-    /// finite when set. Default: `Some(1e-4)` (0.1 mm; `docs/physics.md`, "Contacts under load").
+    /// finite when set. Default: `None` (`Some(1e-4)`, 0.1 mm, keeps a 40-box column within 1 cm of its height;
+    /// `docs/physics.md`, "Contacts under load").
     pub resting_overlap: Option<f32>,
     /// Joint solver settings: the softness of hard joint parts, iteration counts, long-range tethers for
     /// hanging chains. Default: [`JointSettings::default`] (60 Hz, ζ = 2, one solve and one relax pass,
