@@ -1,8 +1,8 @@
 //! [`StackLoads`] on hand-made contact graphs, against the weights they must carry: each interface of a
 //! column carries `g` times the mass above it, whatever order the manifolds come in and whichever way their
 //! normals point; a bridge on two pillars hands each half its weight; a manifold that is open, tilted past
-//! 45° or between fixed bodies carries nothing; an unpushed loaded manifold starts from the impulse that
-//! holds its load.
+//! 45° or between fixed bodies carries nothing; a reused propagation forgets the last graph; an unpushed
+//! loaded manifold starts from the impulse that holds its load.
 
 use rebound_dynamics::{
     BodyDesc, BodyParams, Contact, ContactPoint, MassProperties, RigidBody, StackLoads,
@@ -112,6 +112,38 @@ fn open_tilted_and_fixed_manifolds_carry_nothing() {
     // Without gravity nothing is loaded, and the loads of the last call are cleared.
     loads.compute(&mut contacts, &params, Vec3::ZERO, H);
     assert!(contacts.iter().all(|c| c.load.abs() <= 0.0));
+}
+
+#[test]
+fn a_reused_propagation_gives_the_same_loads_on_another_graph() {
+    let mut loads = StackLoads::new();
+    let column = bodies(&[4.0, 3.0, 2.0, 1.0]);
+    let mut first = vec![
+        manifold(0, 1, Vec3::Y, 0.0),
+        manifold(1, 2, Vec3::Y, 0.0),
+        manifold(2, 3, Vec3::Y, 0.0),
+        manifold(3, 4, Vec3::Y, 0.0),
+    ];
+    loads.compute(&mut first, &column, G, H);
+    // Fewer bodies, other links: what the column left behind must not leak in.
+    let bridge = bodies(&[5.0, 5.0, 2.0]);
+    let mut second = vec![
+        manifold(0, 1, Vec3::Y, 0.0),
+        manifold(0, 2, Vec3::Y, 0.0),
+        manifold(1, 3, Vec3::Y, 0.0),
+        manifold(2, 3, Vec3::Y, 0.0),
+    ];
+    let mut fresh = second.clone();
+    loads.compute(&mut second, &bridge, G, H);
+    StackLoads::new().compute(&mut fresh, &bridge, G, H);
+    for (reused, new) in second.iter().zip(&fresh) {
+        assert!(
+            (reused.load - new.load).abs() <= 0.0,
+            "{} N vs {} N",
+            reused.load,
+            new.load
+        );
+    }
 }
 
 #[test]

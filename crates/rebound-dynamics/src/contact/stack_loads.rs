@@ -21,34 +21,45 @@ const RESTING_GAP: f32 = 1e-3;
 /// A support's normal points up by at least this cosine (45°).
 const SUPPORT_COSINE: f32 = core::f32::consts::FRAC_1_SQRT_2;
 
+/// No link: the end of a body's list.
+const NONE: u32 = u32::MAX;
+
 /// The scratch buffers of the load propagation, reused from step to step: flat arrays indexed by body or
-/// by link, so a step allocates nothing once they have grown, and a body no resting manifold touches costs
-/// only its share of two fills.
+/// by link. Between calls every body is unreached and has no link, and a call restores that for the bodies
+/// it touched only, so a body no resting manifold touches costs nothing and a step allocates nothing once
+/// the buffers have grown.
 #[derive(Debug, Clone, Default)]
 pub struct StackLoads {
     /// Body → its level: 0 for fixed and kinematic bodies, else the fewest resting manifolds to one.
     level: Vec<u32>,
-    /// Body → the weight (N) that rests on it, handed down from the bodies above.
+    /// Body → the weight (N) that rests on it, handed down from the bodies above (set when reached).
     carried: Vec<f32>,
-    /// Body → where its links start in `links`; the entry after the last body is the number of links.
-    start: Vec<u32>,
-    /// The resting manifolds of each body, body after body: manifold index and the body at its other end.
+    /// Body → its last link in `links`, [`NONE`] if it has none.
+    first: Vec<u32>,
+    /// The ends of the resting manifolds, each in its body's list.
     links: Vec<Link>,
     /// The reached bodies in breadth-first order from the fixed and kinematic ones.
     queue: Vec<u32>,
     /// One body's supports: manifold, supporting body, upward cosine of the normal.
     supports: Vec<(u32, u32, f32)>,
-    /// The resting manifolds, in order.
-    resting: Vec<u32>,
 }
 
 /// One end of a resting manifold, seen from a body.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 struct Link {
     /// The manifold (index into the contacts).
     manifold: u32,
     /// The body at the other end.
     other: u32,
+    /// The body's previous link, [`NONE`] if this is its first.
+    next: u32,
+}
+
+/// The links of one body, from its entry of `first`.
+fn list(links: &[Link], first: u32) -> impl Iterator<Item = &Link> {
+    core::iter::successors(links.get(first as usize), |link| {
+        links.get(link.next as usize)
+    })
 }
 
 /// Whether manifold `c` rests: a point started the step within [`RESTING_GAP`].
@@ -98,27 +109,39 @@ impl StackLoads {
         h: f32,
     ) {
         let g = gravity.length();
-        let rests = self.link(contacts, params, g > 0.0 && g.is_finite());
-        if !rests {
+        if !self.link(contacts, params, g > 0.0 && g.is_finite()) {
             return;
         }
-        let up = -gravity / g;
-        self.carried.clear();
-        self.carried.resize(params.len(), 0.0);
         self.level_bodies();
-        // Disjoint borrows, so that the loops below keep the slices in registers.
+        self.hand_down(contacts, params, g, -gravity / g, h);
+        // Back to unreached and unlinked for the next call.
+        for &body in &self.queue {
+            self.level[body as usize] = UNREACHED;
+        }
+        for link in &self.links {
+            self.first[link.other as usize] = NONE;
+        }
+    }
+
+    /// From the top level down: each body's weight (`g`·`s_g`·m, N) and what rests on it to its supports
+    /// (against `up`), in equal shares; each loaded manifold's warm start for a substep `h` (s).
+    fn hand_down(
+        &mut self,
+        contacts: &mut [Contact],
+        params: &[BodyParams],
+        g: f32,
+        up: Vec3,
+        h: f32,
+    ) {
         let Self {
             level,
             carried,
-            start,
+            first,
             links,
             queue,
             supports,
-            ..
         } = self;
-        let (level, start, links) = (&level[..], &start[..], &links[..]);
-        // From the top level down: each body's weight and what rests on it to its supports, in equal
-        // shares.
+        let (level, first, links) = (&level[..], &first[..], &links[..]);
         for &body in queue.iter().rev() {
             let body = body as usize;
             let level_of_body = level[body];
@@ -131,7 +154,7 @@ impl StackLoads {
                 continue;
             }
             supports.clear();
-            for link in &links[start[body] as usize..start[body + 1] as usize] {
+            for link in list(links, first[body]) {
                 if level[link.other as usize] >= level_of_body {
                     continue;
                 }
@@ -154,68 +177,54 @@ impl StackLoads {
         }
     }
 
-    /// Clears every load and links the resting manifolds (when `gravity` has a direction) into rows per
-    /// body; the fixed and kinematic bodies they touch start `queue` at level 0, every other body is
-    /// unreached. Returns whether any manifold rests.
+    /// Clears every load and links the resting manifolds (when `gravity` has a direction) into a list per
+    /// body; the fixed and kinematic bodies they touch start `queue` at level 0. Returns whether any
+    /// manifold rests.
     fn link(&mut self, contacts: &mut [Contact], params: &[BodyParams], gravity: bool) -> bool {
         let body_count = params.len();
-        let valid =
-            |c: &Contact| c.body_a < body_count && c.body_b < body_count && c.body_a != c.body_b;
-        // `start[b]` counts body b's links, then becomes where its row ends.
-        self.start.clear();
-        self.start.resize(body_count + 1, 0);
-        self.resting.clear();
-        let (start, rests) = (&mut self.start[..], &mut self.resting);
-        for (m, c) in contacts.iter_mut().enumerate() {
-            c.load = 0.0;
-            if gravity && valid(c) && resting(c) {
-                start[c.body_a] += 1;
-                start[c.body_b] += 1;
-                rests.push(m as u32);
-            }
-        }
-        if self.resting.is_empty() {
-            return false;
-        }
-        let mut total = 0;
-        for end in &mut self.start {
-            total += *end;
-            *end = total;
+        if self.level.len() < body_count {
+            self.level.resize(body_count, UNREACHED);
+            self.first.resize(body_count, NONE);
+            self.carried.resize(body_count, 0.0);
         }
         self.links.clear();
-        self.links.resize(total as usize, Link::default());
-        self.level.clear();
-        self.level.resize(body_count, UNREACHED);
         self.queue.clear();
-        let (start, links, level) = (
-            &mut self.start[..],
-            &mut self.links[..],
+        let valid =
+            |c: &Contact| c.body_a < body_count && c.body_b < body_count && c.body_a != c.body_b;
+        let (level, first, carried) = (
             &mut self.level[..],
+            &mut self.first[..],
+            &mut self.carried[..],
         );
-        // Filled from each row's end back to its start, which `start` then holds.
-        for &m in &self.resting {
-            let c = &contacts[m as usize];
+        for (m, c) in contacts.iter_mut().enumerate() {
+            c.load = 0.0;
+            if !(gravity && valid(c) && resting(c)) {
+                continue;
+            }
             for (body, other) in [(c.body_a, c.body_b), (c.body_b, c.body_a)] {
-                start[body] -= 1;
-                links[start[body] as usize] = Link {
-                    manifold: m,
+                self.links.push(Link {
+                    manifold: m as u32,
                     other: other as u32,
-                };
+                    next: first[body],
+                });
+                first[body] = (self.links.len() - 1) as u32;
                 if level[body] == UNREACHED && params[body].inv_mass <= 0.0 {
                     level[body] = 0;
+                    carried[body] = 0.0;
                     self.queue.push(body as u32);
                 }
             }
         }
-        true
+        !self.links.is_empty()
     }
 
     /// Levels by breadth-first search from the fixed and kinematic bodies in `queue` over the links;
     /// `queue` keeps the order.
     fn level_bodies(&mut self) {
-        let (level, start, links, queue) = (
+        let (level, carried, first, links, queue) = (
             &mut self.level[..],
-            &self.start[..],
+            &mut self.carried[..],
+            &self.first[..],
             &self.links[..],
             &mut self.queue,
         );
@@ -224,10 +233,11 @@ impl StackLoads {
             head += 1;
             let body = body as usize;
             let next = level[body] + 1;
-            for link in &links[start[body] as usize..start[body + 1] as usize] {
+            for link in list(links, first[body]) {
                 let other = link.other as usize;
                 if level[other] == UNREACHED {
                     level[other] = next;
+                    carried[other] = 0.0;
                     queue.push(link.other);
                 }
             }
