@@ -46,6 +46,8 @@
 //! - `prepared.rs`: what *prepare* makes of a manifold for either path, and what it reads.
 //! - `scalar.rs`: one manifold at a time, with the bounce and rolling resistance.
 //! - `patch.rs`: the scalar path's friction patch, and how a patch's impulses are shared among its points.
+//! - `stack_loads.rs`: [`StackLoads`], the weight each resting manifold carries, handed down the contact
+//!   graph, which preloads its soft rows.
 //! - `wide.rs` and `wide/`: four manifolds at a time in `Vec4` lanes — colouring, batches, lane arithmetic.
 
 mod bias;
@@ -54,8 +56,10 @@ mod patch;
 mod prepared;
 mod scalar;
 mod solver;
+mod stack_loads;
 mod wide;
 
 pub use bias::Bias;
 pub use manifold::{Contact, ContactPoint, MAX_CONTACT_POINTS};
 pub use solver::ContactSolver;
+pub use stack_loads::StackLoads;

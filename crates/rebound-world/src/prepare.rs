@@ -13,7 +13,7 @@ use crate::state::WorldState;
 use rebound_constraints::{JointBodies, JointSolver};
 use rebound_dynamics::{
     BodyParams, BodyType, Contact, ContactPoint, ContactSolver, MAX_CONTACT_POINTS, SolverBody,
-    StepContext,
+    StackLoads, StepContext,
 };
 use rebound_math::par::{self, MIN_ITEMS_PER_TASK};
 
@@ -46,6 +46,8 @@ pub(crate) struct Solver {
     /// Indices (into `joint_handles`) of the joints that broke this step (written by *store*).
     pub(crate) broken: Vec<usize>,
     pub(crate) contact_solver: ContactSolver,
+    /// The weight each resting manifold carries (the preload of its soft rows).
+    pub(crate) stack_loads: StackLoads,
     pub(crate) joint_solver: JointSolver,
     /// Solver contact → each point's normal impulse summed over the step (N·s), kept only when a contact
     /// reports forces (empty otherwise: nothing is summed).
@@ -182,6 +184,10 @@ pub(crate) fn build_contacts(
     if reports_forces {
         s.step_impulses
             .resize(s.contacts.len(), [0.0; MAX_CONTACT_POINTS]);
+    }
+    if ctx.resting_overlap.is_some() {
+        s.stack_loads
+            .compute(&mut s.contacts, &s.params, ctx.gravity, ctx.h);
     }
     report.rejected_contact_count +=
         s.contact_solver

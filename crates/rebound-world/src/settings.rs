@@ -49,6 +49,12 @@ pub struct WorldSettings {
     /// The most steps one [`crate::World::advance`] call runs (the rest of the time is dropped, so a slow
     /// frame cannot snowball), from 1 to [`MAX_STEPS_PER_ADVANCE`] (1,000). Default: 8.
     pub max_steps_per_advance: u32,
+    /// The overlap (m) a loaded resting contact may keep: `Some(ε)` preloads each resting manifold's soft
+    /// rows with the weight it carries, so a stack holds its height whatever its load (each interface
+    /// overlaps `min(ε, load / stiffness)`); `None` leaves the overlap at `load / stiffness`. Positive and
+    /// finite when set. Default: `None` (`Some(1e-4)`, 0.1 mm, keeps a 40-box column within 1 cm of its height;
+    /// `docs/physics.md`, "Contacts under load").
+    pub resting_overlap: Option<f32>,
     /// Joint solver settings: the softness of hard joint parts, iteration counts, long-range tethers for
     /// hanging chains. Default: [`JointSettings::default`] (60 Hz, ζ = 2, one solve and one relax pass,
     /// tethers on).
@@ -107,6 +113,7 @@ impl Default for WorldSettings {
             time_to_sleep: 0.5,
             fixed_dt: 1.0 / 60.0,
             max_steps_per_advance: 8,
+            resting_overlap: solver.resting_overlap,
             joints: JointSettings::default(),
             limits: StepLimits::default(),
         }
@@ -148,6 +155,9 @@ impl WorldSettings {
             1,
             MAX_STEPS_PER_ADVANCE,
         )?;
+        if let Some(overlap) = self.resting_overlap {
+            check_positive("resting_overlap", overlap)?;
+        }
         self.joints.validated()?;
         self.limits.validate()?;
         Ok(())
@@ -164,6 +174,7 @@ impl WorldSettings {
             max_push_out_speed: self.max_push_out_speed,
             restitution_threshold: self.restitution_threshold,
             warm_starting: self.warm_starting,
+            resting_overlap: self.resting_overlap,
         }
     }
 }

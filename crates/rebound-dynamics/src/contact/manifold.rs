@@ -56,6 +56,11 @@ pub struct Contact {
     /// from the world, so that it leaves them all at no more than `max_push_out_speed` together. Default: ∞
     /// (the step's).
     pub push_out_speed: f32,
+    /// The normal force (N) the bodies resting on this manifold press it with — their weight handed down
+    /// the stack ([`StackLoads`](crate::contact::StackLoads)). The soft rows are preloaded with it, so that
+    /// they hold it at a fixed small overlap (`docs/physics.md`, "Contacts under load"). Default: 0 (no
+    /// preload: the overlap at rest is load / stiffness).
+    pub load: f32,
     /// The points; only the first `point_count` are used.
     pub points: [ContactPoint; MAX_CONTACT_POINTS],
     /// How many points are in use (0 to [`MAX_CONTACT_POINTS`]).
@@ -81,6 +86,7 @@ impl Contact {
             rolling_friction: 0.0,
             surface_velocity: Vec3::ZERO,
             push_out_speed: f32::INFINITY,
+            load: 0.0,
             points: [ContactPoint::default(); MAX_CONTACT_POINTS],
             point_count: 0,
         }

@@ -35,6 +35,8 @@ pub(crate) struct PreparedContact {
     pub(crate) max_push_out_speed: f32,
     /// Whether both bodies are moved by the solver (not fixed or kinematic).
     pub(crate) both_dynamic: bool,
+    /// The normal force the manifold carries at rest (N, [`Contact::load`]).
+    pub(crate) load: f32,
     /// Whether the contact has a surface velocity ([`Contact::surface_velocity`]): only the scalar path's
     /// patch drives friction to one.
     pub(crate) moving_surface: bool,
@@ -79,7 +81,29 @@ impl PreparedContact {
             max_push_out_speed: ctx.max_push_out_speed.min(contact.push_out_speed),
             both_dynamic,
             moving_surface: contact.surface_velocity != Vec3::ZERO,
+            load: contact.load,
         }
+    }
+
+    /// The preload of a point with normal mass `normal_mass` (kg), as a velocity bias (m/s) its soft row
+    /// subtracts: the leak `impulse_scale·λ` of the row's share `λ₀ = load·h/N` of the manifold's load, made
+    /// a bias (`λ₀·impulse_scale/(m_n·mass_scale)`), less the bias of the overlap `ε` it may keep
+    /// ([`StepContext::resting_overlap`]). At rest (`v = 0`, `λ = λ₀`) the row then balances at the overlap
+    /// `min(ε, λ₀/(m_n·h·ω²))` instead of `λ₀/(m_n·h·ω²)`: whatever the load, never deeper than `ε`. 0
+    /// without a load or without `ε`.
+    #[inline]
+    pub(crate) fn preload(&self, normal_mass: f32, ctx: &StepContext) -> f32 {
+        let (Some(resting_overlap), true) = (ctx.resting_overlap, self.load > 0.0) else {
+            return 0.0;
+        };
+        let h = ctx.h;
+        let soft = self.softness;
+        let denominator = normal_mass * soft.mass_scale * self.point_count as f32;
+        if !(self.load > 0.0 && denominator > 0.0) {
+            return 0.0;
+        }
+        let leak = self.load * h * soft.impulse_scale / denominator;
+        (leak - soft.bias_rate * resting_overlap).max(0.0)
     }
 }
 

@@ -34,6 +34,8 @@ pub(crate) struct PreparedPoint {
     /// bounce's impulse plus the warm-start impulse the bounce forgot (both kept out of `normal_impulse`).
     pub(crate) bounce_impulse: f32,
     pub(crate) normal_mass: f32,
+    /// The soft row's preload as a velocity bias (m/s, [`PreparedContact::preload`]).
+    pub(crate) preload: f32,
     /// The point's distance from its manifold's patch centre (m): its lever against twist.
     pub(crate) twist_radius: f32,
     pub(crate) rn_a: Vec3,
@@ -62,6 +64,7 @@ impl PreparedPoint {
         let wn_b = pb.inv_inertia_world * rn_b;
         let k_normal = pa.inv_mass + pb.inv_mass + rn_a.dot(wn_a) + rn_b.dot(wn_b);
         let rho = ra - center_a;
+        let normal_mass = if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 };
         Self {
             anchor_a: ra,
             anchor_b: rb,
@@ -74,7 +77,8 @@ impl PreparedPoint {
             },
             max_normal_impulse: 0.0,
             bounce_impulse: 0.0,
-            normal_mass: if k_normal > 0.0 { 1.0 / k_normal } else { 0.0 },
+            normal_mass,
+            preload: c.preload(normal_mass, input.ctx),
             twist_radius: rho.dot(rho).sqrt(),
             rn_a,
             rn_b,
@@ -222,7 +226,7 @@ pub(crate) fn solve(
             (s * ctx.inv_h, 1.0, 0.0)
         } else if bias == Bias::On {
             (
-                (c.softness.bias_rate * s).max(-c.max_push_out_speed),
+                (c.softness.bias_rate * s).max(-c.max_push_out_speed) - p.preload,
                 c.softness.mass_scale,
                 c.softness.impulse_scale,
             )

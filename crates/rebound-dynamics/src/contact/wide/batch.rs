@@ -20,6 +20,8 @@ pub(crate) struct PointX4 {
     pub(crate) normal_impulse: Vec4,
     pub(crate) max_normal_impulse: Vec4,
     pub(crate) normal_mass: Vec4,
+    /// The soft row's preload as a velocity bias (m/s, `PreparedContact::preload`).
+    pub(crate) preload: Vec4,
     /// The point's distance from the patch centre (m): its lever against twist.
     pub(crate) twist_radius: Vec4,
     pub(crate) rn_a: Vec3x4,
@@ -143,6 +145,7 @@ impl Batch {
         // The patch centres, and the friction the points carry from the last step, lane by lane; in a batch of
         // one-point manifolds (a pile of balls), the point itself and its friction — the same bits.
         let single = slot_count == 1;
+        let loaded = headers.iter().any(|c| c.load > 0.0);
         let mut sums = (!single).then(|| {
             let sums = lanes.map(|c| {
                 c.map_or([Vec3::ZERO; 3], |c| {
@@ -189,6 +192,14 @@ impl Batch {
                 },
                 max_normal_impulse: Vec4::ZERO,
                 normal_mass,
+                preload: if loaded {
+                    let masses = normal_mass.to_array();
+                    Vec4::from_array(core::array::from_fn(|i| {
+                        headers[i].preload(masses[i], input.ctx)
+                    }))
+                } else {
+                    Vec4::ZERO
+                },
                 twist_radius: rho2.sqrt(),
                 rn_a,
                 rn_b,
@@ -305,7 +316,11 @@ impl Batch {
             let speculative: Mask4 = s.cmpgt(zero);
             let (velocity_bias, mass_scale, impulse_scale) = match bias {
                 Bias::On => (
-                    Vec4::select(speculative, s * inv_h, (self.bias_rate * s).max(max_push)),
+                    Vec4::select(
+                        speculative,
+                        s * inv_h,
+                        (self.bias_rate * s).max(max_push) - p.preload,
+                    ),
                     Vec4::select(speculative, one, self.mass_scale),
                     Vec4::select(speculative, zero, self.impulse_scale),
                 ),
@@ -542,6 +557,7 @@ const EMPTY_LANE: PreparedContact = PreparedContact {
     max_push_out_speed: 0.0,
     both_dynamic: false,
     moving_surface: false,
+    load: 0.0,
 };
 
 /// What an empty lane's point reads: zeros.
