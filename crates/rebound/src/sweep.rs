@@ -95,8 +95,15 @@ fn first_impact(
         // The swept box: the boxes at the start and the end of the step, loosened by what rotation can
         // bulge the path out between them.
         let at = |t: f32| collider.shape.compute_aabb(&motion.position_at_time(t));
-        let reach = crate::prediction::rotation_reach(body, &at(0.0)) * dt;
-        let swept: Aabb = at(0.0).merged(&at(dt)).loosened(reach);
+        let start_box = at(0.0);
+        let reach = crate::prediction::rotation_reach(body, &start_box) * dt;
+        // A box or a reach beyond the floats (an unbounded shape, or a turn over a step of 10³⁰ s makes the
+        // reach NaN) bounds nothing a cast could use: such a collider is left to the contacts and the
+        // quarantine.
+        if !(reach.is_finite() && start_box.mins.is_finite() && start_box.maxs.is_finite()) {
+            continue;
+        }
+        let swept: Aabb = start_box.merged(&at(dt)).loosened(reach);
         backend.broad_phase.candidates(
             colliders,
             bodies,
