@@ -275,7 +275,8 @@ test('the mouse orbits, pans and zooms the camera', async () => {
   await page.mouse.move(cx + 120, cy, { steps: 6 });
   await page.mouse.up();
   const orbited = await camera();
-  assert.deepEqual(orbited.target, start.target, 'orbiting keeps the target');
+  // Orbiting keeps the target to rounding: the controls recompute it from the eye's spherical offset.
+  assert.ok(Math.hypot(...orbited.target.map((p, i) => p - start.target[i])) < 1e-9, 'orbiting keeps the target');
   assert.ok(Math.hypot(...orbited.position.map((p, i) => p - start.position[i])) > 0.1, 'the eye moved round');
   assert.ok(Math.abs(distance(orbited) - distance(start)) < 1e-6 * distance(start), 'at the same distance');
 
