@@ -7,7 +7,7 @@ use super::manifold::Contact;
 use super::patch::{Patch, PatchShare};
 use super::prepared::{PrepareInput, PreparedContact};
 use super::scalar::{self, PreparedPoint, Rolling};
-use super::wide::{self, Batch, Coloring, LaneVelocities, PatchX4, PointX4};
+use super::wide::{self, Batches, Coloring, LaneVelocities};
 use crate::{BodyParams, SolverBody, StepContext};
 use rebound_math::Vec3;
 
@@ -21,12 +21,8 @@ pub struct ContactSolver {
     /// The friction patches of the scalar path's manifolds.
     pub(crate) patches: Vec<Patch>,
     pub(crate) rolling: Vec<Rolling>,
-    /// The wide-solved manifolds, four at a time, colour after colour (see `super::wide`).
-    pub(crate) batches: Vec<Batch>,
-    /// The batches' point slots.
-    pub(crate) slots: Vec<PointX4>,
-    /// The batches' friction patches.
-    pub(crate) patches_x4: Vec<PatchX4>,
+    /// The wide-solved manifolds, four at a time, colour after colour, with their rows (see `super::wide`).
+    pub(crate) batches: Batches,
     /// Indices of the manifolds the scalar path solves, after the batches.
     pub(crate) scalar: Vec<usize>,
     pub(crate) coloring: Coloring,
@@ -98,14 +94,8 @@ impl ContactSolver {
             params,
             ctx,
         };
-        self.coloring.build(
-            &self.contacts,
-            &input,
-            &mut self.batches,
-            &mut self.slots,
-            &mut self.patches_x4,
-            &mut self.scalar,
-        );
+        self.coloring
+            .build(&self.contacts, &input, &mut self.batches, &mut self.scalar);
         for &index in &self.scalar {
             let c = &mut self.contacts[index];
             let points = contacts[c.source].points();
@@ -129,10 +119,8 @@ impl ContactSolver {
     /// the iterations start from the previous answer.
     pub fn warm_start(&mut self, bodies: &mut [SolverBody]) {
         wide::warm_start_batches(
-            &self.batches,
+            &mut self.batches,
             &self.coloring.group_ends,
-            &mut self.slots,
-            &mut self.patches_x4,
             bodies,
             &mut self.lane_scratch,
         );
@@ -159,10 +147,8 @@ impl ContactSolver {
     /// batches in `Vec4` lanes (`docs/physics.md`, Contacts); the rest one by one after them.
     pub fn solve(&mut self, bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
         wide::solve_batches(
-            &self.batches,
+            &mut self.batches,
             &self.coloring.group_ends,
-            &mut self.slots,
-            &mut self.patches_x4,
             bodies,
             &mut self.lane_scratch,
             ctx,
@@ -210,14 +196,8 @@ impl ContactSolver {
                 f(c.source, k, p.normal_impulse, p.bounce_impulse);
             }
         }
-        for batch in &self.batches {
-            for (index, impulses) in batch.normal_impulses(&self.slots, &self.contacts) {
-                let source = self.contacts[index].source;
-                for (k, normal) in impulses.enumerate() {
-                    f(source, k, normal, 0.0);
-                }
-            }
-        }
+        self.batches
+            .for_each_normal_impulse(|source, k, normal| f(source, k, normal, 0.0));
     }
 
     /// Calls `f(source, point, normal_impulse, tangent_impulse, max_normal_impulse)` for every point of every
@@ -245,13 +225,6 @@ impl ContactSolver {
                 f(c.source, k, p.normal_impulse, tangent, p.max_normal_impulse);
             }
         }
-        for batch in &self.batches {
-            for (index, impulses) in batch.results(&self.slots, &self.patches_x4, &self.contacts) {
-                let c = &self.contacts[index];
-                for (k, (normal, tangent, max)) in impulses.enumerate() {
-                    f(c.source, k, normal, tangent, max);
-                }
-            }
-        }
+        self.batches.for_each_point_result(f);
     }
 }

@@ -16,16 +16,17 @@
 //! the empty lanes of a colour's last batch, carry zero masses and so apply zero impulses.
 //!
 //! Files: `coloring.rs` (which manifolds go into which batch), `batch.rs` (a batch: its preparation, warm
-//! start, passes and results), `groups.rs` (a colour's batches on several threads), `lanes.rs` (the lane
-//! arithmetic and transposes).
+//! start and passes), `results.rs` (its impulses read back per manifold), `groups.rs` (a colour's batches on
+//! several threads), `lanes.rs` (the lane arithmetic and transposes).
 
 mod batch;
 mod coloring;
 mod groups;
 mod lanes;
+mod results;
 #[cfg(test)]
 mod tests;
 
-pub(crate) use batch::{Batch, LaneVelocities, PatchX4, PointX4};
+pub(crate) use batch::{Batches, LaneVelocities};
 pub(crate) use coloring::Coloring;
 pub(crate) use groups::{solve_batches, warm_start_batches};

@@ -1,12 +1,17 @@
 //! A batch of the wide contact path: up to four manifolds without a moving body in common, side by side in
 //! the four lanes of a `Vec4`. Built in stage *prepare* with the scalar path's formulas, lane by lane; its
 //! *warm start* and its passes (*solve*, *relax*) are the scalar path's equations in four lanes; its results
-//! are read back per manifold for *store impulses*.
+//! are read back per manifold for *store impulses* (`super::results`).
+//!
+//! Hot and cold: the passes stream every batch twelve times a step (four substeps of warm start, solve and
+//! relax), so what they read — [`Batch`], its [`PatchX4`], its point slots and, for manifolds of two points or
+//! more, its [`TwistX4`] — holds nothing else; what only the read-back needs (which manifolds, the patch
+//! centre and spread) is in [`BatchInfo`]. Indices are `u32`.
 
 use super::lanes::{LANES, LaneStates, Mask4, Mat3x4, PointLanes, Vec3x4, gather1, gather3};
 use crate::contact::bias::Bias;
 use crate::contact::manifold::ContactPoint;
-use crate::contact::patch::{PatchShare, patch_sums};
+use crate::contact::patch::patch_sums;
 use crate::contact::prepared::{PrepareInput, PreparedContact};
 use crate::{SolverBody, StepContext};
 use rebound_math::{Mat3, Vec3, Vec4};
@@ -30,61 +35,74 @@ pub(crate) struct PointX4 {
     pub(crate) wn_b: Vec3x4,
 }
 
-/// A batch's friction patch in each lane: two tangent rows at the centre of the manifold's points and one
-/// twist row about the normal.
+/// A batch's friction patch in each lane: two tangent rows at the centre of the manifold's points (the twist
+/// row is [`TwistX4`]). One per batch, at the batch's index.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub(crate) struct PatchX4 {
-    /// The patch centre relative to body A's centre of mass (m).
-    pub(crate) center_a: Vec3x4,
-    /// `Σ|ρ|²` over the points, `ρ` a point's offset from the centre (m²).
-    pub(crate) spread: Vec4,
     pub(crate) tangent_impulse: [Vec4; 2],
     pub(crate) tangent_mass: [Vec4; 2],
     pub(crate) rt_a: [Vec3x4; 2],
     pub(crate) rt_b: [Vec3x4; 2],
     pub(crate) wt_a: [Vec3x4; 2],
     pub(crate) wt_b: [Vec3x4; 2],
-    pub(crate) twist_impulse: Vec4,
-    pub(crate) twist_mass: Vec4,
-    /// `I⁻¹·n` of each body.
-    pub(crate) twist_a: Vec3x4,
-    pub(crate) twist_b: Vec3x4,
 }
 
 impl PatchX4 {
-    /// No patch: zero impulses (what a batch without one reports).
+    /// No patch: zero impulses and masses.
     pub(crate) const EMPTY: Self = Self {
-        center_a: Vec3x4::ZERO,
-        spread: Vec4::ZERO,
         tangent_impulse: [Vec4::ZERO; 2],
         tangent_mass: [Vec4::ZERO; 2],
         rt_a: [Vec3x4::ZERO; 2],
         rt_b: [Vec3x4::ZERO; 2],
         wt_a: [Vec3x4::ZERO; 2],
         wt_b: [Vec3x4::ZERO; 2],
-        twist_impulse: Vec4::ZERO,
-        twist_mass: Vec4::ZERO,
+    };
+}
+
+/// A batch's twist row about the normal in each lane: only batches with a manifold of two points or more
+/// have one (a lone point has no lever to resist twist with).
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
+pub(crate) struct TwistX4 {
+    /// Accumulated twist impulse (N·m·s).
+    pub(crate) impulse: Vec4,
+    pub(crate) mass: Vec4,
+    /// `I⁻¹·n` of each body.
+    pub(crate) twist_a: Vec3x4,
+    pub(crate) twist_b: Vec3x4,
+}
+
+impl TwistX4 {
+    /// No twist row: zero impulse (what a batch without one reports).
+    pub(crate) const EMPTY: Self = Self {
+        impulse: Vec4::ZERO,
+        mass: Vec4::ZERO,
         twist_a: Vec3x4::ZERO,
         twist_b: Vec3x4::ZERO,
     };
 }
 
-/// Up to four manifolds without a moving body in common, solved side by side.
+/// What the read-back of a batch needs and its passes do not: which manifolds its lanes hold, and its patch's
+/// centre and spread. One per batch, at the batch's index.
 #[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct BatchInfo {
+    /// Indices of the manifolds (into the solver's prepared contacts); the batch's `lanes` first are used.
+    pub(crate) contacts: [u32; LANES],
+    /// Each lane's source contact (`PreparedContact::source`).
+    pub(crate) sources: [u32; LANES],
+    /// Each lane's number of points (0 in an empty lane).
+    pub(crate) point_counts: [u32; LANES],
+    /// The patch centre relative to body A's centre of mass (m).
+    pub(crate) center_a: Vec3x4,
+    /// `Σ|ρ|²` over the points, `ρ` a point's offset from the centre (m²).
+    pub(crate) spread: Vec4,
+}
+
+/// Up to four manifolds without a moving body in common, solved side by side: what the passes read of them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub(crate) struct Batch {
-    /// Indices of the manifolds (into the solver's prepared contacts); `lanes` of them are used.
-    pub(crate) contacts: [usize; LANES],
-    pub(crate) lanes: usize,
-    pub(crate) body_a: [usize; LANES],
-    pub(crate) body_b: [usize; LANES],
-    /// The batch's point slots in the solver's slot array: `first_slot .. first_slot + slots`, as many as
-    /// its largest manifold has points.
-    pub(crate) first_slot: usize,
-    pub(crate) slots: usize,
-    /// The batch's friction patch (index into the solver's patches).
-    pub(crate) patch: usize,
-    /// Whether some lane has two points or more (else no twist row).
-    pub(crate) twist: bool,
     pub(crate) normal: Vec3x4,
     pub(crate) tangents: [Vec3x4; 2],
     pub(crate) friction: Vec4,
@@ -95,21 +113,53 @@ pub(crate) struct Batch {
     pub(crate) impulse_scale: Vec4,
     /// Minus each lane's push-out speed cap (m/s).
     pub(crate) max_push: Vec4,
+    pub(crate) body_a: [u32; LANES],
+    pub(crate) body_b: [u32; LANES],
+    /// The batch's point slots in the solver's slot array: `first_slot .. first_slot + slots`, as many as
+    /// its largest manifold has points.
+    pub(crate) first_slot: u32,
+    /// The batch's twist row in the solver's twist rows if `twist`; else where the next batch's would go.
+    pub(crate) first_twist: u32,
+    pub(crate) slots: u16,
+    /// The lanes used (1 to 4).
+    pub(crate) lanes: u8,
+    /// Whether some lane has two points or more (else no twist row).
+    pub(crate) twist: bool,
 }
 
-impl Batch {
-    /// The batch of the manifolds `group` (one to four indices into `contacts`); its point slots are pushed
-    /// onto `slots`. The points are prepared in the lanes, with the scalar path's formulas in the same order of
-    /// operations (`PreparedPoint::new`: `r × n`, `I⁻¹·(r × n)`, `1/K`), so each lane holds bit for bit
-    /// what the scalar path would compute.
+/// The wide path's arrays: the batches and, at each batch's index, its patch and its read-back info; the point
+/// slots and twist rows the batches index. Reused from step to step.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Batches {
+    pub(crate) batches: Vec<Batch>,
+    pub(crate) patches: Vec<PatchX4>,
+    pub(crate) infos: Vec<BatchInfo>,
+    pub(crate) slots: Vec<PointX4>,
+    pub(crate) twists: Vec<TwistX4>,
+}
+
+impl Batches {
+    /// Empties every array (keeping their storage).
+    pub(crate) fn clear(&mut self) {
+        self.batches.clear();
+        self.patches.clear();
+        self.infos.clear();
+        self.slots.clear();
+        self.twists.clear();
+    }
+
+    /// Adds the batch of the manifolds `group` (one to four indices into `contacts`), with its patch, its
+    /// point slots, its twist row if it has one and its read-back info. The points are prepared in the lanes,
+    /// with the scalar path's formulas in the same order of operations (`PreparedPoint::new`: `r × n`,
+    /// `I⁻¹·(r × n)`, `1/K`), so each lane holds bit for bit what the scalar path would compute.
     #[inline]
-    pub(crate) fn new(
+    pub(crate) fn push(
+        &mut self,
         group: &[usize],
         contacts: &[PreparedContact],
         input: &PrepareInput<'_>,
-        slots: &mut Vec<PointX4>,
-        patches: &mut Vec<PatchX4>,
-    ) -> Self {
+    ) {
+        let slots = &mut self.slots;
         let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
         let lanes = [lane(0), lane(1), lane(2), lane(3)];
         let headers = lanes.map(|c| c.copied().unwrap_or(EMPTY_LANE));
@@ -209,11 +259,7 @@ impl Batch {
         }
         let [center_a, center_b, warm_linear] = sums.unwrap_or([Vec3x4::ZERO; 3]);
         let twist = lanes.iter().flatten().any(|c| c.point_count > 1);
-        let mut patch = PatchX4 {
-            center_a,
-            spread,
-            ..PatchX4::EMPTY
-        };
+        let mut patch = PatchX4::EMPTY;
         for (i, t) in tangents.iter().enumerate() {
             patch.rt_a[i] = center_a.cross(t);
             patch.rt_b[i] = center_b.cross(t);
@@ -224,30 +270,35 @@ impl Batch {
                 present,
             );
         }
-        // A batch of one-point manifolds has no twist row (no lever to resist twist with).
-        if twist {
-            patch.twist_a = inertia_a.mul(&normal);
-            patch.twist_b = inertia_b.mul(&normal);
-            patch.twist_mass = invert(
-                normal.dot(&patch.twist_a) + normal.dot(&patch.twist_b),
-                present,
-            );
-        }
         if input.ctx.warm_starting {
             patch.tangent_impulse = [warm_linear.dot(&tangents[0]), warm_linear.dot(&tangents[1])];
-            patch.twist_impulse = warm_twist;
         }
-        let patch_index = patches.len();
-        patches.push(patch);
-        Self {
-            contacts: [0, 1, 2, 3].map(|i| group.get(i).copied().unwrap_or(0)),
-            lanes: group.len(),
-            body_a: headers.map(|c| c.body_a),
-            body_b: headers.map(|c| c.body_b),
-            first_slot,
-            slots: slot_count,
-            patch: patch_index,
-            twist,
+        let first_twist = self.twists.len() as u32;
+        // A batch of one-point manifolds has no twist row (no lever to resist twist with).
+        if twist {
+            let twist_a = inertia_a.mul(&normal);
+            let twist_b = inertia_b.mul(&normal);
+            self.twists.push(TwistX4 {
+                impulse: if input.ctx.warm_starting {
+                    warm_twist
+                } else {
+                    Vec4::ZERO
+                },
+                mass: invert(normal.dot(&twist_a) + normal.dot(&twist_b), present),
+                twist_a,
+                twist_b,
+            });
+        }
+        self.patches.push(patch);
+        let index = |i: usize| group.get(i).map_or(0, |&index| index as u32);
+        self.infos.push(BatchInfo {
+            contacts: [0, 1, 2, 3].map(index),
+            sources: headers.map(|c| c.source as u32),
+            point_counts: headers.map(|c| c.point_count as u32),
+            center_a,
+            spread,
+        });
+        self.batches.push(Batch {
             normal,
             tangents,
             friction: gather1(&headers, |c| c.friction),
@@ -257,32 +308,60 @@ impl Batch {
             mass_scale: gather1(&headers, |c| c.softness.mass_scale),
             impulse_scale: gather1(&headers, |c| c.softness.impulse_scale),
             max_push: gather1(&headers, |c| -c.max_push_out_speed),
-        }
+            body_a: headers.map(|c| c.body_a as u32),
+            body_b: headers.map(|c| c.body_b as u32),
+            first_slot: first_slot as u32,
+            first_twist,
+            slots: slot_count as u16,
+            lanes: group.len() as u8,
+            twist,
+        });
     }
+}
 
+impl Batch {
     /// One pass (solve or relax) over the batch: normal rows of every slot, then friction — the scalar
     /// solve's equations in four lanes.
     #[inline(never)]
     pub(crate) fn solve(
         &self,
+        patch: &mut PatchX4,
         slots: &mut [PointX4],
-        patches: &mut [PatchX4],
+        twists: &mut [TwistX4],
         bodies: &mut [SolverBody],
         ctx: &StepContext,
         bias: Bias,
     ) {
-        let points = &mut slots[self.first_slot..][..self.slots];
-        let velocities = self.solve_lanes(points, patches.get_mut(self.patch), bodies, ctx, bias);
+        let velocities = self.solve_lanes(self.rows(patch, slots, twists), bodies, ctx, bias);
         self.scatter(bodies, &velocities);
     }
 
-    /// [`Batch::solve`] up to the write-back: the lanes' new velocities, from `points` (the batch's slots)
-    /// and its patch, with `bodies` only read.
+    /// The batch's rows in the solver's arrays: its `patch`, its slots of `slots` and its twist row of
+    /// `twists`.
+    #[inline(always)]
+    pub(crate) fn rows<'a>(
+        &self,
+        patch: &'a mut PatchX4,
+        slots: &'a mut [PointX4],
+        twists: &'a mut [TwistX4],
+    ) -> Rows<'a> {
+        Rows {
+            points: &mut slots[self.first_slot as usize..][..usize::from(self.slots)],
+            patch,
+            twist: if self.twist {
+                twists.get_mut(self.first_twist as usize)
+            } else {
+                None
+            },
+        }
+    }
+
+    /// [`Batch::solve`] up to the write-back: the lanes' new velocities, from the batch's rows, with `bodies`
+    /// only read.
     #[inline(always)]
     pub(crate) fn solve_lanes(
         &self,
-        points: &mut [PointX4],
-        patch: Option<&mut PatchX4>,
+        rows: Rows<'_>,
         bodies: &[SolverBody],
         ctx: &StepContext,
         bias: Bias,
@@ -310,6 +389,11 @@ impl Batch {
         let mut u = normal.dot(&vb.sub(&va));
         let u_gain = (self.inv_mass_a + self.inv_mass_b) * normal.dot(&normal);
         let mut pushed = zero;
+        let Rows {
+            points,
+            patch: p,
+            twist,
+        } = rows;
         for p in points.iter_mut() {
             let s = p.separation + shift + turn_b.dot(&p.anchor_b) - turn_a.dot(&p.anchor_a);
             let vn = u + wb.dot(&p.rn_b) - wa.dot(&p.rn_a);
@@ -343,45 +427,41 @@ impl Batch {
         vb.add_scaled(&normal, pushed * self.inv_mass_b);
         let [t0, t1] = self.tangents;
         // The patch's rows, limited by this pass's normal impulses.
-        if let Some(p) = patch {
-            let dv = vb.sub(&va);
-            let vt0 = t0.dot(&dv) + wb.dot(&p.rt_b[0]) - wa.dot(&p.rt_a[0]);
-            let vt1 = t1.dot(&dv) + wb.dot(&p.rt_b[1]) - wa.dot(&p.rt_a[1]);
-            let x = p.tangent_impulse[0] - p.tangent_mass[0] * vt0;
-            let y = p.tangent_impulse[1] - p.tangent_mass[1] * vt1;
-            // Clamp to the friction circle (glam's `clamp_length_max`, lane by lane).
-            let limit = self.friction * total;
-            let length_squared = x * x + y * y;
-            let slipping = length_squared.cmpgt(limit * limit);
-            // Most patches of a resting pile stick: the square root and division (a long dependency chain)
-            // only when some lane slips. Multiplying by the kept lanes' 1 changes no bit, so this is the
-            // unbranched clamp's result.
-            let (x, y) = if slipping.any() {
-                let scale = Vec4::select(slipping, limit / length_squared.sqrt(), one);
-                (x * scale, y * scale)
-            } else {
-                (x, y)
-            };
-            let (ax, ay) = (x - p.tangent_impulse[0], y - p.tangent_impulse[1]);
-            p.tangent_impulse = [x, y];
-            let linear = t0.scale(ax).add(&t1.scale(ay));
-            va.sub_scaled(&linear, self.inv_mass_a);
-            vb.add_scaled(&linear, self.inv_mass_b);
-            wa.sub_scaled(&p.wt_a[0], ax);
-            wa.sub_scaled(&p.wt_a[1], ay);
-            wb.add_scaled(&p.wt_b[0], ax);
-            wb.add_scaled(&p.wt_b[1], ay);
-            if self.twist {
-                let spin = normal.dot(&wb.sub(&wa));
-                let limit = self.friction * twist_total;
-                let candidate = (p.twist_impulse - p.twist_mass * spin)
-                    .max(-limit)
-                    .min(limit);
-                let applied = candidate - p.twist_impulse;
-                p.twist_impulse = candidate;
-                wa.sub_scaled(&p.twist_a, applied);
-                wb.add_scaled(&p.twist_b, applied);
-            }
+        let dv = vb.sub(&va);
+        let vt0 = t0.dot(&dv) + wb.dot(&p.rt_b[0]) - wa.dot(&p.rt_a[0]);
+        let vt1 = t1.dot(&dv) + wb.dot(&p.rt_b[1]) - wa.dot(&p.rt_a[1]);
+        let x = p.tangent_impulse[0] - p.tangent_mass[0] * vt0;
+        let y = p.tangent_impulse[1] - p.tangent_mass[1] * vt1;
+        // Clamp to the friction circle (glam's `clamp_length_max`, lane by lane).
+        let limit = self.friction * total;
+        let length_squared = x * x + y * y;
+        let slipping = length_squared.cmpgt(limit * limit);
+        // Most patches of a resting pile stick: the square root and division (a long dependency chain)
+        // only when some lane slips. Multiplying by the kept lanes' 1 changes no bit, so this is the
+        // unbranched clamp's result.
+        let (x, y) = if slipping.any() {
+            let scale = Vec4::select(slipping, limit / length_squared.sqrt(), one);
+            (x * scale, y * scale)
+        } else {
+            (x, y)
+        };
+        let (ax, ay) = (x - p.tangent_impulse[0], y - p.tangent_impulse[1]);
+        p.tangent_impulse = [x, y];
+        let linear = t0.scale(ax).add(&t1.scale(ay));
+        va.sub_scaled(&linear, self.inv_mass_a);
+        vb.add_scaled(&linear, self.inv_mass_b);
+        wa.sub_scaled(&p.wt_a[0], ax);
+        wa.sub_scaled(&p.wt_a[1], ay);
+        wb.add_scaled(&p.wt_b[0], ax);
+        wb.add_scaled(&p.wt_b[1], ay);
+        if let Some(r) = twist {
+            let spin = normal.dot(&wb.sub(&wa));
+            let limit = self.friction * twist_total;
+            let candidate = (r.impulse - r.mass * spin).max(-limit).min(limit);
+            let applied = candidate - r.impulse;
+            r.impulse = candidate;
+            wa.sub_scaled(&r.twist_a, applied);
+            wb.add_scaled(&r.twist_b, applied);
         }
         LaneVelocities { va, wa, vb, wb }
     }
@@ -389,12 +469,17 @@ impl Batch {
     /// Stage *warm start* for the batch's manifolds: applies their accumulated impulses again.
     pub(crate) fn warm_start(
         &self,
+        patch: &PatchX4,
         slots: &[PointX4],
-        patches: &[PatchX4],
+        twists: &[TwistX4],
         bodies: &mut [SolverBody],
     ) {
-        let points = &slots[self.first_slot..][..self.slots];
-        let velocities = self.warm_start_lanes(points, patches.get(self.patch), bodies);
+        let points = &slots[self.first_slot as usize..][..usize::from(self.slots)];
+        let twist = self
+            .twist
+            .then(|| twists.get(self.first_twist as usize))
+            .flatten();
+        let velocities = self.warm_start_lanes(points, patch, twist, bodies);
         self.scatter(bodies, &velocities);
     }
 
@@ -403,7 +488,8 @@ impl Batch {
     pub(crate) fn warm_start_lanes(
         &self,
         points: &[PointX4],
-        patch: Option<&PatchX4>,
+        p: &PatchX4,
+        twist: Option<&TwistX4>,
         bodies: &[SolverBody],
     ) -> LaneVelocities {
         let ((mut va, mut wa), (mut vb, mut wb)) = (
@@ -419,20 +505,18 @@ impl Batch {
         }
         va.sub_scaled(&self.normal, pushed * self.inv_mass_a);
         vb.add_scaled(&self.normal, pushed * self.inv_mass_b);
-        if let Some(p) = patch {
-            let [t0, t1] = self.tangents;
-            let [x, y] = p.tangent_impulse;
-            let linear = t0.scale(x).add(&t1.scale(y));
-            va.sub_scaled(&linear, self.inv_mass_a);
-            vb.add_scaled(&linear, self.inv_mass_b);
-            wa.sub_scaled(&p.wt_a[0], x);
-            wa.sub_scaled(&p.wt_a[1], y);
-            wb.add_scaled(&p.wt_b[0], x);
-            wb.add_scaled(&p.wt_b[1], y);
-            if self.twist {
-                wa.sub_scaled(&p.twist_a, p.twist_impulse);
-                wb.add_scaled(&p.twist_b, p.twist_impulse);
-            }
+        let [t0, t1] = self.tangents;
+        let [x, y] = p.tangent_impulse;
+        let linear = t0.scale(x).add(&t1.scale(y));
+        va.sub_scaled(&linear, self.inv_mass_a);
+        vb.add_scaled(&linear, self.inv_mass_b);
+        wa.sub_scaled(&p.wt_a[0], x);
+        wa.sub_scaled(&p.wt_a[1], y);
+        wb.add_scaled(&p.wt_b[0], x);
+        wb.add_scaled(&p.wt_b[1], y);
+        if let Some(r) = twist {
+            wa.sub_scaled(&r.twist_a, r.impulse);
+            wb.add_scaled(&r.twist_b, r.impulse);
         }
         LaneVelocities { va, wa, vb, wb }
     }
@@ -442,12 +526,12 @@ impl Batch {
     #[inline(always)]
     fn states<'a>(
         &self,
-        index: &[usize; LANES],
+        index: &[u32; LANES],
         bodies: &'a [SolverBody],
     ) -> [&'a SolverBody; LANES] {
         let lane = |k: usize| {
-            if k < self.lanes {
-                bodies.get(index[k]).unwrap_or(&SolverBody::STATIC)
+            if k < usize::from(self.lanes) {
+                bodies.get(index[k] as usize).unwrap_or(&SolverBody::STATIC)
             } else {
                 &SolverBody::STATIC
             }
@@ -460,72 +544,22 @@ impl Batch {
     pub(crate) fn scatter(&self, bodies: &mut [SolverBody], velocities: &LaneVelocities) {
         let LaneVelocities { va, wa, vb, wb } = velocities;
         let (va, wa, vb, wb) = (va.lanes(), wa.lanes(), vb.lanes(), wb.lanes());
-        for lane in 0..self.lanes {
-            let a = &mut bodies[self.body_a[lane]];
+        for lane in 0..usize::from(self.lanes) {
+            let a = &mut bodies[self.body_a[lane] as usize];
             a.linear_velocity = va[lane];
             a.angular_velocity = wa[lane];
-            let b = &mut bodies[self.body_b[lane]];
+            let b = &mut bodies[self.body_b[lane] as usize];
             b.linear_velocity = vb[lane];
             b.angular_velocity = wb[lane];
         }
     }
+}
 
-    /// For each lane: the manifold's index and its points' accumulated normal impulses (N·s).
-    pub(crate) fn normal_impulses<'a>(
-        &'a self,
-        slots: &'a [PointX4],
-        contacts: &'a [PreparedContact],
-    ) -> impl Iterator<Item = (usize, impl Iterator<Item = f32> + 'a)> + 'a {
-        let points = &slots[self.first_slot..][..self.slots];
-        self.contacts[..self.lanes]
-            .iter()
-            .enumerate()
-            .map(move |(lane, &index)| {
-                let count = contacts[index].point_count;
-                (
-                    index,
-                    points[..count].iter().map(move |w| w.normal_impulse[lane]),
-                )
-            })
-    }
-
-    /// For each lane: the manifold's index, and per point its accumulated normal impulse, its share of the
-    /// patch's friction (world vector, [`PatchShare`]) and its largest applied normal impulse.
-    pub(crate) fn results<'a>(
-        &'a self,
-        slots: &'a [PointX4],
-        patches: &'a [PatchX4],
-        contacts: &'a [PreparedContact],
-    ) -> impl Iterator<Item = (usize, impl Iterator<Item = (f32, Vec3, f32)> + 'a)> + 'a {
-        let points = &slots[self.first_slot..][..self.slots];
-        let patch = patches.get(self.patch).unwrap_or(&PatchX4::EMPTY);
-        self.contacts[..self.lanes]
-            .iter()
-            .enumerate()
-            .map(move |(lane, &index)| {
-                let c = &contacts[index];
-                let share = PatchShare::new(
-                    c.normal,
-                    c.tangents,
-                    [
-                        patch.tangent_impulse[0][lane],
-                        patch.tangent_impulse[1][lane],
-                    ],
-                    patch.twist_impulse[lane],
-                    patch.spread[lane],
-                    c.point_count,
-                );
-                let center = patch.center_a.lane(lane);
-                let impulses = points[..c.point_count].iter().map(move |w| {
-                    (
-                        w.normal_impulse[lane],
-                        share.at(w.anchor_a.lane(lane) - center),
-                        w.max_normal_impulse[lane],
-                    )
-                });
-                (index, impulses)
-            })
-    }
+/// A pass's rows of one batch: its point slots, its patch and its twist row if it has one.
+pub(crate) struct Rows<'a> {
+    pub(crate) points: &'a mut [PointX4],
+    pub(crate) patch: &'a mut PatchX4,
+    pub(crate) twist: Option<&'a mut TwistX4>,
 }
 
 /// A pass's result for a batch before it is written back: each lane's new linear and angular velocities of

@@ -2,7 +2,7 @@
 //! manifolds are given, in order, the first colour in which neither of their moving bodies appears yet, chunk
 //! by chunk; each colour's manifolds become batches of four. Stage *prepare*.
 
-use super::batch::{Batch, PatchX4, PointX4};
+use super::batch::Batches;
 use super::lanes::LANES;
 use crate::contact::prepared::{PrepareInput, PreparedContact};
 
@@ -46,15 +46,11 @@ impl Coloring {
         &mut self,
         contacts: &[PreparedContact],
         input: &PrepareInput<'_>,
-        batches: &mut Vec<Batch>,
-        slots: &mut Vec<PointX4>,
-        patches: &mut Vec<PatchX4>,
+        batches: &mut Batches,
         scalar: &mut Vec<usize>,
     ) {
         let params = input.params;
         batches.clear();
-        slots.clear();
-        patches.clear();
         scalar.clear();
         self.group_ends.clear();
         self.used.clear();
@@ -85,7 +81,7 @@ impl Coloring {
                 }
                 self.members[color].push(index);
             }
-            self.flush(chunk, contacts, input, batches, slots, patches);
+            self.flush(chunk, contacts, input, batches);
         }
     }
 
@@ -96,16 +92,14 @@ impl Coloring {
         chunk: &[PreparedContact],
         contacts: &[PreparedContact],
         input: &PrepareInput<'_>,
-        batches: &mut Vec<Batch>,
-        slots: &mut Vec<PointX4>,
-        patches: &mut Vec<PatchX4>,
+        batches: &mut Batches,
     ) {
         for members in &mut self.members {
             for group in members.chunks(LANES) {
-                batches.push(Batch::new(group, contacts, input, slots, patches));
+                batches.push(group, contacts, input);
             }
             if !members.is_empty() {
-                self.group_ends.push(batches.len());
+                self.group_ends.push(batches.batches.len());
             }
             members.clear();
         }

@@ -103,7 +103,7 @@ impl Vec3x4 {
     }
 
     /// The vector of lane `lane`.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn lane(&self, lane: usize) -> Vec3 {
         Vec3::new(self.x[lane], self.y[lane], self.z[lane])
     }

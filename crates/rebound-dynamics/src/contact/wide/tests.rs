@@ -4,7 +4,7 @@
 
 use super::coloring::CHUNK;
 use super::lanes::Vec3x4;
-use crate::contact::patch::Patch;
+use crate::contact::patch::{Patch, PatchShare};
 use crate::contact::prepared::PrepareInput;
 use crate::contact::scalar::PreparedPoint;
 use crate::contact::{Contact, ContactPoint, ContactSolver};
@@ -78,7 +78,7 @@ fn run(wide: bool, n: usize, only_ground: bool) -> (Vec<SolverBody>, Vec<Contact
     let mut solver = ContactSolver::new();
     solver.coloring.scalar_only = !wide;
     solver.prepare(&contacts, &bodies, &params, &ctx);
-    assert_eq!(solver.batches.is_empty(), !wide);
+    assert_eq!(solver.batches.batches.is_empty(), !wide);
     solver.warm_start(&mut bodies);
     solver.solve(&mut bodies, &ctx, Bias::On);
     solver.solve(&mut bodies, &ctx, Bias::Off);
@@ -128,31 +128,41 @@ fn lanes_are_prepared_bit_for_bit_as_the_scalar_points() {
     };
     let bits = |v: Vec3| v.to_array().map(f32::to_bits);
     let mut compared = 0;
-    for batch in &solver.batches {
-        for (l, &index) in batch.contacts[..batch.lanes].iter().enumerate() {
-            let c = &solver.contacts[index];
+    let wide = &solver.batches;
+    for (b, batch) in wide.batches.iter().enumerate() {
+        let info = &wide.infos[b];
+        let lanes = usize::from(batch.lanes);
+        for (l, &index) in info.contacts[..lanes].iter().enumerate() {
+            let c = &solver.contacts[index as usize];
+            assert_eq!(info.sources[l] as usize, c.source);
+            assert_eq!(info.point_counts[l] as usize, c.point_count);
             let points = contacts[c.source].points();
             let lane_of = |v: &Vec3x4| v.lane(l);
             let patch = Patch::new(&input, c, points);
-            let x4 = &solver.patches_x4[batch.patch];
-            assert_eq!(bits(lane_of(&x4.center_a)), bits(patch.center_a));
+            let x4 = &wide.patches[b];
+            assert!(
+                batch.twist,
+                "every manifold of the scene has two points or more"
+            );
+            let twist = wide.twists[batch.first_twist as usize];
+            assert_eq!(bits(lane_of(&info.center_a)), bits(patch.center_a));
             assert_eq!(bits(lane_of(&x4.wt_a[0])), bits(patch.wt_a[0]));
             assert_eq!(bits(lane_of(&x4.wt_b[1])), bits(patch.wt_b[1]));
-            assert_eq!(bits(lane_of(&x4.twist_b)), bits(patch.twist_b));
+            assert_eq!(bits(lane_of(&twist.twist_b)), bits(patch.twist_b));
             for (wide, scalar) in [
-                (x4.spread, patch.spread),
+                (info.spread, patch.spread),
                 (x4.tangent_mass[0], patch.tangent_mass[0]),
                 (x4.tangent_mass[1], patch.tangent_mass[1]),
                 (x4.tangent_impulse[0], patch.tangent_impulse.x),
                 (x4.tangent_impulse[1], patch.tangent_impulse.y),
-                (x4.twist_impulse, patch.twist_impulse),
-                (x4.twist_mass, patch.twist_mass),
+                (twist.impulse, patch.twist_impulse),
+                (twist.mass, patch.twist_mass),
             ] {
                 assert_eq!(wide[l].to_bits(), scalar.to_bits());
             }
             for (k, point) in points.iter().enumerate() {
                 let scalar = PreparedPoint::new(&input, c, point, patch.center_a);
-                let slot = &solver.slots[batch.first_slot + k];
+                let slot = &wide.slots[batch.first_slot as usize + k];
                 assert_eq!(bits(lane_of(&slot.wn_a)), bits(scalar.wn_a));
                 assert_eq!(bits(lane_of(&slot.wn_b)), bits(scalar.wn_b));
                 for (wide, scalar) in [
@@ -190,23 +200,69 @@ fn check_batches(n: usize) {
     let mut solver = ContactSolver::new();
     solver.prepare(&contacts, &bodies, &params, &ctx);
     let mut solved = vec![0; contacts.len()];
-    for batch in &solver.batches {
-        let lanes = &batch.body_a[..batch.lanes]
+    for (batch, info) in solver.batches.batches.iter().zip(&solver.batches.infos) {
+        let used = usize::from(batch.lanes);
+        let lanes = &batch.body_a[..used]
             .iter()
-            .chain(&batch.body_b[..batch.lanes])
-            .filter(|&&b| params[b].is_dynamic())
+            .chain(&batch.body_b[..used])
+            .filter(|&&b| params[b as usize].is_dynamic())
             .collect::<Vec<_>>();
         let mut unique = lanes.clone();
         unique.sort_unstable();
         unique.dedup();
         assert_eq!(unique.len(), lanes.len(), "a body twice in one batch");
-        for &c in &batch.contacts[..batch.lanes] {
-            solved[c] += 1;
+        for &c in &info.contacts[..used] {
+            solved[c as usize] += 1;
         }
     }
     for &c in &solver.scalar {
         solved[c] += 1;
     }
     assert!(solved.iter().all(|&n| n == 1), "every manifold solved once");
-    assert!(!solver.batches.is_empty());
+    assert!(!solver.batches.batches.is_empty());
+}
+
+#[test]
+fn lanes_read_back_the_scalar_friction_shares_bit_for_bit() {
+    // After a substep's passes, the friction each point reports is `PatchShare::at` of its lane's patch.
+    let (mut bodies, params, contacts) = scene(9);
+    let ctx = StepContext::new(1.0 / 60.0, &SolverSettings::default());
+    let mut solver = ContactSolver::new();
+    solver.prepare(&contacts, &bodies, &params, &ctx);
+    solver.warm_start(&mut bodies);
+    solver.solve(&mut bodies, &ctx, Bias::On);
+    solver.solve(&mut bodies, &ctx, Bias::Off);
+    let wide = &solver.batches;
+    let mut expected = Vec::new();
+    for (b, batch) in wide.batches.iter().enumerate() {
+        let (info, patch) = (&wide.infos[b], &wide.patches[b]);
+        let twist = batch
+            .twist
+            .then(|| wide.twists[batch.first_twist as usize].impulse);
+        for l in 0..usize::from(batch.lanes) {
+            let c = &solver.contacts[info.contacts[l] as usize];
+            let share = PatchShare::new(
+                c.normal,
+                c.tangents,
+                [patch.tangent_impulse[0][l], patch.tangent_impulse[1][l]],
+                twist.map_or(0.0, |t| t[l]),
+                info.spread[l],
+                c.point_count,
+            );
+            for k in 0..c.point_count {
+                let slot = &wide.slots[batch.first_slot as usize + k];
+                let rho = slot.anchor_a.lane(l) - info.center_a.lane(l);
+                expected.push((c.source, k, share.at(rho)));
+            }
+        }
+    }
+    let mut read = Vec::new();
+    solver.for_each_point_result(|source, k, _, tangent, _| read.push((source, k, tangent)));
+    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+    let twisted = expected.iter().filter(|e| e.2 != expected[0].2).count();
+    assert!(twisted > 0, "the shares differ between points");
+    assert_eq!(read.len(), expected.len());
+    for (r, e) in read.iter().zip(&expected) {
+        assert_eq!((r.0, r.1, bits(r.2)), (e.0, e.1, bits(e.2)));
+    }
 }
