@@ -16,29 +16,31 @@ use crate::contact::prepared::{PrepareInput, PreparedContact};
 use crate::{SolverBody, StepContext};
 use rebound_math::{Mat3, Vec3, Vec4};
 
-/// One point slot of a batch: a [`PreparedPoint`]'s solve data in each lane.
+/// One point slot of a batch: a [`PreparedPoint`]'s solve data in each lane. Six cache lines (`align(64)`),
+/// laid out so that *warm start* reads the first two only.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[repr(C, align(64))]
 pub(crate) struct PointX4 {
-    pub(crate) anchor_a: Vec3x4,
-    pub(crate) anchor_b: Vec3x4,
-    pub(crate) separation: Vec4,
     pub(crate) normal_impulse: Vec4,
-    pub(crate) max_normal_impulse: Vec4,
-    pub(crate) normal_mass: Vec4,
-    /// The soft row's preload as a velocity bias (m/s, `PreparedContact::preload`).
-    pub(crate) preload: Vec4,
-    /// The point's distance from the patch centre (m): its lever against twist.
-    pub(crate) twist_radius: Vec4,
-    pub(crate) rn_a: Vec3x4,
-    pub(crate) rn_b: Vec3x4,
     pub(crate) wn_a: Vec3x4,
     pub(crate) wn_b: Vec3x4,
+    pub(crate) normal_mass: Vec4,
+    pub(crate) rn_a: Vec3x4,
+    pub(crate) separation: Vec4,
+    pub(crate) rn_b: Vec3x4,
+    pub(crate) max_normal_impulse: Vec4,
+    pub(crate) anchor_a: Vec3x4,
+    /// The point's distance from the patch centre (m): its lever against twist.
+    pub(crate) twist_radius: Vec4,
+    pub(crate) anchor_b: Vec3x4,
+    /// The soft row's preload as a velocity bias (m/s, `PreparedContact::preload`).
+    pub(crate) preload: Vec4,
 }
 
 /// A batch's friction patch in each lane: two tangent rows at the centre of the manifold's points (the twist
-/// row is [`TwistX4`]). One per batch, at the batch's index.
+/// row is [`TwistX4`]). One per batch, at the batch's index. Seven cache lines.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(C)]
+#[repr(C, align(64))]
 pub(crate) struct PatchX4 {
     pub(crate) tangent_impulse: [Vec4; 2],
     pub(crate) tangent_mass: [Vec4; 2],
@@ -61,9 +63,9 @@ impl PatchX4 {
 }
 
 /// A batch's twist row about the normal in each lane: only batches with a manifold of two points or more
-/// have one (a lone point has no lever to resist twist with).
+/// have one (a lone point has no lever to resist twist with). Two cache lines.
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(C)]
+#[repr(C, align(64))]
 pub(crate) struct TwistX4 {
     /// Accumulated twist impulse (N·m·s).
     pub(crate) impulse: Vec4,
@@ -100,19 +102,11 @@ pub(crate) struct BatchInfo {
 }
 
 /// Up to four manifolds without a moving body in common, solved side by side: what the passes read of them.
+/// Five cache lines (`align(64)`): the last holds what only *solve* reads (the bias and the soft row's
+/// scales), the first what every pass reads first (where the bodies and rows are).
 #[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(C)]
+#[repr(C, align(64))]
 pub(crate) struct Batch {
-    pub(crate) normal: Vec3x4,
-    pub(crate) tangents: [Vec3x4; 2],
-    pub(crate) friction: Vec4,
-    pub(crate) inv_mass_a: Vec4,
-    pub(crate) inv_mass_b: Vec4,
-    pub(crate) bias_rate: Vec4,
-    pub(crate) mass_scale: Vec4,
-    pub(crate) impulse_scale: Vec4,
-    /// Minus each lane's push-out speed cap (m/s).
-    pub(crate) max_push: Vec4,
     pub(crate) body_a: [u32; LANES],
     pub(crate) body_b: [u32; LANES],
     /// The batch's point slots in the solver's slot array: `first_slot .. first_slot + slots`, as many as
@@ -125,7 +119,20 @@ pub(crate) struct Batch {
     pub(crate) lanes: u8,
     /// Whether some lane has two points or more (else no twist row).
     pub(crate) twist: bool,
+    pub(crate) friction: Vec4,
+    pub(crate) normal: Vec3x4,
+    pub(crate) inv_mass_a: Vec4,
+    pub(crate) tangents: [Vec3x4; 2],
+    pub(crate) inv_mass_b: Vec4,
+    pub(crate) bias_rate: Vec4,
+    pub(crate) mass_scale: Vec4,
+    pub(crate) impulse_scale: Vec4,
+    /// Minus each lane's push-out speed cap (m/s).
+    pub(crate) max_push: Vec4,
 }
+
+const _: () = assert!(size_of::<PointX4>() == 6 * 64 && size_of::<Batch>() == 5 * 64);
+const _: () = assert!(size_of::<PatchX4>() == 7 * 64 && size_of::<TwistX4>() == 2 * 64);
 
 /// The wide path's arrays: the batches and, at each batch's index, its patch and its read-back info; the point
 /// slots and twist rows the batches index. Reused from step to step.
