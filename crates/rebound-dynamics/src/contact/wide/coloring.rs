@@ -26,8 +26,9 @@ pub(crate) const CHUNK: usize = 4096;
 /// Whether the wide path solves this contact exactly as the scalar path would: no bounce (restitution 0),
 /// no rolling block, no surface velocity, and some point.
 pub(crate) fn is_wide(c: &Contact) -> bool {
+    let rolls = c.rolling_friction > 0.0;
     c.restitution == 0.0
-        && !(c.rolling_friction > 0.0)
+        && !rolls
         && c.surface_velocity == Vec3::ZERO
         && !c.points().is_empty()
 }
