@@ -15,11 +15,7 @@ use rebound_math::Vec3;
 /// step (no allocation once it has grown to the scene's contact count).
 #[derive(Debug, Clone, Default)]
 pub struct ContactSolver {
-    /// The headers of the manifolds the scalar path solves, after the batches, in manifold order (a batched
-    /// manifold's header lives in its batch's lanes only).
     pub(crate) contacts: Vec<PreparedContact>,
-    /// The number of manifolds prepared, batched or not.
-    pub(crate) prepared: usize,
     /// The scalar path's points, manifold after manifold.
     pub(crate) points: Vec<PreparedPoint>,
     /// The friction patches of the scalar path's manifolds.
@@ -27,6 +23,8 @@ pub struct ContactSolver {
     pub(crate) rolling: Vec<Rolling>,
     /// The wide-solved manifolds, four at a time, colour after colour, with their rows (see `super::wide`).
     pub(crate) batches: Batches,
+    /// Indices of the manifolds the scalar path solves, after the batches.
+    pub(crate) scalar: Vec<usize>,
     pub(crate) coloring: Coloring,
     /// The lanes' velocities of a colour group while it is solved on several threads (`wide::groups`).
     pub(crate) lane_scratch: Vec<LaneVelocities>,
@@ -42,13 +40,13 @@ impl ContactSolver {
     /// The number of prepared manifolds.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.prepared
+        self.contacts.len()
     }
 
     /// Whether no manifold is prepared.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.prepared == 0
+        self.contacts.is_empty()
     }
 
     /// Stage *prepare*: computes tangents, effective masses, angular terms and pre-step normal velocities of
@@ -68,16 +66,9 @@ impl ContactSolver {
         self.points.clear();
         self.patches.clear();
         self.rolling.clear();
+        self.contacts.reserve(contacts.len());
         let body_count = bodies.len().min(params.len());
-        let input = PrepareInput {
-            contacts,
-            bodies,
-            params,
-            ctx,
-        };
-        self.coloring.begin(params.len(), &mut self.batches);
         let mut skipped = 0;
-        let mut in_chunk = 0;
         for (source, contact) in contacts.iter().enumerate() {
             if contact.body_a >= body_count
                 || contact.body_b >= body_count
@@ -87,27 +78,26 @@ impl ContactSolver {
                 skipped += 1;
                 continue;
             }
-            // A wide manifold goes to the colouring, which builds its batch from the contact at the chunk's
-            // end; the others, and those no colour is left for, get their header here for the scalar path.
-            if !(wide::is_wide(contact) && self.coloring.add(source, contact, params)) {
-                let (pa, pb) = (&params[contact.body_a], &params[contact.body_b]);
-                let rolling = (contact.rolling_friction > 0.0).then(|| {
-                    self.rolling
-                        .push(Rolling::new(contact.rolling_friction, pa, pb));
-                    self.rolling.len() - 1
-                });
-                self.contacts
-                    .push(PreparedContact::new(source, contact, pa, pb, rolling, ctx));
-            }
-            in_chunk += 1;
-            if in_chunk == wide::CHUNK {
-                self.coloring.flush(&input, &mut self.batches);
-                in_chunk = 0;
-            }
+            let (pa, pb) = (&params[contact.body_a], &params[contact.body_b]);
+            let rolling = (contact.rolling_friction > 0.0).then(|| {
+                self.rolling
+                    .push(Rolling::new(contact.rolling_friction, pa, pb));
+                self.rolling.len() - 1
+            });
+            self.contacts
+                .push(PreparedContact::new(source, contact, pa, pb, rolling, ctx));
         }
-        self.coloring.flush(&input, &mut self.batches);
-        self.prepared = contacts.len() - skipped;
-        for c in &mut self.contacts {
+        // Wide manifolds get their points straight into their batch's lanes; the scalar ones here.
+        let input = PrepareInput {
+            contacts,
+            bodies,
+            params,
+            ctx,
+        };
+        self.coloring
+            .build(&self.contacts, &input, &mut self.batches, &mut self.scalar);
+        for &index in &self.scalar {
+            let c = &mut self.contacts[index];
             let points = contacts[c.source].points();
             let patch = Patch::new(&input, c, points);
             c.first_point = self.points.len();
@@ -134,7 +124,7 @@ impl ContactSolver {
             bodies,
             &mut self.lane_scratch,
         );
-        for c in &self.contacts {
+        for c in self.scalar.iter().map(|&i| &self.contacts[i]) {
             scalar::warm_start(
                 c,
                 &self.points[c.first_point..c.first_point + c.point_count],
@@ -164,7 +154,8 @@ impl ContactSolver {
             ctx,
             bias,
         );
-        for c in &self.contacts {
+        for &index in &self.scalar {
+            let c = &self.contacts[index];
             scalar::solve(
                 c,
                 &mut self.points[c.first_point..c.first_point + c.point_count],
@@ -196,7 +187,8 @@ impl ContactSolver {
     /// so the accumulated impulses after each substep, summed, plus the bounce, are what the point pushed with
     /// over the step: what contact force events report.
     pub fn for_each_normal_impulse(&self, mut f: impl FnMut(usize, usize, f32, f32)) {
-        for c in &self.contacts {
+        for &index in &self.scalar {
+            let c = &self.contacts[index];
             for (k, p) in self.points[c.first_point..][..c.point_count]
                 .iter()
                 .enumerate()
@@ -214,7 +206,8 @@ impl ContactSolver {
     /// in one iteration this step (N·s) — what contact events report as the hit strength. For a caller that
     /// keeps its own contacts: one pass gives it everything [`ContactSolver::store_impulses`] writes and more.
     pub fn for_each_point_result(&self, mut f: impl FnMut(usize, usize, f32, Vec3, f32)) {
-        for c in &self.contacts {
+        for &index in &self.scalar {
+            let c = &self.contacts[index];
             let patch = self.patches.get(c.patch).copied().unwrap_or_default();
             let share = PatchShare::new(
                 c.normal,

@@ -28,5 +28,5 @@ mod results;
 mod tests;
 
 pub(crate) use batch::{Batches, LaneVelocities};
-pub(crate) use coloring::{CHUNK, Coloring, is_wide};
+pub(crate) use coloring::Coloring;
 pub(crate) use groups::{solve_batches, warm_start_batches};

@@ -89,7 +89,9 @@ impl TwistX4 {
 /// centre and spread. One per batch, at the batch's index.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct BatchInfo {
-    /// Each lane's manifold: its index in the contacts given to *prepare*; the batch's `lanes` first are used.
+    /// Indices of the manifolds (into the solver's prepared contacts); the batch's `lanes` first are used.
+    pub(crate) contacts: [u32; LANES],
+    /// Each lane's source contact (`PreparedContact::source`).
     pub(crate) sources: [u32; LANES],
     /// Each lane's number of points (0 in an empty lane).
     pub(crate) point_counts: [u32; LANES],
@@ -153,23 +155,20 @@ impl Batches {
         self.twists.clear();
     }
 
-    /// Adds the batch of the manifolds `group` (one to four indices into `input.contacts`), with its patch, its
+    /// Adds the batch of the manifolds `group` (one to four indices into `contacts`), with its patch, its
     /// point slots, its twist row if it has one and its read-back info. The points are prepared in the lanes,
     /// with the scalar path's formulas in the same order of operations (`PreparedPoint::new`: `r × n`,
     /// `I⁻¹·(r × n)`, `1/K`), so each lane holds bit for bit what the scalar path would compute.
     #[inline]
-    pub(crate) fn push(&mut self, group: &[usize], input: &PrepareInput<'_>) {
+    pub(crate) fn push(
+        &mut self,
+        group: &[usize],
+        contacts: &[PreparedContact],
+        input: &PrepareInput<'_>,
+    ) {
         let slots = &mut self.slots;
-        // Each lane's header, made here rather than stored: a batched manifold needs it only now.
-        let lane = |i: usize| {
-            group.get(i).map(|&source| {
-                let contact = &input.contacts[source];
-                let (pa, pb) = (&input.params[contact.body_a], &input.params[contact.body_b]);
-                PreparedContact::new(source, contact, pa, pb, None, input.ctx)
-            })
-        };
-        let owned = [lane(0), lane(1), lane(2), lane(3)];
-        let lanes = [0, 1, 2, 3].map(|i| owned[i].as_ref());
+        let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
+        let lanes = [lane(0), lane(1), lane(2), lane(3)];
         let headers = lanes.map(|c| c.copied().unwrap_or(EMPTY_LANE));
         let first_slot = slots.len();
         let slot_count = lanes
@@ -298,7 +297,9 @@ impl Batches {
             });
         }
         self.patches.push(patch);
+        let index = |i: usize| group.get(i).map_or(0, |&index| index as u32);
         self.infos.push(BatchInfo {
+            contacts: [0, 1, 2, 3].map(index),
             sources: headers.map(|c| c.source as u32),
             point_counts: headers.map(|c| c.point_count as u32),
             center_a,

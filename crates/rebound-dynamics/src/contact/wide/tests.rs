@@ -5,7 +5,7 @@
 use super::coloring::CHUNK;
 use super::lanes::Vec3x4;
 use crate::contact::patch::{Patch, PatchShare};
-use crate::contact::prepared::{PrepareInput, PreparedContact};
+use crate::contact::prepared::PrepareInput;
 use crate::contact::scalar::PreparedPoint;
 use crate::contact::{Contact, ContactPoint, ContactSolver};
 use crate::{Bias, BodyDesc, BodyParams, RigidBody, SolverBody, SolverSettings, StepContext};
@@ -66,17 +66,6 @@ fn scene(n: usize) -> (Vec<SolverBody>, Vec<BodyParams>, Vec<Contact>) {
         }
     }
     (bodies, params, contacts)
-}
-
-/// The prepared header of manifold `source` of `contacts`, as *prepare* makes it for a batch's lane.
-fn header(
-    contacts: &[Contact],
-    params: &[BodyParams],
-    ctx: &StepContext,
-    source: usize,
-) -> PreparedContact {
-    let c = &contacts[source];
-    PreparedContact::new(source, c, &params[c.body_a], &params[c.body_b], None, ctx)
 }
 
 /// Runs one substep's contact passes, wide or all scalar.
@@ -143,8 +132,9 @@ fn lanes_are_prepared_bit_for_bit_as_the_scalar_points() {
     for (b, batch) in wide.batches.iter().enumerate() {
         let info = &wide.infos[b];
         let lanes = usize::from(batch.lanes);
-        for (l, &source) in info.sources[..lanes].iter().enumerate() {
-            let c = &header(&contacts, &params, &ctx, source as usize);
+        for (l, &index) in info.contacts[..lanes].iter().enumerate() {
+            let c = &solver.contacts[index as usize];
+            assert_eq!(info.sources[l] as usize, c.source);
             assert_eq!(info.point_counts[l] as usize, c.point_count);
             let points = contacts[c.source].points();
             let lane_of = |v: &Vec3x4| v.lane(l);
@@ -221,12 +211,12 @@ fn check_batches(n: usize) {
         unique.sort_unstable();
         unique.dedup();
         assert_eq!(unique.len(), lanes.len(), "a body twice in one batch");
-        for &c in &info.sources[..used] {
+        for &c in &info.contacts[..used] {
             solved[c as usize] += 1;
         }
     }
-    for c in &solver.contacts {
-        solved[c.source] += 1;
+    for &c in &solver.scalar {
+        solved[c] += 1;
     }
     assert!(solved.iter().all(|&n| n == 1), "every manifold solved once");
     assert!(!solver.batches.batches.is_empty());
@@ -250,7 +240,7 @@ fn lanes_read_back_the_scalar_friction_shares_bit_for_bit() {
             .twist
             .then(|| wide.twists[batch.first_twist as usize].impulse);
         for l in 0..usize::from(batch.lanes) {
-            let c = &header(&contacts, &params, &ctx, info.sources[l] as usize);
+            let c = &solver.contacts[info.contacts[l] as usize];
             let share = PatchShare::new(
                 c.normal,
                 c.tangents,
