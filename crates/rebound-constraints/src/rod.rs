@@ -69,6 +69,7 @@ impl Rod {
         PreparedRod {
             length: self.length,
             fallback_axis: initial_axis(pair, a, b),
+            between_centres: pair.is_between_centres(),
         }
     }
 }
@@ -78,6 +79,8 @@ impl Rod {
 pub(crate) struct PreparedRod {
     length: f32,
     fallback_axis: Vec3,
+    /// [`BodyPair::is_between_centres`] of the joint's pair, which every pass of the step asks.
+    between_centres: bool,
 }
 
 impl PreparedRod {
@@ -92,7 +95,7 @@ impl PreparedRod {
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) {
-        let dist = pair.distance(a, b, self.fallback_axis);
+        let dist = pair.distance_known(a, b, self.fallback_axis, self.between_centres);
         AxisPart::along(pair, &dist).apply(pair, a, b, state.axial_impulse);
     }
 
@@ -118,18 +121,18 @@ impl PreparedRod {
         stage: &Stage,
         out: &mut JointRows,
     ) {
-        self.measure(pair, (a, b)).push(pair, stage, out);
+        self.measure(pair, (a, b)).push(stage, out);
     }
 
     /// The rod's row at the current pose (`|d| = length`), its direction kept as the next fallback.
     #[inline(always)]
     fn measure(&mut self, pair: &BodyPair, bodies: (&SolverBody, &SolverBody)) -> DistanceRow {
-        let row = DistanceRow::measure(
+        let row = DistanceRow::measure_known(
             pair,
             bodies,
             self.fallback_axis,
             self.length,
-            Bound::Exactly,
+            (Bound::Exactly, self.between_centres),
         );
         self.fallback_axis = row.axis();
         row

@@ -111,10 +111,12 @@ impl Rope {
     }
 
     pub(crate) fn prepare(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> PreparedRope {
-        let dist = pair.distance(a, b, Vec3::X);
+        let between_centres = pair.is_between_centres();
+        let dist = pair.distance_known(a, b, Vec3::X, between_centres);
         let part = AxisPart::along(pair, &dist);
         PreparedRope {
             rope: *self,
+            between_centres,
             // `initial_axis(pair, a, b)` is this distance's axis: the same call, made once.
             fallback_axis: dist.axis,
             separating_speed: part.velocity(a, b),
@@ -127,6 +129,8 @@ impl Rope {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PreparedRope {
     rope: Rope,
+    /// [`BodyPair::is_between_centres`] of the joint's pair, which every pass of the step asks.
+    between_centres: bool,
     fallback_axis: Vec3,
     /// `Ċ` before the step (m/s), positive while the anchors separate.
     separating_speed: f32,
@@ -139,6 +143,11 @@ impl PreparedRope {
         self.rope.max_length
     }
 
+    /// Whether the rope has a coefficient of restitution (stage *restitution* leaves it alone otherwise).
+    pub(crate) fn has_restitution(&self) -> bool {
+        self.rope.restitution != 0.0
+    }
+
     pub(crate) fn warm_start(
         &self,
         pair: &BodyPair,
@@ -149,7 +158,7 @@ impl PreparedRope {
         if state.upper_impulse == 0.0 {
             return;
         }
-        let dist = pair.distance(a, b, self.fallback_axis);
+        let dist = pair.distance_known(a, b, self.fallback_axis, self.between_centres);
         AxisPart::along(pair, &dist).apply(pair, a, b, state.upper_impulse);
     }
 
@@ -177,18 +186,18 @@ impl PreparedRope {
         stage: &Stage,
         out: &mut JointRows,
     ) {
-        self.measure(pair, (a, b)).push(pair, stage, out);
+        self.measure(pair, (a, b)).push(stage, out);
     }
 
     /// The rope's row at the current pose (`|d| ≤ max_length`), its direction kept as the next fallback.
     #[inline(always)]
     fn measure(&mut self, pair: &BodyPair, bodies: (&SolverBody, &SolverBody)) -> DistanceRow {
-        let row = DistanceRow::measure(
+        let row = DistanceRow::measure_known(
             pair,
             bodies,
             self.fallback_axis,
             self.rope.max_length,
-            Bound::AtMost,
+            (Bound::AtMost, self.between_centres),
         );
         self.fallback_axis = row.axis();
         row
@@ -226,13 +235,13 @@ impl PreparedRope {
         b: &mut SolverBody,
         ctx: &StepContext,
     ) {
-        if self.rope.restitution == 0.0
+        if !self.has_restitution()
             || !self.taut
             || self.separating_speed <= ctx.restitution_threshold
         {
             return;
         }
-        let dist = pair.distance(a, b, self.fallback_axis);
+        let dist = pair.distance_known(a, b, self.fallback_axis, self.between_centres);
         let part = AxisPart::along(pair, &dist);
         let target = RowTarget::speed(-self.rope.restitution * self.separating_speed);
         part.solve(

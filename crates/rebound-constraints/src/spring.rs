@@ -278,7 +278,8 @@ impl Spring {
         b: &SolverBody,
         h: f32,
     ) -> PreparedSpring {
-        let dist = pair.distance(a, b, Vec3::X);
+        let between_centres = pair.is_between_centres();
+        let dist = pair.distance_known(a, b, Vec3::X, between_centres);
         let step = match self.model {
             SpringModel::Soft(spring) => {
                 let effective_mass = AxisPart::along(pair, &dist).effective_mass();
@@ -293,6 +294,7 @@ impl Spring {
         PreparedSpring {
             spring: *self,
             fallback_axis: dist.axis,
+            between_centres,
             step,
         }
     }
@@ -308,6 +310,8 @@ pub(crate) fn initial_axis(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> V
 pub(crate) struct PreparedSpring {
     spring: Spring,
     fallback_axis: Vec3,
+    /// [`BodyPair::is_between_centres`] of the joint's pair, which every substep asks.
+    between_centres: bool,
     /// The soft model's step at prepare.
     step: Option<PreparedStep>,
 }
@@ -342,7 +346,7 @@ impl PreparedSpring {
         b: &mut SolverBody,
         h: f32,
     ) -> f32 {
-        let dist = pair.distance(a, b, self.fallback_axis);
+        let dist = pair.distance_known(a, b, self.fallback_axis, self.between_centres);
         let part = AxisPart::along(pair, &dist);
         let impulse = match self.spring.model {
             SpringModel::Soft(spring) => {

@@ -54,6 +54,8 @@ pub(crate) struct DistanceRow {
     /// `C = |d| − L` (m).
     error: f32,
     bound: Bound,
+    /// Whether both anchors are the bodies' centres of mass ([`BodyPair::is_between_centres`]).
+    between_centres: bool,
 }
 
 impl DistanceRow {
@@ -63,16 +65,37 @@ impl DistanceRow {
     #[inline(always)]
     pub(crate) fn measure(
         pair: &BodyPair,
-        (a, b): (&SolverBody, &SolverBody),
+        bodies: (&SolverBody, &SolverBody),
         fallback_axis: Vec3,
         length: f32,
         bound: Bound,
     ) -> Self {
-        let dist = pair.distance(a, b, fallback_axis);
+        let between_centres = pair.is_between_centres();
+        Self::measure_known(
+            pair,
+            bodies,
+            fallback_axis,
+            length,
+            (bound, between_centres),
+        )
+    }
+
+    /// [`DistanceRow::measure`] of a pair whose [`BodyPair::is_between_centres`] is known (`between_centres`,
+    /// kept from prepare by a rope or a rod).
+    #[inline(always)]
+    pub(crate) fn measure_known(
+        pair: &BodyPair,
+        (a, b): (&SolverBody, &SolverBody),
+        fallback_axis: Vec3,
+        length: f32,
+        (bound, between_centres): (Bound, bool),
+    ) -> Self {
+        let dist = pair.distance_known(a, b, fallback_axis, between_centres);
         Self {
             error: dist.length - length,
             dist,
             bound,
+            between_centres,
         }
     }
 
@@ -101,11 +124,11 @@ impl DistanceRow {
     /// The row for the direct solve of a path in a pass of `stage`, pushed into `out` with its error and
     /// rule ([`AxisPart::push_row`]). Inlined into the path pass, which builds a rope's row at every new pose.
     #[inline(always)]
-    pub(crate) fn push(&self, pair: &BodyPair, stage: &Stage, out: &mut JointRows) {
+    pub(crate) fn push(&self, stage: &Stage, out: &mut JointRows) {
         let rule = self.bound.rule();
         let target = rule.target(self.error, stage);
         AxisPart::push_row(
-            pair,
+            self.between_centres,
             &self.dist,
             target,
             self.bound.impulse_range(),

@@ -280,6 +280,16 @@ impl Prepared {
         }
     }
 
+    /// Whether the joint may act in stage *restitution* ([`Prepared::apply_restitution`]): a rope with a
+    /// coefficient of restitution, a ball joint with limits.
+    pub(super) fn has_restitution(&self) -> bool {
+        match self {
+            Self::Rope(p) => p.has_restitution(),
+            Self::LimitedBall(_) => true,
+            _ => false,
+        }
+    }
+
     /// Stage *restitution*: a rope that snapped taut during the step bounces back; nothing for the others.
     pub(super) fn apply_restitution(
         &self,
@@ -343,20 +353,40 @@ impl Prepared {
     }
 }
 
-/// One prepared joint: its source index, bodies, accumulated impulses and kind.
+/// One prepared joint as the passes read it: its source index, bodies, accumulated impulses, kind and path.
+/// What only *prepare* and *store impulses* read is beside it, in a [`JointRecord`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct PreparedJoint {
     pub(super) source: usize,
     pub(super) pair: BodyPair,
     pub(super) state: JointState,
-    pub(super) break_force: f32,
-    pub(super) break_torque: f32,
     pub(super) kind: Prepared,
     /// The path solved directly ([`crate::path`]) that the joint's equality rows belong to, as an index
     /// into the solver's `paths`; `None` for a joint solved by Gauss–Seidel alone.
     pub(super) path: Option<usize>,
-    /// The joint's link in the solver's `links` (its index in `path_joints`) when it is on a path.
-    pub(super) link: Option<usize>,
+}
+
+impl PreparedJoint {
+    /// A slot of the solver's buffer before its first *prepare* writes it (the buffer keeps its slots from
+    /// step to step, and *prepare* writes each joint's fields into its slot in place).
+    pub(super) fn unprepared() -> Self {
+        Self {
+            source: 0,
+            pair: BodyPair::default(),
+            state: JointState::default(),
+            kind: Prepared::Ball,
+            path: None,
+        }
+    }
+}
+
+/// The part of a prepared joint that the substeps never read: its break limits, checked at *store
+/// impulses*, and the tether whose impulse it keeps for the next step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct JointRecord {
+    /// Break force (N) and torque (N·m).
+    pub(super) break_force: f32,
+    pub(super) break_torque: f32,
     /// The tether (an index into the solver's `tethers`) whose impulse the joint keeps for the next step.
     pub(super) tether: Option<usize>,
 }
