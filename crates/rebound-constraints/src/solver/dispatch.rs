@@ -6,7 +6,7 @@
 //! `passes`, `path_pass`, `project`) name no joint kind.
 
 use crate::ball::{self, PreparedBall};
-use crate::coordinate::CoordinateRows;
+use crate::coordinate::{Coordinate, CoordinateRows};
 use crate::fixed::{FixedJoint, PreparedFixed};
 use crate::hinge::PreparedHinge;
 use crate::joint::JointKind;
@@ -109,7 +109,7 @@ impl Prepared {
         match self {
             Self::Hinge(p) => p.has_spring(),
             Self::Prismatic(p) => p.has_spring(),
-            Self::Wheel(_) => true,
+            Self::Wheel(p) => p.has_spring(),
             _ => false,
         }
     }
@@ -131,9 +131,9 @@ impl Prepared {
         };
         let bodies = (a, b);
         match self {
-            Self::Hinge(p) => p.apply_forces(pair, state, bodies, h),
-            Self::Prismatic(p) => p.apply_forces(pair, state, bodies, h),
-            Self::Wheel(p) => p.apply_forces(pair, state, bodies, h),
+            Self::Hinge(p) => p.apply_spring(pair, state, bodies, h),
+            Self::Prismatic(p) => p.apply_spring(pair, state, bodies, h),
+            Self::Wheel(p) => p.apply_spring(pair, state, bodies, h),
             _ => {}
         }
     }
