@@ -113,13 +113,18 @@ impl Rope {
     pub(crate) fn prepare(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> PreparedRope {
         let between_centres = pair.is_between_centres();
         let dist = pair.distance_known(a, b, Vec3::X, between_centres);
-        let part = AxisPart::along(pair, &dist);
+        // Read by the restitution alone: a rope without one leaves it at 0.
+        let separating_speed = if self.restitution == 0.0 {
+            0.0
+        } else {
+            AxisPart::along(pair, &dist).velocity(a, b)
+        };
         PreparedRope {
             rope: *self,
             between_centres,
             // `initial_axis(pair, a, b)` is this distance's axis: the same call, made once.
             fallback_axis: dist.axis,
-            separating_speed: part.velocity(a, b),
+            separating_speed,
             taut: false,
         }
     }
@@ -132,7 +137,8 @@ pub(crate) struct PreparedRope {
     /// [`BodyPair::is_between_centres`] of the joint's pair, which every pass of the step asks.
     between_centres: bool,
     fallback_axis: Vec3,
-    /// `Ċ` before the step (m/s), positive while the anchors separate.
+    /// `Ċ` before the step (m/s), positive while the anchors separate; 0 for a rope without restitution
+    /// (only the restitution reads it).
     separating_speed: f32,
     /// Whether the rope pulled at any time during the step.
     taut: bool,

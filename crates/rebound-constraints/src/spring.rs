@@ -270,23 +270,32 @@ impl Spring {
     }
 
     /// Stage *prepare* for substeps of `h` (s): the soft model's oscillator step for the effective mass at
-    /// the start of the step.
+    /// the start of the step — the one `last` (the spring prepared in the same slot the step before) made, if
+    /// it was made for the same spring, effective mass and substep to the bit.
     pub(crate) fn prepare(
         &self,
         pair: &BodyPair,
-        a: &SolverBody,
-        b: &SolverBody,
+        (a, b): (&SolverBody, &SolverBody),
         h: f32,
+        last: Option<&PreparedSpring>,
     ) -> PreparedSpring {
         let between_centres = pair.is_between_centres();
         let dist = pair.distance_known(a, b, Vec3::X, between_centres);
         let step = match self.model {
             SpringModel::Soft(spring) => {
                 let effective_mass = AxisPart::along(pair, &dist).effective_mass();
+                let kept = last.and_then(|last| match (last.spring.model, last.step) {
+                    (SpringModel::Soft(made_for), Some(made))
+                        if made_for.same_bits(&spring) && made.holds_for(effective_mass, h) =>
+                    {
+                        Some(made.step)
+                    }
+                    _ => None,
+                });
                 Some(PreparedStep {
                     effective_mass,
                     h,
-                    step: spring.oscillator_step(effective_mass, h),
+                    step: kept.unwrap_or_else(|| spring.oscillator_step(effective_mass, h)),
                 })
             }
             SpringModel::Force { .. } => None,
@@ -326,6 +335,14 @@ struct PreparedStep {
     step: OscillatorStep,
 }
 
+impl PreparedStep {
+    /// Whether the step was made for the effective mass `effective_mass` and substep `h`, to the bit.
+    #[inline]
+    fn holds_for(&self, effective_mass: f32, h: f32) -> bool {
+        self.effective_mass.to_bits() == effective_mass.to_bits() && self.h.to_bits() == h.to_bits()
+    }
+}
+
 impl PreparedSpring {
     /// The force model's force along n (N) in the current state, capped.
     fn force(&self, part: &AxisPart, length: f32, a: &SolverBody, b: &SolverBody) -> Option<f32> {
@@ -352,12 +369,7 @@ impl PreparedSpring {
             SpringModel::Soft(spring) => {
                 let effective_mass = part.effective_mass();
                 let step = match self.step {
-                    Some(prepared)
-                        if prepared.effective_mass.to_bits() == effective_mass.to_bits()
-                            && prepared.h.to_bits() == h.to_bits() =>
-                    {
-                        prepared.step
-                    }
+                    Some(prepared) if prepared.holds_for(effective_mass, h) => prepared.step,
                     _ => spring.oscillator_step(effective_mass, h),
                 };
                 let c = dist.length - self.spring.rest_length;

@@ -43,19 +43,24 @@ pub(super) enum Prepared {
 impl Prepared {
     /// Stage *prepare* of `kind` between the bodies `sa`, `sb` of `pair`: the kind's prepared data, with the
     /// impulses in `state` it does not use zeroed (so a joint whose kind changed is not warm-started with
-    /// another kind's impulses).
+    /// another kind's impulses). `last` is what the slot held the step before (a spring reuses its oscillator
+    /// step when it was made for the same numbers).
     pub(super) fn prepare(
         kind: &JointKind,
         pair: &BodyPair,
         (sa, sb): (&SolverBody, &SolverBody),
         ctx: &StepContext,
-        state: &mut JointState,
+        (state, last): (&mut JointState, &Self),
     ) -> Self {
         match kind {
             JointKind::Spring(s) => {
                 keep_only(state, Keep::Axial);
                 state.axial_impulse = 0.0;
-                Self::Spring(s.prepare(pair, sa, sb, ctx.h))
+                let last = match last {
+                    Self::Spring(last) => Some(last),
+                    _ => None,
+                };
+                Self::Spring(s.prepare(pair, (sa, sb), ctx.h, last))
             }
             JointKind::Rope(r) => {
                 keep_only(state, Keep::Upper);

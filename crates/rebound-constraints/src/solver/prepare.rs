@@ -87,7 +87,7 @@ impl JointSolver {
                 JointState::default()
             };
             let bodies = (&solver_bodies[jb.a], &solver_bodies[jb.b]);
-            j.kind = Prepared::prepare(joint.kind(), &j.pair, bodies, ctx, &mut j.state);
+            j.kind = Prepared::prepare(joint.kind(), &j.pair, bodies, ctx, (&mut j.state, &j.kind));
             j.path = None;
             coordinate_springs |= j.kind.has_coordinate_spring();
             restitution |= j.kind.has_restitution();
