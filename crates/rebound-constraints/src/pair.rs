@@ -70,7 +70,9 @@ pub struct Distance {
 
 impl BodyPair {
     /// The pair for bodies `index_a`, `index_b` with their step constants, a joint anchored at `local_anchor_*`
-    /// (body frame, relative to the body origin, m) with frames `local_basis_*` (body frame).
+    /// (body frame, relative to the body origin, m) with frames `local_basis_*` (body frame). Inlined, so that
+    /// the joint solver's prepare writes the pair straight into its slot.
+    #[inline]
     #[must_use]
     pub fn new(
         index_a: usize,

@@ -41,47 +41,49 @@ pub(super) enum Prepared {
 }
 
 impl Prepared {
-    /// Stage *prepare* of `kind` between the bodies `sa`, `sb` of `pair`: the kind's prepared data, with the
-    /// impulses in `state` it does not use zeroed (so a joint whose kind changed is not warm-started with
-    /// another kind's impulses). `last` is what the slot held the step before (a spring reuses its oscillator
-    /// step when it was made for the same numbers).
+    /// Stage *prepare* of `kind` between the bodies `sa`, `sb` of `pair`: the kind's prepared data, written
+    /// over `self` (what the slot held the step before: a spring reuses its oscillator step when it was made
+    /// for the same numbers), with the impulses in `state` it does not use zeroed (so a joint whose kind
+    /// changed is not warm-started with another kind's impulses). Each arm writes its variant in place: a
+    /// variant built and then copied costs a copy of the largest kind's size.
     pub(super) fn prepare(
+        &mut self,
         kind: &JointKind,
         pair: &BodyPair,
         (sa, sb): (&SolverBody, &SolverBody),
         ctx: &StepContext,
-        (state, last): (&mut JointState, &Self),
-    ) -> Self {
+        state: &mut JointState,
+    ) {
         match kind {
             JointKind::Spring(s) => {
                 keep_only(state, Keep::Axial);
                 state.axial_impulse = 0.0;
-                let last = match last {
-                    Self::Spring(last) => Some(last),
+                let last = match self {
+                    Self::Spring(last) => Some(*last),
                     _ => None,
                 };
-                Self::Spring(s.prepare(pair, (sa, sb), ctx.h, last))
+                *self = Self::Spring(s.prepare(pair, (sa, sb), ctx.h, last.as_ref()));
             }
             JointKind::Rope(r) => {
                 keep_only(state, Keep::Upper);
-                Self::Rope(r.prepare(pair, sa, sb))
+                *self = Self::Rope(r.prepare(pair, sa, sb));
             }
             JointKind::Rod(r) => {
                 keep_only(state, Keep::Axial);
-                Self::Rod(r.prepare(pair, sa, sb))
+                *self = Self::Rod(r.prepare(pair, sa, sb));
             }
             JointKind::Ball(ball) if !ball.is_free() => {
-                Self::LimitedBall(ball.prepare(pair, (sa, sb), ctx, state))
+                *self = Self::LimitedBall(ball.prepare(pair, (sa, sb), ctx, state));
             }
             JointKind::Ball(_) => {
                 keep_only(state, Keep::Linear);
-                Self::Ball
+                *self = Self::Ball;
             }
-            JointKind::Hinge(h) => Self::Hinge(h.prepare(pair, state)),
-            JointKind::Fixed(_) => Self::Fixed(FixedJoint::prepare(pair, state)),
-            JointKind::Prismatic(p) => Self::Prismatic(p.prepare(pair, state)),
-            JointKind::Wheel(w) => Self::Wheel(w.prepare(state)),
-            JointKind::SixDof(j) => Self::SixDof(j.prepare(pair, ctx, state)),
+            JointKind::Hinge(h) => *self = Self::Hinge(h.prepare(pair, state)),
+            JointKind::Fixed(_) => *self = Self::Fixed(FixedJoint::prepare(pair, state)),
+            JointKind::Prismatic(p) => *self = Self::Prismatic(p.prepare(pair, state)),
+            JointKind::Wheel(w) => *self = Self::Wheel(w.prepare(state)),
+            JointKind::SixDof(j) => *self = Self::SixDof(j.prepare(pair, ctx, state)),
         }
     }
 

@@ -2,7 +2,7 @@
 //! directly and the links kept from the last step, the joints Gauss–Seidel visits, the tethers and which
 //! paths are closed.
 
-use super::dispatch::{JointRecord, Prepared, PreparedJoint};
+use super::dispatch::{JointRecord, PreparedJoint};
 use super::joint_solver::JointSolver;
 use crate::joint::{Joint, JointBodies};
 use crate::pair::BodyPair;
@@ -87,7 +87,8 @@ impl JointSolver {
                 JointState::default()
             };
             let bodies = (&solver_bodies[jb.a], &solver_bodies[jb.b]);
-            j.kind = Prepared::prepare(joint.kind(), &j.pair, bodies, ctx, (&mut j.state, &j.kind));
+            j.kind
+                .prepare(joint.kind(), &j.pair, bodies, ctx, &mut j.state);
             j.path = None;
             coordinate_springs |= j.kind.has_coordinate_spring();
             restitution |= j.kind.has_restitution();
