@@ -5,12 +5,11 @@
 use crate::error::ConstraintError;
 use crate::error::check_in_range;
 use crate::pair::BodyPair;
-use crate::part::{AxisPart, Bound, DistanceRow, RowTarget};
+use crate::part::{AxisPart, Bound, DistanceLink, RowTarget};
 use crate::path::{JointRows, MAX_ROWS};
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
-use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
 
 rebound_math::checked_serde! { "Rope", Rope::validated;
@@ -111,8 +110,7 @@ impl Rope {
     }
 
     pub(crate) fn prepare(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> PreparedRope {
-        let between_centres = pair.is_between_centres();
-        let dist = pair.distance_known(a, b, Vec3::X, between_centres);
+        let (link, dist) = DistanceLink::prepare(pair, (a, b), self.max_length);
         // Read by the restitution alone: a rope without one leaves it at 0.
         let separating_speed = if self.restitution == 0.0 {
             0.0
@@ -120,23 +118,20 @@ impl Rope {
             AxisPart::along(pair, &dist).velocity(a, b)
         };
         PreparedRope {
-            rope: *self,
-            between_centres,
-            // `initial_axis(pair, a, b)` is this distance's axis: the same call, made once.
-            fallback_axis: dist.axis,
+            restitution: self.restitution,
+            link,
             separating_speed,
             taut: false,
         }
     }
 }
 
-/// A rope ready for the substeps.
+/// A rope ready for the substeps: its distance row ([`DistanceLink`], `|d| ≤ max_length`) and what its
+/// restitution needs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PreparedRope {
-    rope: Rope,
-    /// [`BodyPair::is_between_centres`] of the joint's pair, which every pass of the step asks.
-    between_centres: bool,
-    fallback_axis: Vec3,
+    restitution: f32,
+    link: DistanceLink,
     /// `Ċ` before the step (m/s), positive while the anchors separate; 0 for a rope without restitution
     /// (only the restitution reads it).
     separating_speed: f32,
@@ -146,12 +141,12 @@ pub(crate) struct PreparedRope {
 
 impl PreparedRope {
     pub(crate) fn max_length(&self) -> f32 {
-        self.rope.max_length
+        self.link.length()
     }
 
     /// Whether the rope has a coefficient of restitution (stage *restitution* leaves it alone otherwise).
     pub(crate) fn has_restitution(&self) -> bool {
-        self.rope.restitution != 0.0
+        self.restitution != 0.0
     }
 
     pub(crate) fn warm_start(
@@ -164,20 +159,18 @@ impl PreparedRope {
         if state.upper_impulse == 0.0 {
             return;
         }
-        let dist = pair.distance_known(a, b, self.fallback_axis, self.between_centres);
-        AxisPart::along(pair, &dist).apply(pair, a, b, state.upper_impulse);
+        self.link.warm_start(pair, a, b, state.upper_impulse);
     }
 
     pub(crate) fn solve(
         &mut self,
         pair: &BodyPair,
         state: &mut JointState,
-        a: &mut SolverBody,
-        b: &mut SolverBody,
+        bodies: (&mut SolverBody, &mut SolverBody),
         stage: &Stage,
     ) {
-        let row = self.measure(pair, (&*a, &*b));
-        row.solve(pair, a, b, stage, &mut state.upper_impulse);
+        let row = (stage, Bound::AtMost);
+        self.link.solve(pair, bodies, row, &mut state.upper_impulse);
         self.taut |= state.upper_impulse < 0.0;
     }
 
@@ -187,26 +180,12 @@ impl PreparedRope {
     pub(crate) fn direct_row(
         &mut self,
         pair: &BodyPair,
-        a: &SolverBody,
-        b: &SolverBody,
+        bodies: (&SolverBody, &SolverBody),
         stage: &Stage,
         out: &mut JointRows,
     ) {
-        self.measure(pair, (a, b)).push(stage, out);
-    }
-
-    /// The rope's row at the current pose (`|d| ≤ max_length`), its direction kept as the next fallback.
-    #[inline(always)]
-    fn measure(&mut self, pair: &BodyPair, bodies: (&SolverBody, &SolverBody)) -> DistanceRow {
-        let row = DistanceRow::measure_known(
-            pair,
-            bodies,
-            self.fallback_axis,
-            self.rope.max_length,
-            (Bound::AtMost, self.between_centres),
-        );
-        self.fallback_axis = row.axis();
-        row
+        self.link
+            .direct_row(pair, bodies, (stage, Bound::AtMost), out);
     }
 
     /// The accumulated impulse of the rope's direct row ([`PreparedRope::direct_row`]), as its row order.
@@ -247,9 +226,9 @@ impl PreparedRope {
         {
             return;
         }
-        let dist = pair.distance_known(a, b, self.fallback_axis, self.between_centres);
+        let dist = self.link.distance(pair, a, b);
         let part = AxisPart::along(pair, &dist);
-        let target = RowTarget::speed(-self.rope.restitution * self.separating_speed);
+        let target = RowTarget::speed(-self.restitution * self.separating_speed);
         part.solve(
             pair,
             a,

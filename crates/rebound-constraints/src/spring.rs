@@ -309,11 +309,6 @@ impl Spring {
     }
 }
 
-/// The direction A → B at prepare, or +x when the anchors coincide: the fallback direction of distance parts.
-pub(crate) fn initial_axis(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> Vec3 {
-    pair.distance(a, b, Vec3::X).axis
-}
-
 /// A spring ready for the substeps.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PreparedSpring {

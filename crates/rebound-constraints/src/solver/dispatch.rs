@@ -198,8 +198,8 @@ impl Prepared {
     ) {
         match self {
             Self::Spring(_) => {}
-            Self::Rope(p) => p.solve(pair, state, a, b, stage),
-            Self::Rod(p) => p.solve(pair, state, a, b, stage),
+            Self::Rope(p) => p.solve(pair, state, (a, b), stage),
+            Self::Rod(p) => p.solve(pair, state, (a, b), stage),
             Self::Ball => ball::solve(pair, state, a, b, stage),
             Self::LimitedBall(p) => p.solve(pair, state, a, b, stage, on_path),
             Self::Hinge(p) if on_path => p.solve_coordinate(pair, state, a, b, stage),
@@ -222,8 +222,8 @@ impl Prepared {
         rows: &mut JointRows,
     ) -> bool {
         match self {
-            Self::Rope(p) => p.direct_row(pair, a, b, stage, rows),
-            Self::Rod(p) => p.direct_row(pair, a, b, stage, rows),
+            Self::Rope(p) => p.direct_row(pair, (a, b), stage, rows),
+            Self::Rod(p) => p.direct_row(pair, (a, b), stage, rows),
             Self::Ball | Self::LimitedBall(_) => ball::direct_rows(pair, a, b, stage, rows),
             Self::Hinge(_) => PreparedHinge::direct_rows(pair, a, b, stage, rows),
             _ => return false,
@@ -410,10 +410,7 @@ enum Keep {
 /// kind's impulses).
 fn keep_only(state: &mut JointState, keep: Keep) {
     let kept = *state;
-    *state = JointState {
-        tether_impulse: kept.tether_impulse,
-        ..JointState::default()
-    };
+    *state = kept.tether_only();
     match keep {
         Keep::Axial => state.axial_impulse = kept.axial_impulse,
         Keep::Upper => state.upper_impulse = kept.upper_impulse,
