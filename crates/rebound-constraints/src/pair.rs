@@ -70,9 +70,7 @@ pub struct Distance {
 
 impl BodyPair {
     /// The pair for bodies `index_a`, `index_b` with their step constants, a joint anchored at `local_anchor_*`
-    /// (body frame, relative to the body origin, m) with frames `local_basis_*` (body frame). Inlined, so that
-    /// the joint solver's prepare writes the pair straight into its slot.
-    #[inline]
+    /// (body frame, relative to the body origin, m) with frames `local_basis_*` (body frame).
     #[must_use]
     pub fn new(
         index_a: usize,
@@ -82,9 +80,25 @@ impl BodyPair {
         local_anchors: (Vec3, Vec3),
         local_bases: (Quat, Quat),
     ) -> Self {
+        let mut pair = Self::default();
+        let params = (params_a, params_b);
+        pair.reset(index_a, index_b, params, local_anchors, local_bases);
+        pair
+    }
+
+    /// [`BodyPair::new`] written over `self`: the joint solver's prepare writes each pair into its slot in
+    /// place (a returned pair would be copied in).
+    pub(crate) fn reset(
+        &mut self,
+        index_a: usize,
+        index_b: usize,
+        (params_a, params_b): (&BodyParams, &BodyParams),
+        local_anchors: (Vec3, Vec3),
+        local_bases: (Quat, Quat),
+    ) {
         let anchor =
             |p: &BodyParams, local: Vec3| rotate(p.rotation, local - p.local_center_of_mass);
-        Self {
+        *self = Self {
             index_a,
             index_b,
             inv_mass_a: params_a.inv_mass,
@@ -96,7 +110,7 @@ impl BodyPair {
             basis_a: (params_a.rotation * local_bases.0).normalize(),
             basis_b: (params_b.rotation * local_bases.1).normalize(),
             delta_center: params_b.center_of_mass - params_a.center_of_mass,
-        }
+        };
     }
 
     /// Copies the two solver bodies out, or `None` when an index is out of range.

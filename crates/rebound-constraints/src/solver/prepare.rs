@@ -5,7 +5,6 @@
 use super::dispatch::{JointRecord, PreparedJoint};
 use super::joint_solver::JointSolver;
 use crate::joint::{Joint, JointBodies};
-use crate::pair::BodyPair;
 use crate::part::rotation_error;
 use crate::path::resize_links;
 use crate::path::tether::Edge;
@@ -70,11 +69,10 @@ impl JointSolver {
             };
             // Each field written in its slot: the pair and the kind are made where they are kept.
             j.source = source;
-            j.pair = BodyPair::new(
+            j.pair.reset(
                 jb.a,
                 jb.b,
-                &params[jb.a],
-                &params[jb.b],
+                (&params[jb.a], &params[jb.b]),
                 (joint.local_anchor_a(), joint.local_anchor_b()),
                 (joint.local_basis_a(), joint.local_basis_b()),
             );
