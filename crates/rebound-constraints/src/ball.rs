@@ -122,8 +122,7 @@ impl BallJoint {
             axial_impulse: kept.axial_impulse,
             lower_impulse: kept.lower_impulse,
             upper_impulse: kept.upper_impulse,
-            tether_impulse: kept.tether_impulse,
-            ..JointState::default()
+            ..kept.tether_only()
         };
         let limits = self.limits.filter(|l| !l.is_empty());
         if limits.is_none() {

@@ -19,6 +19,41 @@ use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::SolverBody;
 
+/// A joint whose free coordinate carries [`CoordinateRows`] — a hinge's angle, a prismatic joint's slide, a
+/// wheel's suspension travel: its rows, and the row and value of the coordinate at a pose. Stage *apply
+/// forces* of the coordinate's spring is written once, here ([`Coordinate::apply_spring`]).
+pub(crate) trait Coordinate {
+    /// The row the coordinate moves along (an [`crate::part::AnglePart`] or an [`crate::part::AxisPart`]).
+    type Part: Row;
+
+    /// The joint's coordinate rows.
+    fn rows(&self) -> &CoordinateRows;
+
+    /// The coordinate's row and its value (m or rad) at the pose of `a`, `b`.
+    fn coordinate(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> (Self::Part, f32);
+
+    /// Whether the coordinate has a spring ([`Coordinate::apply_spring`] acts).
+    #[inline]
+    fn has_spring(&self) -> bool {
+        self.rows().spring.is_some()
+    }
+
+    /// Stage *apply forces*: the coordinate's spring over the substep `h` (s), if any
+    /// ([`CoordinateRows::apply_spring`] at the current pose).
+    #[inline]
+    fn apply_spring(
+        &self,
+        pair: &BodyPair,
+        state: &mut JointState,
+        (a, b): (&mut SolverBody, &mut SolverBody),
+        h: f32,
+    ) {
+        let (row, position) = self.coordinate(pair, a, b);
+        self.rows()
+            .apply_spring(&row, pair, position, state, (a, b), h);
+    }
+}
+
 /// The optional rows of a joint coordinate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct CoordinateRows {

@@ -3,7 +3,7 @@
 //! Stages: *prepare*, *warm start*, *solve* and *relax*.
 
 use crate::ball;
-use crate::coordinate::CoordinateRows;
+use crate::coordinate::{Coordinate, CoordinateRows};
 use crate::error::ConstraintError;
 use crate::error::check_in_range;
 use crate::limits::Limits;
@@ -271,26 +271,6 @@ impl PreparedHinge {
         self.rows.is_idle()
     }
 
-    /// Whether the joint has a spring ([`CoordinateRows::apply_spring`] acts).
-    #[inline]
-    pub(crate) fn has_spring(&self) -> bool {
-        self.rows.spring.is_some()
-    }
-
-    /// Stage *apply forces*: the spring on the hinge angle, if any ([`CoordinateRows::apply_spring`]).
-    pub(crate) fn apply_forces(
-        &self,
-        pair: &BodyPair,
-        state: &mut JointState,
-        (a, b): (&mut SolverBody, &mut SolverBody),
-        h: f32,
-    ) {
-        let (fa, fb) = pair.frames(a, b);
-        let part = AnglePart::new(pair, hinge_axis(fa));
-        self.rows
-            .apply_spring(&part, pair, twist_angle(fa, fb), state, (a, b), h);
-    }
-
     /// The limit and motor rows alone (when the point and alignment rows are solved directly).
     pub(crate) fn solve_coordinate(
         &self,
@@ -314,16 +294,15 @@ impl PreparedHinge {
     fn solve_angle(
         &self,
         pair: &BodyPair,
-        (fa, fb): (Quat, Quat),
+        frames: (Quat, Quat),
         axis: Vec3,
         state: &mut JointState,
         a: &mut SolverBody,
         b: &mut SolverBody,
         stage: &Stage,
     ) {
-        let part = AnglePart::new(pair, axis);
-        self.rows
-            .solve(&part, pair, twist_angle(fa, fb), state, a, b, stage);
+        let (part, angle) = angle_at(pair, frames, axis);
+        self.rows.solve(&part, pair, angle, state, a, b, stage);
     }
 
     pub(crate) fn solve(
@@ -345,6 +324,27 @@ impl PreparedHinge {
         state.angular_impulse = lambda.extend(0.0);
         ball::solve(pair, state, a, b, stage);
     }
+}
+
+impl Coordinate for PreparedHinge {
+    type Part = AnglePart;
+
+    fn rows(&self) -> &CoordinateRows {
+        &self.rows
+    }
+
+    /// The row about A's hinge axis and the hinge angle ([`twist_angle`]).
+    #[inline]
+    fn coordinate(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> (AnglePart, f32) {
+        let frames = pair.frames(a, b);
+        angle_at(pair, frames, hinge_axis(frames.0))
+    }
+}
+
+/// The angle row about A's hinge `axis` (world) and the hinge angle between the joint frames `fa`, `fb`.
+#[inline]
+fn angle_at(pair: &BodyPair, (fa, fb): (Quat, Quat), axis: Vec3) -> (AnglePart, f32) {
+    (AnglePart::new(pair, axis), twist_angle(fa, fb))
 }
 
 /// A's hinge axis and B's two axes across it, from the joint frames `fa`, `fb` (world), at the current pose:

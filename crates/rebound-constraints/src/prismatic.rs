@@ -2,7 +2,7 @@
 //! with optional limits, a motor and a spring on the slide. Stages: *prepare*, *warm start*, *solve* and
 //! *relax*.
 
-use crate::coordinate::CoordinateRows;
+use crate::coordinate::{Coordinate, CoordinateRows};
 use crate::error::ConstraintError;
 use crate::limits::Limits;
 use crate::motor::Motor;
@@ -164,6 +164,12 @@ impl SlideGeometry {
         AxisPart::new(pair, self.axes[i], self.lever_a, self.r_b)
     }
 
+    /// The row along A's frame axis `i` and the anchors' offset along it (m): a slide's coordinate.
+    #[inline]
+    pub(crate) fn coordinate(&self, pair: &BodyPair, i: usize) -> (AxisPart, f32) {
+        (self.row(pair, i), self.axes[i].dot(self.d))
+    }
+
     /// Solves the two equality rows along A's frame axes `across` (indices), accumulating into
     /// `linear_impulse.x` and `.y`.
     #[inline]
@@ -218,6 +224,20 @@ pub(crate) struct PreparedPrismatic {
     rotation: RotationPart,
 }
 
+impl Coordinate for PreparedPrismatic {
+    type Part = AxisPart;
+
+    fn rows(&self) -> &CoordinateRows {
+        &self.rows
+    }
+
+    /// The row along A's frame X axis and the slide along it.
+    #[inline]
+    fn coordinate(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> (AxisPart, f32) {
+        SlideGeometry::new(pair, a, b).coordinate(pair, 0)
+    }
+}
+
 impl PreparedPrismatic {
     pub(crate) fn warm_start(
         pair: &BodyPair,
@@ -232,25 +252,6 @@ impl PreparedPrismatic {
         g.warm_start_across(pair, [1, 2], state, a, b);
     }
 
-    /// Whether the joint has a spring ([`CoordinateRows::apply_spring`] acts).
-    #[inline]
-    pub(crate) fn has_spring(&self) -> bool {
-        self.rows.spring.is_some()
-    }
-
-    /// Stage *apply forces*: the spring on the slide, if any ([`CoordinateRows::apply_spring`]).
-    pub(crate) fn apply_forces(
-        &self,
-        pair: &BodyPair,
-        state: &mut JointState,
-        (a, b): (&mut SolverBody, &mut SolverBody),
-        h: f32,
-    ) {
-        let g = SlideGeometry::new(pair, a, b);
-        self.rows
-            .apply_spring(&g.row(pair, 0), pair, g.axes[0].dot(g.d), state, (a, b), h);
-    }
-
     pub(crate) fn solve(
         &self,
         pair: &BodyPair,
@@ -260,9 +261,8 @@ impl PreparedPrismatic {
         stage: &Stage,
     ) {
         let g = SlideGeometry::new(pair, a, b);
-        let slide = g.row(pair, 0);
-        self.rows
-            .solve(&slide, pair, g.axes[0].dot(g.d), state, a, b, stage);
+        let (slide, x) = g.coordinate(pair, 0);
+        self.rows.solve(&slide, pair, x, state, a, b, stage);
         let frames = (g.frame_a, g.frame_b);
         self.rotation
             .solve_frames(pair, frames, a, b, stage, &mut state.angular_impulse);

@@ -3,13 +3,11 @@
 
 use crate::error::ConstraintError;
 use crate::pair::BodyPair;
-use crate::part::{AxisPart, Bound, DistanceRow};
+use crate::part::{Bound, DistanceLink};
 use crate::path::{JointRows, MAX_ROWS};
-use crate::spring::initial_axis;
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::SolverBody;
-use rebound_math::Vec3;
 use rebound_math::validity::check_positive;
 
 rebound_math::checked_serde! { "Rod", Rod::validated;
@@ -67,22 +65,20 @@ impl Rod {
 
     pub(crate) fn prepare(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> PreparedRod {
         PreparedRod {
-            length: self.length,
-            fallback_axis: initial_axis(pair, a, b),
+            link: DistanceLink::prepare(pair, (a, b), self.length).0,
         }
     }
 }
 
-/// A rod ready for the substeps.
+/// A rod ready for the substeps: its distance row ([`DistanceLink`], `|d| = length`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PreparedRod {
-    length: f32,
-    fallback_axis: Vec3,
+    link: DistanceLink,
 }
 
 impl PreparedRod {
     pub(crate) fn length(&self) -> f32 {
-        self.length
+        self.link.length()
     }
 
     pub(crate) fn warm_start(
@@ -92,8 +88,7 @@ impl PreparedRod {
         a: &mut SolverBody,
         b: &mut SolverBody,
     ) {
-        let dist = pair.distance(a, b, self.fallback_axis);
-        AxisPart::along(pair, &dist).apply(pair, a, b, state.axial_impulse);
+        self.link.warm_start(pair, a, b, state.axial_impulse);
     }
 
     /// The accumulated impulse of the rod's direct row ([`PreparedRod::direct_row`]), as its row order.
@@ -113,37 +108,22 @@ impl PreparedRod {
     pub(crate) fn direct_row(
         &mut self,
         pair: &BodyPair,
-        a: &SolverBody,
-        b: &SolverBody,
+        bodies: (&SolverBody, &SolverBody),
         stage: &Stage,
         out: &mut JointRows,
     ) {
-        self.measure(pair, (a, b)).push(pair, stage, out);
-    }
-
-    /// The rod's row at the current pose (`|d| = length`), its direction kept as the next fallback.
-    #[inline(always)]
-    fn measure(&mut self, pair: &BodyPair, bodies: (&SolverBody, &SolverBody)) -> DistanceRow {
-        let row = DistanceRow::measure(
-            pair,
-            bodies,
-            self.fallback_axis,
-            self.length,
-            Bound::Exactly,
-        );
-        self.fallback_axis = row.axis();
-        row
+        self.link
+            .direct_row(pair, bodies, (stage, Bound::Exactly), out);
     }
 
     pub(crate) fn solve(
         &mut self,
         pair: &BodyPair,
         state: &mut JointState,
-        a: &mut SolverBody,
-        b: &mut SolverBody,
+        bodies: (&mut SolverBody, &mut SolverBody),
         stage: &Stage,
     ) {
-        let row = self.measure(pair, (&*a, &*b));
-        row.solve(pair, a, b, stage, &mut state.axial_impulse);
+        let row = (stage, Bound::Exactly);
+        self.link.solve(pair, bodies, row, &mut state.axial_impulse);
     }
 }

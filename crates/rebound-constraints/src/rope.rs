@@ -5,12 +5,11 @@
 use crate::error::ConstraintError;
 use crate::error::check_in_range;
 use crate::pair::BodyPair;
-use crate::part::{AxisPart, Bound, DistanceRow, RowTarget};
+use crate::part::{AxisPart, Bound, DistanceLink, RowTarget};
 use crate::path::{JointRows, MAX_ROWS};
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
-use rebound_math::Vec3;
 use rebound_math::validity::check_non_negative;
 
 rebound_math::checked_serde! { "Rope", Rope::validated;
@@ -111,24 +110,30 @@ impl Rope {
     }
 
     pub(crate) fn prepare(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> PreparedRope {
-        let dist = pair.distance(a, b, Vec3::X);
-        let part = AxisPart::along(pair, &dist);
+        let (link, dist) = DistanceLink::prepare(pair, (a, b), self.max_length);
+        // Read by the restitution alone: a rope without one leaves it at 0.
+        let separating_speed = if self.restitution == 0.0 {
+            0.0
+        } else {
+            AxisPart::along(pair, &dist).velocity(a, b)
+        };
         PreparedRope {
-            rope: *self,
-            // `initial_axis(pair, a, b)` is this distance's axis: the same call, made once.
-            fallback_axis: dist.axis,
-            separating_speed: part.velocity(a, b),
+            restitution: self.restitution,
+            link,
+            separating_speed,
             taut: false,
         }
     }
 }
 
-/// A rope ready for the substeps.
+/// A rope ready for the substeps: its distance row ([`DistanceLink`], `|d| ≤ max_length`) and what its
+/// restitution needs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PreparedRope {
-    rope: Rope,
-    fallback_axis: Vec3,
-    /// `Ċ` before the step (m/s), positive while the anchors separate.
+    restitution: f32,
+    link: DistanceLink,
+    /// `Ċ` before the step (m/s), positive while the anchors separate; 0 for a rope without restitution
+    /// (only the restitution reads it).
     separating_speed: f32,
     /// Whether the rope pulled at any time during the step.
     taut: bool,
@@ -136,7 +141,12 @@ pub(crate) struct PreparedRope {
 
 impl PreparedRope {
     pub(crate) fn max_length(&self) -> f32 {
-        self.rope.max_length
+        self.link.length()
+    }
+
+    /// Whether the rope has a coefficient of restitution (stage *restitution* leaves it alone otherwise).
+    pub(crate) fn has_restitution(&self) -> bool {
+        self.restitution != 0.0
     }
 
     pub(crate) fn warm_start(
@@ -149,20 +159,18 @@ impl PreparedRope {
         if state.upper_impulse == 0.0 {
             return;
         }
-        let dist = pair.distance(a, b, self.fallback_axis);
-        AxisPart::along(pair, &dist).apply(pair, a, b, state.upper_impulse);
+        self.link.warm_start(pair, a, b, state.upper_impulse);
     }
 
     pub(crate) fn solve(
         &mut self,
         pair: &BodyPair,
         state: &mut JointState,
-        a: &mut SolverBody,
-        b: &mut SolverBody,
+        bodies: (&mut SolverBody, &mut SolverBody),
         stage: &Stage,
     ) {
-        let row = self.measure(pair, (&*a, &*b));
-        row.solve(pair, a, b, stage, &mut state.upper_impulse);
+        let row = (stage, Bound::AtMost);
+        self.link.solve(pair, bodies, row, &mut state.upper_impulse);
         self.taut |= state.upper_impulse < 0.0;
     }
 
@@ -172,26 +180,12 @@ impl PreparedRope {
     pub(crate) fn direct_row(
         &mut self,
         pair: &BodyPair,
-        a: &SolverBody,
-        b: &SolverBody,
+        bodies: (&SolverBody, &SolverBody),
         stage: &Stage,
         out: &mut JointRows,
     ) {
-        self.measure(pair, (a, b)).push(pair, stage, out);
-    }
-
-    /// The rope's row at the current pose (`|d| ≤ max_length`), its direction kept as the next fallback.
-    #[inline(always)]
-    fn measure(&mut self, pair: &BodyPair, bodies: (&SolverBody, &SolverBody)) -> DistanceRow {
-        let row = DistanceRow::measure(
-            pair,
-            bodies,
-            self.fallback_axis,
-            self.rope.max_length,
-            Bound::AtMost,
-        );
-        self.fallback_axis = row.axis();
-        row
+        self.link
+            .direct_row(pair, bodies, (stage, Bound::AtMost), out);
     }
 
     /// The accumulated impulse of the rope's direct row ([`PreparedRope::direct_row`]), as its row order.
@@ -226,15 +220,15 @@ impl PreparedRope {
         b: &mut SolverBody,
         ctx: &StepContext,
     ) {
-        if self.rope.restitution == 0.0
+        if !self.has_restitution()
             || !self.taut
             || self.separating_speed <= ctx.restitution_threshold
         {
             return;
         }
-        let dist = pair.distance(a, b, self.fallback_axis);
+        let dist = self.link.distance(pair, a, b);
         let part = AxisPart::along(pair, &dist);
-        let target = RowTarget::speed(-self.rope.restitution * self.separating_speed);
+        let target = RowTarget::speed(-self.restitution * self.separating_speed);
         part.solve(
             pair,
             a,

@@ -286,10 +286,7 @@ impl SixDofJoint {
         state: &mut JointState,
     ) -> PreparedSixDof {
         let kept = *state;
-        *state = JointState {
-            tether_impulse: kept.tether_impulse,
-            ..JointState::default()
-        };
+        *state = kept.tether_only();
         let rotation_locked = self.axes[3..]
             .iter()
             .all(|a| a.motion == AxisMotion::Locked);

@@ -100,6 +100,21 @@ impl SoftSpring {
         matches!(self, Self::Stiffness { .. })
     }
 
+    /// Whether `other` is this spring to the bit (the same form and parameters): the same
+    /// [`SoftSpring::oscillator_step`] for the same effective mass and substep.
+    pub(crate) fn same_bits(&self, other: &Self) -> bool {
+        let bits = |spring: &Self| match *spring {
+            Self::Frequency {
+                frequency_hz,
+                damping_ratio,
+            } => (false, frequency_hz.to_bits(), damping_ratio.to_bits()),
+            Self::Stiffness { stiffness, damping } => {
+                (true, stiffness.to_bits(), damping.to_bits())
+            }
+        };
+        bits(self) == bits(other)
+    }
+
     /// The exact oscillator step ([`OscillatorStep`]) of a row of effective mass `effective_mass` (kg or
     /// kg·m²) over the substep `h` (s). In stiffness form `ω² = k/m_eff`, `σ = c/(2·m_eff)`; an infinite
     /// stiffness gives the rigid limit. A zero effective mass (both ends immovable) gives the step that

@@ -270,22 +270,32 @@ impl Spring {
     }
 
     /// Stage *prepare* for substeps of `h` (s): the soft model's oscillator step for the effective mass at
-    /// the start of the step.
+    /// the start of the step — the one `last` (the spring prepared in the same slot the step before) made, if
+    /// it was made for the same spring, effective mass and substep to the bit.
     pub(crate) fn prepare(
         &self,
         pair: &BodyPair,
-        a: &SolverBody,
-        b: &SolverBody,
+        (a, b): (&SolverBody, &SolverBody),
         h: f32,
+        last: Option<&PreparedSpring>,
     ) -> PreparedSpring {
-        let dist = pair.distance(a, b, Vec3::X);
+        let between_centres = pair.is_between_centres();
+        let dist = pair.distance_known(a, b, Vec3::X, between_centres);
         let step = match self.model {
             SpringModel::Soft(spring) => {
                 let effective_mass = AxisPart::along(pair, &dist).effective_mass();
+                let kept = last.and_then(|last| match (last.spring.model, last.step) {
+                    (SpringModel::Soft(made_for), Some(made))
+                        if made_for.same_bits(&spring) && made.holds_for(effective_mass, h) =>
+                    {
+                        Some(made.step)
+                    }
+                    _ => None,
+                });
                 Some(PreparedStep {
                     effective_mass,
                     h,
-                    step: spring.oscillator_step(effective_mass, h),
+                    step: kept.unwrap_or_else(|| spring.oscillator_step(effective_mass, h)),
                 })
             }
             SpringModel::Force { .. } => None,
@@ -293,14 +303,10 @@ impl Spring {
         PreparedSpring {
             spring: *self,
             fallback_axis: dist.axis,
+            between_centres,
             step,
         }
     }
-}
-
-/// The direction A → B at prepare, or +x when the anchors coincide: the fallback direction of distance parts.
-pub(crate) fn initial_axis(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> Vec3 {
-    pair.distance(a, b, Vec3::X).axis
 }
 
 /// A spring ready for the substeps.
@@ -308,6 +314,8 @@ pub(crate) fn initial_axis(pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> V
 pub(crate) struct PreparedSpring {
     spring: Spring,
     fallback_axis: Vec3,
+    /// [`BodyPair::is_between_centres`] of the joint's pair, which every substep asks.
+    between_centres: bool,
     /// The soft model's step at prepare.
     step: Option<PreparedStep>,
 }
@@ -320,6 +328,14 @@ struct PreparedStep {
     effective_mass: f32,
     h: f32,
     step: OscillatorStep,
+}
+
+impl PreparedStep {
+    /// Whether the step was made for the effective mass `effective_mass` and substep `h`, to the bit.
+    #[inline]
+    fn holds_for(&self, effective_mass: f32, h: f32) -> bool {
+        self.effective_mass.to_bits() == effective_mass.to_bits() && self.h.to_bits() == h.to_bits()
+    }
 }
 
 impl PreparedSpring {
@@ -342,18 +358,13 @@ impl PreparedSpring {
         b: &mut SolverBody,
         h: f32,
     ) -> f32 {
-        let dist = pair.distance(a, b, self.fallback_axis);
+        let dist = pair.distance_known(a, b, self.fallback_axis, self.between_centres);
         let part = AxisPart::along(pair, &dist);
         let impulse = match self.spring.model {
             SpringModel::Soft(spring) => {
                 let effective_mass = part.effective_mass();
                 let step = match self.step {
-                    Some(prepared)
-                        if prepared.effective_mass.to_bits() == effective_mass.to_bits()
-                            && prepared.h.to_bits() == h.to_bits() =>
-                    {
-                        prepared.step
-                    }
+                    Some(prepared) if prepared.holds_for(effective_mass, h) => prepared.step,
                     _ => spring.oscillator_step(effective_mass, h),
                 };
                 let c = dist.length - self.spring.rest_length;

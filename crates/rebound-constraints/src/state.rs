@@ -74,6 +74,17 @@ impl JointState {
         Ok(self)
     }
 
+    /// The state with every impulse zeroed but the tether's (which the tethers keep, whatever the joint's
+    /// kind): what a kind's *prepare* starts from before it keeps the impulses its rows use, so that a joint
+    /// whose kind changed is not warm-started with another kind's impulses.
+    #[inline]
+    pub(crate) fn tether_only(&self) -> Self {
+        Self {
+            tether_impulse: self.tether_impulse,
+            ..Self::default()
+        }
+    }
+
     /// Whether every number is finite: `x·0` is 0 for a finite `x` and NaN otherwise, so four comparisons
     /// side by side cover the thirteen numbers.
     #[inline]

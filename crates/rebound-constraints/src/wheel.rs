@@ -2,12 +2,12 @@
 //! axis of the chassis, a free axle, and an optional drive motor and suspension travel limits (Box2D's wheel
 //! joint in 3D). Stages: *prepare*, *warm start*, *solve* and *relax*.
 
-use crate::coordinate::CoordinateRows;
+use crate::coordinate::{Coordinate, CoordinateRows};
 use crate::error::ConstraintError;
 use crate::limits::Limits;
 use crate::motor::Motor;
 use crate::pair::BodyPair;
-use crate::part::{AlignPart, AnglePart, Row, RowTarget};
+use crate::part::{AlignPart, AnglePart, AxisPart, Row, RowTarget};
 use crate::prismatic::SlideGeometry;
 use crate::soft_spring::{JointSpring, SoftSpring};
 use crate::stage::Stage;
@@ -168,6 +168,20 @@ pub(crate) struct PreparedWheel {
     motor: Option<Motor>,
 }
 
+impl Coordinate for PreparedWheel {
+    type Part = AxisPart;
+
+    fn rows(&self) -> &CoordinateRows {
+        &self.suspension
+    }
+
+    /// The row along A's frame Y axis (the suspension) and the travel along it.
+    #[inline]
+    fn coordinate(&self, pair: &BodyPair, a: &SolverBody, b: &SolverBody) -> (AxisPart, f32) {
+        SlideGeometry::new(pair, a, b).coordinate(pair, 1)
+    }
+}
+
 impl PreparedWheel {
     pub(crate) fn warm_start(
         pair: &BodyPair,
@@ -192,19 +206,6 @@ impl PreparedWheel {
         g.warm_start_across(pair, ACROSS, state, a, b);
     }
 
-    /// Stage *apply forces*: the suspension spring ([`CoordinateRows::apply_spring`]).
-    pub(crate) fn apply_forces(
-        &self,
-        pair: &BodyPair,
-        state: &mut JointState,
-        (a, b): (&mut SolverBody, &mut SolverBody),
-        h: f32,
-    ) {
-        let g = SlideGeometry::new(pair, a, b);
-        self.suspension
-            .apply_spring(&g.row(pair, 1), pair, g.axes[1].dot(g.d), state, (a, b), h);
-    }
-
     pub(crate) fn solve(
         &self,
         pair: &BodyPair,
@@ -214,9 +215,8 @@ impl PreparedWheel {
         stage: &Stage,
     ) {
         let g = SlideGeometry::new(pair, a, b);
-        let travel = g.row(pair, 1);
-        self.suspension
-            .solve(&travel, pair, g.axes[1].dot(g.d), state, a, b, stage);
+        let (travel, x) = g.coordinate(pair, 1);
+        self.suspension.solve(&travel, pair, x, state, a, b, stage);
         let axle = g.axes[0];
         if let Some(motor) = self.motor {
             let max = motor.max_force() * stage.h;

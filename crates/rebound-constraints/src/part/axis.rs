@@ -144,19 +144,19 @@ impl AxisPart {
 
     /// Pushes the row along `dist`'s axis between the joint's anchors into `out` (a rope's, a rod's), with
     /// the impulse bounds `[lower, upper]` and position error `c` under `rule`: [`AxisPart::row`] at `dist`'s
-    /// axis and lever arms, or for a joint between both centres of mass ([`BodyPair::is_between_centres`])
-    /// [`AxisPart::row_between_centres`], which has nothing to turn. Inlined into the path pass, which builds
-    /// a rope's row at every new pose.
+    /// axis and lever arms, or for a joint between both centres of mass (`between_centres`:
+    /// [`BodyPair::is_between_centres`]) [`AxisPart::row_between_centres`], which has nothing to turn. Inlined
+    /// into the path pass, which builds a rope's row at every new pose.
     #[inline(always)]
     pub(crate) fn push_row(
-        pair: &BodyPair,
+        between_centres: bool,
         dist: &Distance,
         target: RowTarget,
         (lower, upper): (f32, f32),
         (c, rule): (f32, TargetRule),
         out: &mut JointRows,
     ) {
-        if pair.is_between_centres() {
+        if between_centres {
             let row = Self::row_between_centres(dist.axis, target).clamped(lower, upper);
             out.push_turned(row, c, rule, [Vec3::ZERO; 2]);
         } else {

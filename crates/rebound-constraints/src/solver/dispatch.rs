@@ -6,7 +6,7 @@
 //! `passes`, `path_pass`, `project`) name no joint kind.
 
 use crate::ball::{self, PreparedBall};
-use crate::coordinate::CoordinateRows;
+use crate::coordinate::{Coordinate, CoordinateRows};
 use crate::fixed::{FixedJoint, PreparedFixed};
 use crate::hinge::PreparedHinge;
 use crate::joint::JointKind;
@@ -41,42 +41,49 @@ pub(super) enum Prepared {
 }
 
 impl Prepared {
-    /// Stage *prepare* of `kind` between the bodies `sa`, `sb` of `pair`: the kind's prepared data, with the
-    /// impulses in `state` it does not use zeroed (so a joint whose kind changed is not warm-started with
-    /// another kind's impulses).
+    /// Stage *prepare* of `kind` between the bodies `sa`, `sb` of `pair`: the kind's prepared data, written
+    /// over `self` (what the slot held the step before: a spring reuses its oscillator step when it was made
+    /// for the same numbers), with the impulses in `state` it does not use zeroed (so a joint whose kind
+    /// changed is not warm-started with another kind's impulses). Each arm writes its variant in place: a
+    /// variant built and then copied costs a copy of the largest kind's size.
     pub(super) fn prepare(
+        &mut self,
         kind: &JointKind,
         pair: &BodyPair,
         (sa, sb): (&SolverBody, &SolverBody),
         ctx: &StepContext,
         state: &mut JointState,
-    ) -> Self {
+    ) {
         match kind {
             JointKind::Spring(s) => {
                 keep_only(state, Keep::Axial);
                 state.axial_impulse = 0.0;
-                Self::Spring(s.prepare(pair, sa, sb, ctx.h))
+                let last = match self {
+                    Self::Spring(last) => Some(*last),
+                    _ => None,
+                };
+                *self = Self::Spring(s.prepare(pair, (sa, sb), ctx.h, last.as_ref()));
             }
             JointKind::Rope(r) => {
                 keep_only(state, Keep::Upper);
-                Self::Rope(r.prepare(pair, sa, sb))
+                *self = Self::Rope(r.prepare(pair, sa, sb));
             }
             JointKind::Rod(r) => {
                 keep_only(state, Keep::Axial);
-                Self::Rod(r.prepare(pair, sa, sb))
+                *self = Self::Rod(r.prepare(pair, sa, sb));
             }
             JointKind::Ball(ball) if !ball.is_free() => {
-                Self::LimitedBall(ball.prepare(pair, (sa, sb), ctx, state))
+                *self = Self::LimitedBall(ball.prepare(pair, (sa, sb), ctx, state));
             }
             JointKind::Ball(_) => {
                 keep_only(state, Keep::Linear);
-                Self::Ball
+                *self = Self::Ball;
             }
-            JointKind::Hinge(h) => Self::Hinge(h.prepare(pair, state)),
-            JointKind::Fixed(_) => Self::Fixed(FixedJoint::prepare(pair, state)),
-            JointKind::Prismatic(p) => Self::Prismatic(p.prepare(pair, state)),
-            JointKind::Wheel(w) => Self::Wheel(w.prepare(state)),
-            JointKind::SixDof(j) => Self::SixDof(j.prepare(pair, ctx, state)),
+            JointKind::Hinge(h) => *self = Self::Hinge(h.prepare(pair, state)),
+            JointKind::Fixed(_) => *self = Self::Fixed(FixedJoint::prepare(pair, state)),
+            JointKind::Prismatic(p) => *self = Self::Prismatic(p.prepare(pair, state)),
+            JointKind::Wheel(w) => *self = Self::Wheel(w.prepare(state)),
+            JointKind::SixDof(j) => *self = Self::SixDof(j.prepare(pair, ctx, state)),
         }
     }
 
@@ -109,7 +116,7 @@ impl Prepared {
         match self {
             Self::Hinge(p) => p.has_spring(),
             Self::Prismatic(p) => p.has_spring(),
-            Self::Wheel(_) => true,
+            Self::Wheel(p) => p.has_spring(),
             _ => false,
         }
     }
@@ -131,9 +138,9 @@ impl Prepared {
         };
         let bodies = (a, b);
         match self {
-            Self::Hinge(p) => p.apply_forces(pair, state, bodies, h),
-            Self::Prismatic(p) => p.apply_forces(pair, state, bodies, h),
-            Self::Wheel(p) => p.apply_forces(pair, state, bodies, h),
+            Self::Hinge(p) => p.apply_spring(pair, state, bodies, h),
+            Self::Prismatic(p) => p.apply_spring(pair, state, bodies, h),
+            Self::Wheel(p) => p.apply_spring(pair, state, bodies, h),
             _ => {}
         }
     }
@@ -191,8 +198,8 @@ impl Prepared {
     ) {
         match self {
             Self::Spring(_) => {}
-            Self::Rope(p) => p.solve(pair, state, a, b, stage),
-            Self::Rod(p) => p.solve(pair, state, a, b, stage),
+            Self::Rope(p) => p.solve(pair, state, (a, b), stage),
+            Self::Rod(p) => p.solve(pair, state, (a, b), stage),
             Self::Ball => ball::solve(pair, state, a, b, stage),
             Self::LimitedBall(p) => p.solve(pair, state, a, b, stage, on_path),
             Self::Hinge(p) if on_path => p.solve_coordinate(pair, state, a, b, stage),
@@ -215,8 +222,8 @@ impl Prepared {
         rows: &mut JointRows,
     ) -> bool {
         match self {
-            Self::Rope(p) => p.direct_row(pair, a, b, stage, rows),
-            Self::Rod(p) => p.direct_row(pair, a, b, stage, rows),
+            Self::Rope(p) => p.direct_row(pair, (a, b), stage, rows),
+            Self::Rod(p) => p.direct_row(pair, (a, b), stage, rows),
             Self::Ball | Self::LimitedBall(_) => ball::direct_rows(pair, a, b, stage, rows),
             Self::Hinge(_) => PreparedHinge::direct_rows(pair, a, b, stage, rows),
             _ => return false,
@@ -277,6 +284,16 @@ impl Prepared {
             Self::Rope(p) => Some(p.max_length()),
             Self::Rod(p) => Some(p.length()),
             _ => None,
+        }
+    }
+
+    /// Whether the joint may act in stage *restitution* ([`Prepared::apply_restitution`]): a rope with a
+    /// coefficient of restitution, a ball joint with limits.
+    pub(super) fn has_restitution(&self) -> bool {
+        match self {
+            Self::Rope(p) => p.has_restitution(),
+            Self::LimitedBall(_) => true,
+            _ => false,
         }
     }
 
@@ -343,20 +360,40 @@ impl Prepared {
     }
 }
 
-/// One prepared joint: its source index, bodies, accumulated impulses and kind.
+/// One prepared joint as the passes read it: its source index, bodies, accumulated impulses, kind and path.
+/// What only *prepare* and *store impulses* read is beside it, in a [`JointRecord`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct PreparedJoint {
     pub(super) source: usize,
     pub(super) pair: BodyPair,
     pub(super) state: JointState,
-    pub(super) break_force: f32,
-    pub(super) break_torque: f32,
     pub(super) kind: Prepared,
     /// The path solved directly ([`crate::path`]) that the joint's equality rows belong to, as an index
     /// into the solver's `paths`; `None` for a joint solved by Gauss–Seidel alone.
     pub(super) path: Option<usize>,
-    /// The joint's link in the solver's `links` (its index in `path_joints`) when it is on a path.
-    pub(super) link: Option<usize>,
+}
+
+impl PreparedJoint {
+    /// A slot of the solver's buffer before its first *prepare* writes it (the buffer keeps its slots from
+    /// step to step, and *prepare* writes each joint's fields into its slot in place).
+    pub(super) fn unprepared() -> Self {
+        Self {
+            source: 0,
+            pair: BodyPair::default(),
+            state: JointState::default(),
+            kind: Prepared::Ball,
+            path: None,
+        }
+    }
+}
+
+/// The part of a prepared joint that the substeps never read: its break limits, checked at *store
+/// impulses*, and the tether whose impulse it keeps for the next step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct JointRecord {
+    /// Break force (N) and torque (N·m).
+    pub(super) break_force: f32,
+    pub(super) break_torque: f32,
     /// The tether (an index into the solver's `tethers`) whose impulse the joint keeps for the next step.
     pub(super) tether: Option<usize>,
 }
@@ -373,10 +410,7 @@ enum Keep {
 /// kind's impulses).
 fn keep_only(state: &mut JointState, keep: Keep) {
     let kept = *state;
-    *state = JointState {
-        tether_impulse: kept.tether_impulse,
-        ..JointState::default()
-    };
+    *state = kept.tether_only();
     match keep {
         Keep::Axial => state.axial_impulse = kept.axial_impulse,
         Keep::Upper => state.upper_impulse = kept.upper_impulse,

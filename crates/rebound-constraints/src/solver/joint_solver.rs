@@ -2,7 +2,7 @@
 //! the scratch buffers every stage reuses) and the rows it keeps into the next step ([`KeptRows`]). The
 //! stages themselves are in the sibling modules: `prepare`, `passes`, `path_pass` and `project`.
 
-use super::dispatch::PreparedJoint;
+use super::dispatch::{JointRecord, PreparedJoint};
 use crate::error::ConstraintError;
 use crate::path::tether::{Edge, JointGraph, Tether};
 use crate::path::topology::Topology;
@@ -51,7 +51,11 @@ impl KeptRows {
 #[derive(Debug, Clone)]
 pub struct JointSolver {
     pub(super) settings: JointSettings,
+    /// The prepared joints, what the passes read of them. The buffer keeps its slots from step to step, and
+    /// *prepare* writes each joint's fields into its slot in place rather than building it and copying it in.
     pub(super) joints: Vec<PreparedJoint>,
+    /// Per prepared joint, what only *prepare* and *store impulses* read (its break limits, its tether).
+    pub(super) records: Vec<JointRecord>,
     /// The joints a Gauss–Seidel pass visits (indices into `joints`, in order): those on no direct path, and
     /// hinges on one that have limit, motor or spring rows. A rope chain or a bridge solved directly has none.
     pub(super) iterated: Vec<usize>,
@@ -81,6 +85,9 @@ pub struct JointSolver {
     /// Whether a prepared joint has a hinge, prismatic or wheel spring (*apply forces* visits the joints a
     /// second time for them only then).
     pub(super) coordinate_springs: bool,
+    /// Whether a prepared joint may act in stage *restitution* (a rope with restitution, a ball joint with
+    /// limits): the stage visits the joints only then.
+    pub(super) restitution: bool,
     /// The joint softness of the prepared step.
     pub(super) joint_softness: Softness,
     /// The substep length of the prepared step (s).
@@ -98,6 +105,7 @@ impl Default for JointSolver {
         Self {
             settings: JointSettings::default(),
             joints: Vec::new(),
+            records: Vec::new(),
             iterated: Vec::new(),
             tethers: Vec::new(),
             edges: Vec::new(),
@@ -110,6 +118,7 @@ impl Default for JointSolver {
             probe: Vec::new(),
             position_impulses: Vec::new(),
             coordinate_springs: false,
+            restitution: false,
             joint_softness: Softness::RIGID,
             h: 0.0,
             carry_angle: CARRY_ANGLE,

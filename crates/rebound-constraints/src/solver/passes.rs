@@ -150,6 +150,9 @@ impl JointSolver {
     /// Stage *restitution* (once, after the substeps): a rope with restitution `e` that snapped taut during
     /// the step while its anchors separated faster than `ctx.restitution_threshold` gets `Ċ = −e·Ċ⁻`.
     pub fn apply_restitution(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
+        if !self.restitution {
+            return;
+        }
         for j in &mut self.joints {
             j.kind
                 .apply_restitution(&j.pair, &mut j.state, solver_bodies, ctx);
@@ -173,12 +176,12 @@ impl JointSolver {
         broken: &mut Vec<usize>,
     ) {
         let inv_h = if self.h > 0.0 { 1.0 / self.h } else { 0.0 };
-        for j in &self.joints {
+        for (j, record) in self.joints.iter().zip(&self.records) {
             let Some(out) = states.state_mut(j.source) else {
                 continue;
             };
             let (linear, angular) = reaction_impulses(&j.kind, &j.state);
-            let tether = j.tether.and_then(|k| self.tethers.get(k));
+            let tether = record.tether.and_then(|k| self.tethers.get(k));
             *out = JointState {
                 reaction_force: linear * inv_h,
                 reaction_torque: angular * inv_h,
@@ -186,7 +189,8 @@ impl JointSolver {
                 broken: false,
                 ..j.state
             };
-            if out.reaction_force > j.break_force || out.reaction_torque > j.break_torque {
+            if out.reaction_force > record.break_force || out.reaction_torque > record.break_torque
+            {
                 out.broken = true;
                 broken.push(j.source);
             }

@@ -2,10 +2,9 @@
 //! directly and the links kept from the last step, the joints Gauss–Seidel visits, the tethers and which
 //! paths are closed.
 
-use super::dispatch::{Prepared, PreparedJoint};
+use super::dispatch::{JointRecord, PreparedJoint};
 use super::joint_solver::JointSolver;
 use crate::joint::{Joint, JointBodies};
-use crate::pair::BodyPair;
 use crate::part::rotation_error;
 use crate::path::resize_links;
 use crate::path::tether::Edge;
@@ -45,12 +44,12 @@ impl JointSolver {
         params: &[BodyParams],
         ctx: &StepContext,
     ) -> usize {
-        self.joints.clear();
-        self.coordinate_springs = false;
+        self.records.clear();
         self.relax_passes = 0;
         self.joint_softness = self.settings.joint_softness(ctx);
         self.h = ctx.h;
         let body_count = solver_bodies.len().min(params.len());
+        let (mut coordinate_springs, mut restitution) = (false, false);
         let mut skipped = 0;
         for source in 0..count {
             let Some((joint, state, jb)) = joint(source) else {
@@ -61,16 +60,23 @@ impl JointSolver {
                 skipped += 1;
                 continue;
             }
-            let pair = BodyPair::new(
+            let prepared = self.records.len();
+            if prepared == self.joints.len() {
+                self.joints.push(PreparedJoint::unprepared());
+            }
+            let Some(j) = self.joints.get_mut(prepared) else {
+                continue;
+            };
+            // Each field written in its slot: the pair and the kind are made where they are kept.
+            j.source = source;
+            j.pair.reset(
                 jb.a,
                 jb.b,
-                &params[jb.a],
-                &params[jb.b],
+                (&params[jb.a], &params[jb.b]),
                 (joint.local_anchor_a(), joint.local_anchor_b()),
                 (joint.local_basis_a(), joint.local_basis_b()),
             );
-            let (sa, sb) = (&solver_bodies[jb.a], &solver_bodies[jb.b]);
-            let mut state = if ctx.warm_starting {
+            j.state = if ctx.warm_starting {
                 JointState {
                     broken: false,
                     ..*state
@@ -78,20 +84,21 @@ impl JointSolver {
             } else {
                 JointState::default()
             };
-            let kind = Prepared::prepare(joint.kind(), &pair, (sa, sb), ctx, &mut state);
-            self.coordinate_springs |= kind.has_coordinate_spring();
-            self.joints.push(PreparedJoint {
-                source,
-                pair,
-                state,
+            let bodies = (&solver_bodies[jb.a], &solver_bodies[jb.b]);
+            j.kind
+                .prepare(joint.kind(), &j.pair, bodies, ctx, &mut j.state);
+            j.path = None;
+            coordinate_springs |= j.kind.has_coordinate_spring();
+            restitution |= j.kind.has_restitution();
+            self.records.push(JointRecord {
                 break_force: joint.break_force(),
                 break_torque: joint.break_torque(),
-                kind,
-                path: None,
-                link: None,
                 tether: None,
             });
         }
+        self.joints.truncate(self.records.len());
+        self.coordinate_springs = coordinate_springs;
+        self.restitution = restitution;
         // The paths first: the graph search leaves out the tethers they make redundant.
         self.find_paths(body_count);
         // One link per path member. A path whose links all hold carried rows of the last step for the same
@@ -141,7 +148,7 @@ impl JointSolver {
     }
 
     /// The paths and graphs solved directly ([`Topology::find_paths_and_graphs`]), each joint on one told
-    /// its path (or graph) and link.
+    /// its path (or graph).
     fn find_paths(&mut self, body_count: usize) {
         let Self {
             settings,
@@ -162,9 +169,8 @@ impl JointSolver {
             |i| joints_ref[i].kind.direct_row_count(),
         );
         for (path, range) in topology.paths.iter().enumerate() {
-            for (link, &index) in range.clone().zip(&topology.path_joints[range.clone()]) {
+            for &index in &topology.path_joints[range.clone()] {
                 joints[index].path = Some(path);
-                joints[index].link = Some(link);
             }
         }
     }
@@ -259,9 +265,11 @@ impl JointSolver {
         };
         self.tethers.extend(self.graph.tethers(body));
         for (k, t) in self.tethers.iter_mut().enumerate() {
-            if let Some(j) = self.joints.get_mut(t.joint) {
+            if let (Some(j), Some(record)) =
+                (self.joints.get(t.joint), self.records.get_mut(t.joint))
+            {
                 t.impulse = j.state.tether_impulse;
-                j.tether = Some(k);
+                record.tether = Some(k);
             } else {
                 t.impulse = 0.0;
             }
