@@ -131,6 +131,11 @@ pub(crate) fn build_contacts(
     s.overlaps.resize(s.states.len(), 0);
     // Whether some dynamic body overlaps more than one other: then the push-out speed is shared out.
     let mut crowded = false;
+    // The resting manifolds go to the load propagation as they are built.
+    let loads = ctx.resting_overlap.is_some();
+    if loads {
+        s.stack_loads.begin(ctx.gravity);
+    }
     for (source, manifold) in manifolds.iter().enumerate() {
         let ia = solver_index_of(s, bodies, manifold.body_a);
         let ib = solver_index_of(s, bodies, manifold.body_b);
@@ -154,13 +159,14 @@ pub(crate) fn build_contacts(
         contact.rolling_friction = manifold.rolling_friction;
         contact.surface_velocity = manifold.surface_velocity;
         reports_forces |= manifold.force_event_threshold.is_some();
-        let mut overlapping = false;
+        let (mut overlapping, mut resting) = (false, false);
         for point in manifold.points() {
             overlapping |= point.separation < 0.0;
             // The collide stage chose every point's lever arms.
             let Some([anchor_a, anchor_b]) = point.solver_lever_arms else {
                 continue;
             };
+            resting |= point.separation < StackLoads::RESTING_GAP;
             contact.push_point(ContactPoint {
                 anchor_a,
                 anchor_b,
@@ -171,6 +177,10 @@ pub(crate) fn build_contacts(
             });
         }
         report.contact_point_count += contact.point_count;
+        if loads && resting {
+            s.stack_loads
+                .add(s.contact_sources.len(), contact, &s.params);
+        }
         s.contact_sources.push(source);
         if overlapping {
             crowded |= count_overlap(s, ia) | count_overlap(s, ib);
@@ -185,9 +195,8 @@ pub(crate) fn build_contacts(
         s.step_impulses
             .resize(s.contacts.len(), [0.0; MAX_CONTACT_POINTS]);
     }
-    if ctx.resting_overlap.is_some() {
-        s.stack_loads
-            .compute(&mut s.contacts, &s.params, ctx.gravity, ctx.h);
+    if loads {
+        s.stack_loads.finish(&mut s.contacts, &s.params, ctx.h);
     }
     report.rejected_contact_count +=
         s.contact_solver

@@ -57,9 +57,10 @@ pub struct Contact {
     /// (the step's).
     pub push_out_speed: f32,
     /// The normal force (N) the bodies resting on this manifold press it with — their weight handed down
-    /// the stack ([`StackLoads`](crate::contact::StackLoads)). The soft rows are preloaded with it, so that
-    /// they hold it at a fixed small overlap (`docs/physics.md`, "Contacts under load"). Default: 0 (no
-    /// preload: the overlap at rest is load / stiffness).
+    /// the stack ([`StackLoads`](crate::contact::StackLoads)). With a resting overlap set
+    /// ([`StepContext::resting_overlap`](crate::StepContext::resting_overlap)), preparation moves the rest
+    /// point of the soft rows by it, so that they hold it at that small overlap (`docs/physics.md`,
+    /// "Contacts under load"). Default: 0 (the overlap at rest is load / stiffness).
     pub load: f32,
     /// The points; only the first `point_count` are used.
     pub points: [ContactPoint; MAX_CONTACT_POINTS],
