@@ -95,12 +95,20 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
 
 /// The solver index of `handle`, adding a fixed body on first use. `None` for sleeping bodies (whose
 /// constraints wait) and stale handles.
+#[inline]
 fn solver_index_of(s: &mut Solver, bodies: &BodySet, handle: BodyHandle) -> Option<usize> {
     let slot = BodySet::slot(handle);
     let existing = *s.solver_index.get(slot)?;
     if existing != NO_INDEX {
         return Some(existing as usize);
     }
+    add_fixed(s, bodies, handle, slot)
+}
+
+/// [`solver_index_of`] for a body without a solver index yet (in slot `slot`): a fixed body gets the next
+/// one; `None` for any other.
+#[inline(never)]
+fn add_fixed(s: &mut Solver, bodies: &BodySet, handle: BodyHandle, slot: usize) -> Option<usize> {
     let body = bodies.get(handle)?;
     if body.body_type() != BodyType::Fixed {
         return None;
@@ -123,7 +131,8 @@ pub(crate) fn build_contacts(
     ctx: &StepContext,
     report: &mut StepReport,
 ) {
-    s.contacts.clear();
+    // Last step's contacts are written over in place (their points' storage kept), the rest cut off.
+    let mut count = 0;
     s.contact_sources.clear();
     let mut reports_forces = false;
     // Only the awake moving bodies, which have the first solver indices, are counted.
@@ -131,7 +140,7 @@ pub(crate) fn build_contacts(
     s.overlaps.resize(s.states.len(), 0);
     // Whether some dynamic body overlaps more than one other: then the push-out speed is shared out.
     let mut crowded = false;
-    // The resting manifolds go to the load propagation as they are built.
+    // The manifolds go to the load propagation as they are built: it keeps the resting supports.
     let loads = ctx.resting_overlap.is_some();
     if loads {
         s.stack_loads.begin(ctx.gravity);
@@ -146,27 +155,37 @@ pub(crate) fn build_contacts(
             continue;
         }
         // Written in place in the list, point by point (not built aside and moved in).
-        s.contacts.push(Contact::new(
-            ia,
-            ib,
-            manifold.normal,
-            manifold.friction,
-            manifold.restitution,
-        ));
-        let Some(contact) = s.contacts.last_mut() else {
+        if let Some(contact) = s.contacts.get_mut(count) {
+            contact.renew(
+                ia,
+                ib,
+                manifold.normal,
+                manifold.friction,
+                manifold.restitution,
+            );
+        } else {
+            s.contacts.push(Contact::new(
+                ia,
+                ib,
+                manifold.normal,
+                manifold.friction,
+                manifold.restitution,
+            ));
+        }
+        let Some(contact) = s.contacts.get_mut(count) else {
             continue;
         };
+        count += 1;
         contact.rolling_friction = manifold.rolling_friction;
         contact.surface_velocity = manifold.surface_velocity;
         reports_forces |= manifold.force_event_threshold.is_some();
-        let (mut overlapping, mut resting) = (false, false);
+        let mut overlapping = false;
         for point in manifold.points() {
             overlapping |= point.separation < 0.0;
             // The collide stage chose every point's lever arms.
             let Some([anchor_a, anchor_b]) = point.solver_lever_arms else {
                 continue;
             };
-            resting |= point.separation < StackLoads::RESTING_GAP;
             contact.push_point(ContactPoint {
                 anchor_a,
                 anchor_b,
@@ -177,7 +196,7 @@ pub(crate) fn build_contacts(
             });
         }
         report.contact_point_count += contact.point_count;
-        if loads && resting {
+        if loads {
             s.stack_loads
                 .add(s.contact_sources.len(), contact, &s.params);
         }
@@ -186,6 +205,7 @@ pub(crate) fn build_contacts(
             crowded |= count_overlap(s, ia) | count_overlap(s, ib);
         }
     }
+    s.contacts.truncate(count);
     if crowded {
         share_push_out(s, ctx.max_push_out_speed);
     }

@@ -61,12 +61,18 @@ impl PreparedContact {
         let normal = contact.normal;
         let (t1, t2) = normal.any_orthonormal_pair();
         let both_dynamic = pa.is_dynamic() && pb.is_dynamic();
+        let softness = if both_dynamic {
+            ctx.contact_softness
+        } else {
+            ctx.static_softness
+        };
+        let point_count = contact.points().len();
         Self {
             source,
             body_a: contact.body_a,
             body_b: contact.body_b,
             first_point: NO_POINTS,
-            point_count: contact.points().len(),
+            point_count,
             patch: NO_POINTS,
             rolling,
             normal,
@@ -75,34 +81,12 @@ impl PreparedContact {
             restitution: contact.restitution,
             inv_mass_a: pa.inv_mass,
             inv_mass_b: pb.inv_mass,
-            softness: if both_dynamic {
-                ctx.contact_softness
-            } else {
-                ctx.static_softness
-            },
+            softness,
             max_push_out_speed: ctx.max_push_out_speed.min(contact.push_out_speed),
             both_dynamic,
             moving_surface: contact.surface_velocity != Vec3::ZERO,
-            load_depth: 0.0,
+            load_depth: load_depth(contact.load, point_count, softness, ctx),
         }
-        .with_load(contact.load, ctx)
-    }
-
-    /// `load_depth` for a manifold carrying `load` (N) under the step's softness: a point's share
-    /// `λ₀ = load·h/N` of the load over substep `h` balances the soft row's leak `impulse_scale·λ₀` at
-    /// the bias `bias_rate·d`, `m_n·mass_scale·bias_rate·d = impulse_scale·λ₀`, so at the depth
-    /// `d = λ₀·impulse_scale/(mass_scale·bias_rate) · (1/m_n)` (that is `λ₀/(m_n·h·ω²)`, load over
-    /// stiffness). 0 without a load or without [`StepContext::resting_overlap`].
-    #[inline]
-    fn with_load(mut self, load: f32, ctx: &StepContext) -> Self {
-        if load > 0.0 && ctx.resting_overlap.is_some() {
-            let soft = self.softness;
-            let denominator = soft.mass_scale * soft.bias_rate * self.point_count as f32;
-            if denominator > 0.0 {
-                self.load_depth = load * ctx.h * soft.impulse_scale / denominator;
-            }
-        }
-        self
     }
 
     /// How far (m) the rest point of a point's soft row moves into the overlap for its share of the load,
@@ -126,6 +110,24 @@ impl PreparedContact {
     #[inline]
     pub(crate) fn max_push_with_shift(&self, shift: f32) -> f32 {
         self.max_push_out_speed + self.softness.bias_rate * shift
+    }
+}
+
+/// `PreparedContact::load_depth` of a manifold of `point_count` points carrying `load` (N) with softness
+/// `soft`: a point's share `λ₀ = load·h/N` of the load over substep `h` balances the soft row's leak
+/// `impulse_scale·λ₀` with the bias `bias_rate·d` where `m_n·mass_scale·bias_rate·d = impulse_scale·λ₀`,
+/// at the depth `d = λ₀·impulse_scale/(mass_scale·bias_rate) · (1/m_n)` (that is `λ₀/(m_n·h·ω²)`, load over
+/// stiffness). 0 without a load or without [`StepContext::resting_overlap`].
+#[inline]
+fn load_depth(load: f32, point_count: usize, soft: Softness, ctx: &StepContext) -> f32 {
+    if !(load > 0.0 && ctx.resting_overlap.is_some()) {
+        return 0.0;
+    }
+    let denominator = soft.mass_scale * soft.bias_rate * point_count as f32;
+    if denominator > 0.0 {
+        load * ctx.h * soft.impulse_scale / denominator
+    } else {
+        0.0
     }
 }
 

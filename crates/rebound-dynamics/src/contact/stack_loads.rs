@@ -34,6 +34,8 @@ pub struct StackLoads {
     level: Vec<u32>,
     /// Body → the weight (N) that rests on it, handed down from the bodies above (set when reached).
     carried: Vec<f32>,
+    /// Body → how many of its supports are on the level below it (set when reached).
+    support_count: Vec<u32>,
     /// Body → its last link to a body it supports, [`NONE`] if it has none.
     above: Vec<u32>,
     /// Body → its last link to a body that supports it, [`NONE`] if it has none.
@@ -111,10 +113,10 @@ impl StackLoads {
         };
     }
 
-    /// Adds manifold `c` (index `manifold` into the contacts later given to [`StackLoads::finish`], body
-    /// indices into `params`), which the caller found resting (a point within [`StackLoads::RESTING_GAP`]).
-    /// It is linked if its normal points up within 45°; a manifold of a body with itself or between two
-    /// bodies the solver does not move is not.
+    /// Offers manifold `c` (index `manifold` into the contacts later given to [`StackLoads::finish`], body
+    /// indices into `params`). It is linked if it is a support: it rests (a point within
+    /// [`StackLoads::RESTING_GAP`]) and its normal points up within 45°, and its upper body is one the
+    /// solver moves; otherwise (a body with itself too) it is dropped.
     #[inline]
     pub fn add(&mut self, manifold: usize, c: &Contact, params: &[BodyParams]) {
         let cosine = c.normal.dot(self.up);
@@ -125,6 +127,9 @@ impl StackLoads {
         } else {
             return;
         };
+        if !c.points().iter().any(|p| p.separation < Self::RESTING_GAP) {
+            return;
+        }
         let (Some(pl), Some(pu)) = (params.get(lower), params.get(upper)) else {
             return;
         };
@@ -160,6 +165,7 @@ impl StackLoads {
         self.above.resize(body_count, NONE);
         self.below.resize(body_count, NONE);
         self.carried.resize(body_count, 0.0);
+        self.support_count.resize(body_count, 0);
     }
 
     /// Sets [`Contact::load`] of every added manifold in `contacts` (body indices into `params`): the
@@ -186,7 +192,7 @@ impl StackLoads {
 
     /// Sets [`Contact::load`] of every manifold in `contacts` (solver indices into `params`) under
     /// `gravity` (m/s²), 0 for a manifold that carries no body's weight: [`StackLoads::begin`], every
-    /// resting manifold to [`StackLoads::add`], [`StackLoads::finish`] for substeps of `h` (s). For a caller
+    /// manifold to [`StackLoads::add`], [`StackLoads::finish`] for substeps of `h` (s). For a caller
     /// that has its contacts at hand; one that builds them adds them as it goes instead.
     pub fn compute(
         &mut self,
@@ -198,19 +204,18 @@ impl StackLoads {
         self.begin(gravity);
         for (m, c) in contacts.iter_mut().enumerate() {
             c.load = 0.0;
-            if c.points().iter().any(|p| p.separation < Self::RESTING_GAP) {
-                self.add(m, c, params);
-            }
+            self.add(m, c, params);
         }
         self.finish(contacts, params, h);
     }
 
-    /// Levels by breadth-first search up the supports from the fixed and kinematic bodies in `queue`;
-    /// `queue` keeps the order.
+    /// Levels by breadth-first search up the supports from the fixed and kinematic bodies in `queue`, and
+    /// counts each reached body's supports on the level below it; `queue` keeps the order.
     fn level_bodies(&mut self) {
-        let (level, carried, above, links, queue) = (
+        let (level, carried, support_count, above, links, queue) = (
             &mut self.level[..],
             &mut self.carried[..],
+            &mut self.support_count[..],
             &self.above[..],
             &self.links[..],
             &mut self.queue,
@@ -225,7 +230,10 @@ impl StackLoads {
                 if level[upper] == UNREACHED {
                     level[upper] = next;
                     carried[upper] = 0.0;
+                    support_count[upper] = 1;
                     queue.push(link.upper);
+                } else if level[upper] == next {
+                    support_count[upper] += 1;
                 }
             }
         }
@@ -234,9 +242,10 @@ impl StackLoads {
     /// From the top level down: each body's weight (`|g|`·`s_g`·m, N) and what rests on it to its supports
     /// on a lower level, in equal shares; each loaded manifold's warm start for a substep `h` (s).
     fn hand_down(&mut self, contacts: &mut [Contact], params: &[BodyParams], h: f32) {
-        let (level, carried, below, links, queue, g) = (
+        let (level, carried, support_count, below, links, queue, g) = (
             &self.level[..],
             &mut self.carried[..],
+            &self.support_count[..],
             &self.below[..],
             &self.links[..],
             &self.queue[..],
@@ -249,21 +258,17 @@ impl StackLoads {
                 // The fixed and kinematic bodies come first in the queue: none is left above them.
                 break;
             }
-            let supports = || {
-                list(links, below[body], |l| l.next_below)
-                    .filter(move |link| level[link.lower as usize] < level_of_body)
-            };
-            let count = supports().count();
-            if count == 0 {
-                continue;
-            }
+            // Reached from below: one support or more, all on the level below.
+            let count = support_count[body];
             let p = &params[body];
             let weight = p.gravity_scale * g / p.inv_mass + carried[body];
             if weight.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
                 continue;
             }
             let share = weight / count as f32;
-            for link in supports() {
+            let supports = list(links, below[body], |l| l.next_below)
+                .filter(|link| level[link.lower as usize] < level_of_body);
+            for link in supports {
                 // Only the upper body of a manifold loads it: this is its one load.
                 if let Some(c) = contacts.get_mut(link.manifold as usize) {
                     c.load = share * link.cosine;
