@@ -75,7 +75,7 @@ pub struct StepContext {
     pub restitution_threshold: f32,
     /// Whether warm starting is on.
     pub warm_starting: bool,
-    /// The overlap (m) a loaded resting contact may keep, `None` without preloads
+    /// The overlap (m) a loaded resting contact may keep, `None` when loads are not held
     /// ([`SolverSettings::resting_overlap`]).
     pub resting_overlap: Option<f32>,
 }

@@ -46,7 +46,7 @@ pub(crate) struct Solver {
     /// Indices (into `joint_handles`) of the joints that broke this step (written by *store*).
     pub(crate) broken: Vec<usize>,
     pub(crate) contact_solver: ContactSolver,
-    /// The weight each resting manifold carries (the preload of its soft rows).
+    /// The weight each resting manifold carries (what its soft rows hold at rest).
     pub(crate) stack_loads: StackLoads,
     pub(crate) joint_solver: JointSolver,
     /// Solver contact → each point's normal impulse summed over the step (N·s), kept only when a contact
