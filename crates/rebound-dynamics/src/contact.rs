@@ -47,7 +47,7 @@
 //! - `scalar.rs`: one manifold at a time, with the bounce and rolling resistance.
 //! - `patch.rs`: the scalar path's friction patch, and how a patch's impulses are shared among its points.
 //! - `stack_loads.rs`: [`StackLoads`], the weight each resting manifold carries, handed down the contact
-//!   graph, which preloads its soft rows.
+//!   graph, which moves the rest point of its soft rows at preparation.
 //! - `wide.rs` and `wide/`: four manifolds at a time in `Vec4` lanes — colouring, batches, lane arithmetic.
 
 mod bias;

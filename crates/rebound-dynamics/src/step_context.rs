@@ -28,9 +28,9 @@ pub struct SolverSettings {
     /// Whether stored impulses from the last step seed the solver. Default: true.
     pub warm_starting: bool,
     /// The overlap (m) a loaded resting contact may keep: with `Some(ε)` each resting manifold's soft rows
-    /// are preloaded with the weight it carries ([`StackLoads`](crate::contact::StackLoads)) and hold it at
-    /// `min(ε, load / stiffness)`; with `None` the overlap at rest is `load / stiffness`. Default: `None`
-    /// (`Some(1e-4)`, 0.1 mm, keeps a 40-box column within 1 cm; `docs/physics.md`, "Contacts under load").
+    /// hold the weight it carries ([`StackLoads`](crate::contact::StackLoads)) at rest at an overlap of
+    /// `min(ε, load / stiffness)`; with `None` (off) the overlap at rest is `load / stiffness`. Default:
+    /// `Some(1e-4)` (0.1 mm, keeps a 40-box column within 1 cm; `docs/physics.md`, "Contacts under load").
     pub resting_overlap: Option<f32>,
 }
 
@@ -44,7 +44,7 @@ impl Default for SolverSettings {
             max_push_out_speed: 3.0,
             restitution_threshold: 1.0,
             warm_starting: true,
-            resting_overlap: None,
+            resting_overlap: Some(1e-4),
         }
     }
 }
@@ -75,7 +75,7 @@ pub struct StepContext {
     pub restitution_threshold: f32,
     /// Whether warm starting is on.
     pub warm_starting: bool,
-    /// The overlap (m) a loaded resting contact may keep, `None` without preloads
+    /// The overlap (m) a loaded resting contact may keep, `None` when loads are not held
     /// ([`SolverSettings::resting_overlap`]).
     pub resting_overlap: Option<f32>,
 }

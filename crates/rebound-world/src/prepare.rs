@@ -46,7 +46,7 @@ pub(crate) struct Solver {
     /// Indices (into `joint_handles`) of the joints that broke this step (written by *store*).
     pub(crate) broken: Vec<usize>,
     pub(crate) contact_solver: ContactSolver,
-    /// The weight each resting manifold carries (the preload of its soft rows).
+    /// The weight each resting manifold carries (what its soft rows hold at rest).
     pub(crate) stack_loads: StackLoads,
     pub(crate) joint_solver: JointSolver,
     /// Solver contact → each point's normal impulse summed over the step (N·s), kept only when a contact
@@ -95,12 +95,20 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
 
 /// The solver index of `handle`, adding a fixed body on first use. `None` for sleeping bodies (whose
 /// constraints wait) and stale handles.
+#[inline]
 fn solver_index_of(s: &mut Solver, bodies: &BodySet, handle: BodyHandle) -> Option<usize> {
     let slot = BodySet::slot(handle);
     let existing = *s.solver_index.get(slot)?;
     if existing != NO_INDEX {
         return Some(existing as usize);
     }
+    add_fixed(s, bodies, handle, slot)
+}
+
+/// [`solver_index_of`] for a body without a solver index yet (in slot `slot`): a fixed body gets the next
+/// one; `None` for any other.
+#[inline(never)]
+fn add_fixed(s: &mut Solver, bodies: &BodySet, handle: BodyHandle, slot: usize) -> Option<usize> {
     let body = bodies.get(handle)?;
     if body.body_type() != BodyType::Fixed {
         return None;
@@ -123,7 +131,8 @@ pub(crate) fn build_contacts(
     ctx: &StepContext,
     report: &mut StepReport,
 ) {
-    s.contacts.clear();
+    // Last step's contacts are written over in place (their points' storage kept), the rest cut off.
+    let mut count = 0;
     s.contact_sources.clear();
     let mut reports_forces = false;
     // Only the awake moving bodies, which have the first solver indices, are counted.
@@ -131,6 +140,11 @@ pub(crate) fn build_contacts(
     s.overlaps.resize(s.states.len(), 0);
     // Whether some dynamic body overlaps more than one other: then the push-out speed is shared out.
     let mut crowded = false;
+    // The manifolds go to the load propagation as they are built: it keeps the resting supports.
+    let loads = ctx.resting_overlap.is_some();
+    if loads {
+        s.stack_loads.begin(ctx.gravity);
+    }
     for (source, manifold) in manifolds.iter().enumerate() {
         let ia = solver_index_of(s, bodies, manifold.body_a);
         let ib = solver_index_of(s, bodies, manifold.body_b);
@@ -141,16 +155,27 @@ pub(crate) fn build_contacts(
             continue;
         }
         // Written in place in the list, point by point (not built aside and moved in).
-        s.contacts.push(Contact::new(
-            ia,
-            ib,
-            manifold.normal,
-            manifold.friction,
-            manifold.restitution,
-        ));
-        let Some(contact) = s.contacts.last_mut() else {
+        if let Some(contact) = s.contacts.get_mut(count) {
+            contact.renew(
+                ia,
+                ib,
+                manifold.normal,
+                manifold.friction,
+                manifold.restitution,
+            );
+        } else {
+            s.contacts.push(Contact::new(
+                ia,
+                ib,
+                manifold.normal,
+                manifold.friction,
+                manifold.restitution,
+            ));
+        }
+        let Some(contact) = s.contacts.get_mut(count) else {
             continue;
         };
+        count += 1;
         contact.rolling_friction = manifold.rolling_friction;
         contact.surface_velocity = manifold.surface_velocity;
         reports_forces |= manifold.force_event_threshold.is_some();
@@ -171,11 +196,16 @@ pub(crate) fn build_contacts(
             });
         }
         report.contact_point_count += contact.point_count;
+        if loads {
+            s.stack_loads
+                .add(s.contact_sources.len(), contact, &s.params);
+        }
         s.contact_sources.push(source);
         if overlapping {
             crowded |= count_overlap(s, ia) | count_overlap(s, ib);
         }
     }
+    s.contacts.truncate(count);
     if crowded {
         share_push_out(s, ctx.max_push_out_speed);
     }
@@ -185,9 +215,8 @@ pub(crate) fn build_contacts(
         s.step_impulses
             .resize(s.contacts.len(), [0.0; MAX_CONTACT_POINTS]);
     }
-    if ctx.resting_overlap.is_some() {
-        s.stack_loads
-            .compute(&mut s.contacts, &s.params, ctx.gravity, ctx.h);
+    if loads {
+        s.stack_loads.finish(&mut s.contacts, &s.params, ctx.h);
     }
     report.rejected_contact_count +=
         s.contact_solver

@@ -49,11 +49,13 @@ pub struct WorldSettings {
     /// The most steps one [`crate::World::advance`] call runs (the rest of the time is dropped, so a slow
     /// frame cannot snowball), from 1 to [`MAX_STEPS_PER_ADVANCE`] (1,000). Default: 8.
     pub max_steps_per_advance: u32,
-    /// The overlap (m) a loaded resting contact may keep: `Some(ε)` preloads each resting manifold's soft
-    /// rows with the weight it carries, so a stack holds its height whatever its load (each interface
-    /// overlaps `min(ε, load / stiffness)`); `None` leaves the overlap at `load / stiffness`. Positive and
-    /// finite when set. Default: `None` (`Some(1e-4)`, 0.1 mm, keeps a 40-box column within 1 cm of its height;
-    /// `docs/physics.md`, "Contacts under load").
+    /// The overlap (m) a loaded resting contact may keep: with `Some(ε)` each resting manifold's soft rows
+    /// hold the weight it carries at rest at an overlap of `min(ε, load / stiffness)`, so a stack holds its
+    /// height whatever its load (a 40-box column stands within 1 cm, a 1 kg box holds a 1,000 kg one);
+    /// `None` turns this off and leaves the overlap at `load / stiffness` (the column sinks 0.43 m).
+    /// Positive and finite when set. Default: `Some(1e-4)` (0.1 mm). Turn it off with
+    /// `WorldSettings { resting_overlap: None, ..WorldSettings::default() }` (`docs/physics.md`, "Contacts
+    /// under load").
     pub resting_overlap: Option<f32>,
     /// Joint solver settings: the softness of hard joint parts, iteration counts, long-range tethers for
     /// hanging chains. Default: [`JointSettings::default`] (60 Hz, ζ = 2, one solve and one relax pass,

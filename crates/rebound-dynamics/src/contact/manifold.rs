@@ -57,9 +57,10 @@ pub struct Contact {
     /// (the step's).
     pub push_out_speed: f32,
     /// The normal force (N) the bodies resting on this manifold press it with — their weight handed down
-    /// the stack ([`StackLoads`](crate::contact::StackLoads)). The soft rows are preloaded with it, so that
-    /// they hold it at a fixed small overlap (`docs/physics.md`, "Contacts under load"). Default: 0 (no
-    /// preload: the overlap at rest is load / stiffness).
+    /// the stack ([`StackLoads`](crate::contact::StackLoads)). With a resting overlap set
+    /// ([`StepContext::resting_overlap`](crate::StepContext::resting_overlap)), preparation moves the rest
+    /// point of the soft rows by it, so that they hold it at that small overlap (`docs/physics.md`,
+    /// "Contacts under load"). Default: 0 (the overlap at rest is load / stiffness).
     pub load: f32,
     /// The points; only the first `point_count` are used.
     pub points: [ContactPoint; MAX_CONTACT_POINTS],
@@ -77,7 +78,7 @@ impl Contact {
         friction: f32,
         restitution: f32,
     ) -> Self {
-        Self {
+        let mut contact = Self {
             body_a,
             body_b,
             normal,
@@ -85,11 +86,39 @@ impl Contact {
             restitution,
             rolling_friction: 0.0,
             surface_velocity: Vec3::ZERO,
-            push_out_speed: f32::INFINITY,
+            push_out_speed: 0.0,
             load: 0.0,
             points: [ContactPoint::default(); MAX_CONTACT_POINTS],
             point_count: 0,
-        }
+        };
+        // The defaults of the other fields are written once, in `renew`.
+        contact.renew(body_a, body_b, normal, friction, restitution);
+        contact
+    }
+
+    /// Makes this manifold a new one between bodies `body_a` and `body_b` with normal `normal` (unit, A → B),
+    /// the given coefficients, the defaults of the other fields and no points, keeping only the storage of
+    /// its old points (never read: only the first `point_count` are used), so that a reused list of
+    /// manifolds is not written twice.
+    #[inline]
+    pub fn renew(
+        &mut self,
+        body_a: usize,
+        body_b: usize,
+        normal: Vec3,
+        friction: f32,
+        restitution: f32,
+    ) {
+        self.body_a = body_a;
+        self.body_b = body_b;
+        self.normal = normal;
+        self.friction = friction;
+        self.restitution = restitution;
+        self.rolling_friction = 0.0;
+        self.surface_velocity = Vec3::ZERO;
+        self.push_out_speed = f32::INFINITY;
+        self.load = 0.0;
+        self.point_count = 0;
     }
 
     /// Sets the rolling resistance lever arm (m).

@@ -35,8 +35,10 @@ pub(crate) struct PreparedContact {
     pub(crate) max_push_out_speed: f32,
     /// Whether both bodies are moved by the solver (not fixed or kinematic).
     pub(crate) both_dynamic: bool,
-    /// The normal force the manifold carries at rest (N, [`Contact::load`]).
-    pub(crate) load: f32,
+    /// The depth (m) at which a point's soft row holds its share of the manifold's load
+    /// ([`Contact::load`]), per unit of the point's inverse normal mass (kg·m; 0 without a load): see
+    /// [`PreparedContact::load_shift`].
+    pub(crate) load_depth: f32,
     /// Whether the contact has a surface velocity ([`Contact::surface_velocity`]): only the scalar path's
     /// patch drives friction to one.
     pub(crate) moving_surface: bool,
@@ -59,12 +61,18 @@ impl PreparedContact {
         let normal = contact.normal;
         let (t1, t2) = normal.any_orthonormal_pair();
         let both_dynamic = pa.is_dynamic() && pb.is_dynamic();
+        let softness = if both_dynamic {
+            ctx.contact_softness
+        } else {
+            ctx.static_softness
+        };
+        let point_count = contact.points().len();
         Self {
             source,
             body_a: contact.body_a,
             body_b: contact.body_b,
             first_point: NO_POINTS,
-            point_count: contact.points().len(),
+            point_count,
             patch: NO_POINTS,
             rolling,
             normal,
@@ -73,37 +81,53 @@ impl PreparedContact {
             restitution: contact.restitution,
             inv_mass_a: pa.inv_mass,
             inv_mass_b: pb.inv_mass,
-            softness: if both_dynamic {
-                ctx.contact_softness
-            } else {
-                ctx.static_softness
-            },
+            softness,
             max_push_out_speed: ctx.max_push_out_speed.min(contact.push_out_speed),
             both_dynamic,
             moving_surface: contact.surface_velocity != Vec3::ZERO,
-            load: contact.load,
+            load_depth: load_depth(contact.load, point_count, softness, ctx),
         }
     }
 
-    /// The preload of a point with normal mass `normal_mass` (kg), as a velocity bias (m/s) its soft row
-    /// subtracts: the leak `impulse_scale·λ` of the row's share `λ₀ = load·h/N` of the manifold's load, made
-    /// a bias (`λ₀·impulse_scale/(m_n·mass_scale)`), less the bias of the overlap `ε` it may keep
-    /// ([`StepContext::resting_overlap`]). At rest (`v = 0`, `λ = λ₀`) the row then balances at the overlap
-    /// `min(ε, λ₀/(m_n·h·ω²))` instead of `λ₀/(m_n·h·ω²)`: whatever the load, never deeper than `ε`. 0
-    /// without a load or without `ε`.
+    /// How far (m) the rest point of a point's soft row moves into the overlap for its share of the load,
+    /// given the point's inverse normal mass `k_normal` (1/kg): `max(d − ε, 0)` with `d` the depth at which
+    /// the soft row holds the share (`load_depth·k_normal`) and `ε` the overlap it may keep
+    /// ([`StepContext::resting_overlap`]). Prepare subtracts it from the point's separation, so the same
+    /// spring, damping and push-out cap act about the overlap `min(ε, d)` instead of `d`: at rest
+    /// (`v = 0`, `λ = λ₀`) the row balances there, never deeper than `ε` whatever the load. 0 without a
+    /// load.
     #[inline]
-    pub(crate) fn preload(&self, normal_mass: f32, ctx: &StepContext) -> f32 {
-        let (Some(resting_overlap), true) = (ctx.resting_overlap, self.load > 0.0) else {
-            return 0.0;
-        };
-        let h = ctx.h;
-        let soft = self.softness;
-        let denominator = normal_mass * soft.mass_scale * self.point_count as f32;
-        if !(self.load > 0.0 && denominator > 0.0) {
-            return 0.0;
-        }
-        let leak = self.load * h * soft.impulse_scale / denominator;
-        (leak - soft.bias_rate * resting_overlap).max(0.0)
+    pub(crate) fn load_shift(&self, k_normal: f32, ctx: &StepContext) -> f32 {
+        let overlap = ctx.resting_overlap.unwrap_or(0.0);
+        let shift = self.load_depth * k_normal - overlap;
+        if shift > 0.0 { shift } else { 0.0 }
+    }
+
+    /// The push-out speed cap (m/s) of a manifold whose points' rest points moved by at most `shift` (m,
+    /// [`PreparedContact::load_shift`]): the cap on the bias `bias_rate·s` of the unmoved separation `s`
+    /// becomes one on `bias_rate·(s − shift)`, `bias_rate·shift` further, so the load is held whatever the
+    /// cap.
+    #[inline]
+    pub(crate) fn max_push_with_shift(&self, shift: f32) -> f32 {
+        self.max_push_out_speed + self.softness.bias_rate * shift
+    }
+}
+
+/// `PreparedContact::load_depth` of a manifold of `point_count` points carrying `load` (N) with softness
+/// `soft`: a point's share `λ₀ = load·h/N` of the load over substep `h` balances the soft row's leak
+/// `impulse_scale·λ₀` with the bias `bias_rate·d` where `m_n·mass_scale·bias_rate·d = impulse_scale·λ₀`,
+/// at the depth `d = λ₀·impulse_scale/(mass_scale·bias_rate) · (1/m_n)` (that is `λ₀/(m_n·h·ω²)`, load over
+/// stiffness). 0 without a load or without [`StepContext::resting_overlap`].
+#[inline]
+fn load_depth(load: f32, point_count: usize, soft: Softness, ctx: &StepContext) -> f32 {
+    if !(load > 0.0 && ctx.resting_overlap.is_some()) {
+        return 0.0;
+    }
+    let denominator = soft.mass_scale * soft.bias_rate * point_count as f32;
+    if denominator > 0.0 {
+        load * ctx.h * soft.impulse_scale / denominator
+    } else {
+        0.0
     }
 }
 

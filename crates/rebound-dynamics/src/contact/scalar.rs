@@ -34,8 +34,6 @@ pub(crate) struct PreparedPoint {
     /// bounce's impulse plus the warm-start impulse the bounce forgot (both kept out of `normal_impulse`).
     pub(crate) bounce_impulse: f32,
     pub(crate) normal_mass: f32,
-    /// The soft row's preload as a velocity bias (m/s, [`PreparedContact::preload`]).
-    pub(crate) preload: f32,
     /// The point's distance from its manifold's patch centre (m): its lever against twist.
     pub(crate) twist_radius: f32,
     pub(crate) rn_a: Vec3,
@@ -46,7 +44,8 @@ pub(crate) struct PreparedPoint {
 
 impl PreparedPoint {
     /// The prepared form of `point`, a point of manifold `c` whose patch centre is `center_a`: anchors, angular
-    /// Jacobian terms, effective mass, twist lever and the warm-start normal impulse. The pre-step normal
+    /// Jacobian terms, effective mass, twist lever, the warm-start normal impulse and the separation, less
+    /// the load's shift of the rest point. The pre-step normal
     /// velocity, which only a bounce reads, is left at 0 (see [`PreparedPoint::with_approach`]).
     #[inline]
     pub(crate) fn new(
@@ -68,7 +67,8 @@ impl PreparedPoint {
         Self {
             anchor_a: ra,
             anchor_b: rb,
-            separation: point.separation,
+            // A loaded point's rest point moved into the overlap ([`PreparedContact::load_shift`]).
+            separation: point.separation - c.load_shift(k_normal, input.ctx),
             relative_velocity: 0.0,
             normal_impulse: if input.ctx.warm_starting {
                 point.normal_impulse
@@ -78,7 +78,6 @@ impl PreparedPoint {
             max_normal_impulse: 0.0,
             bounce_impulse: 0.0,
             normal_mass,
-            preload: c.preload(normal_mass, input.ctx),
             twist_radius: rho.dot(rho).sqrt(),
             rn_a,
             rn_b,
@@ -226,7 +225,7 @@ pub(crate) fn solve(
             (s * ctx.inv_h, 1.0, 0.0)
         } else if bias == Bias::On {
             (
-                (c.softness.bias_rate * s).max(-c.max_push_out_speed) - p.preload,
+                (c.softness.bias_rate * s).max(-c.max_push_out_speed),
                 c.softness.mass_scale,
                 c.softness.impulse_scale,
             )

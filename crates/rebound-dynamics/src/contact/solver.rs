@@ -102,14 +102,14 @@ impl ContactSolver {
             let patch = Patch::new(&input, c, points);
             c.first_point = self.points.len();
             c.patch = self.patches.len();
+            // The deepest shift of a loaded point's rest point moves the manifold's push-out cap with it.
+            let mut shift = 0.0_f32;
             for point in points {
-                self.points.push(PreparedPoint::with_approach(
-                    &input,
-                    c,
-                    point,
-                    patch.center_a,
-                ));
+                let prepared = PreparedPoint::with_approach(&input, c, point, patch.center_a);
+                shift = shift.max(point.separation - prepared.separation);
+                self.points.push(prepared);
             }
+            c.max_push_out_speed = c.max_push_with_shift(shift);
             self.patches.push(patch);
         }
         skipped

@@ -1,22 +1,22 @@
 //! [`StackLoads`]: the weight each resting manifold carries, from the contact graph, before the solve. The
-//! bodies are levelled by the fewest resting manifolds to a fixed or kinematic one; from the top level
-//! down, each body hands its weight and what rests on it to its supports (its manifolds to a lower level
-//! whose normal points up), in equal shares. Exact for a column; for a body on several supports the shares
-//! are a guess the soft contacts correct.
+//! graph is the supports: resting manifolds whose normal points up within 45°, each a link from the body
+//! below to the body above. The bodies are levelled up from the fixed and kinematic ones (the fewest
+//! supports between a body and one of them); from the top level down each body hands its weight and what
+//! rests on it to its supports on a lower level, in equal shares. Exact for a column; for a body on several
+//! supports the shares are a guess the soft contacts correct.
 //!
-//! The solve uses a manifold's load as a preload of its soft rows (`docs/physics.md`, "Contacts under
-//! load"): their spring then holds that load at a fixed small overlap instead of at `load / stiffness`.
+//! The caller hands over the resting manifolds as it builds them ([`StackLoads::begin`],
+//! [`StackLoads::add`], [`StackLoads::finish`]), so finding them costs no pass of its own; a manifold that
+//! is not a support is dropped there and then. Contact preparation turns a manifold's load into the rest
+//! point of its soft rows (`docs/physics.md`, "Contacts under load"): their spring then holds that load at
+//! a fixed small overlap instead of at `load / stiffness`.
 
 use super::manifold::Contact;
 use crate::BodyParams;
 use rebound_math::Vec3;
 
-/// The level of a body no chain of resting manifolds connects to a fixed or kinematic one.
+/// The level of a body no chain of supports connects to a fixed or kinematic one.
 const UNREACHED: u32 = u32::MAX;
-
-/// A manifold rests when a point started the step at least this close (m) and it pushed in the last
-/// step.
-const RESTING_GAP: f32 = 1e-3;
 
 /// A support's normal points up by at least this cosine (45°).
 const SUPPORT_COSINE: f32 = core::f32::consts::FRAC_1_SQRT_2;
@@ -30,54 +30,54 @@ const NONE: u32 = u32::MAX;
 /// the buffers have grown.
 #[derive(Debug, Clone, Default)]
 pub struct StackLoads {
-    /// Body → its level: 0 for fixed and kinematic bodies, else the fewest resting manifolds to one.
+    /// Body → its level: 0 for fixed and kinematic bodies, else the fewest supports to one.
     level: Vec<u32>,
     /// Body → the weight (N) that rests on it, handed down from the bodies above (set when reached).
     carried: Vec<f32>,
-    /// Body → its last link in `links`, [`NONE`] if it has none.
-    first: Vec<u32>,
-    /// The ends of the resting manifolds, each in its body's list.
+    /// Body → how many of its supports are on the level below it (set when reached).
+    support_count: Vec<u32>,
+    /// Body → its last link to a body it supports, [`NONE`] if it has none.
+    above: Vec<u32>,
+    /// Body → its last link to a body that supports it, [`NONE`] if it has none.
+    below: Vec<u32>,
+    /// The supports, each in the lists of both its bodies.
     links: Vec<Link>,
     /// The reached bodies in breadth-first order from the fixed and kinematic ones.
     queue: Vec<u32>,
-    /// One body's supports: manifold, supporting body, upward cosine of the normal.
-    supports: Vec<(u32, u32, f32)>,
+    /// The unit vector against gravity, zero while gravity has no direction (then nothing is linked).
+    up: Vec3,
+    /// `|g|` (m/s²) of the current call.
+    g: f32,
 }
 
-/// One end of a resting manifold, seen from a body.
+/// A support: a resting manifold whose normal points up, seen as a link from the lower body to the upper.
 #[derive(Debug, Clone, Copy)]
 struct Link {
     /// The manifold (index into the contacts).
     manifold: u32,
-    /// The body at the other end.
-    other: u32,
-    /// The body's previous link, [`NONE`] if this is its first.
-    next: u32,
+    /// The supporting body.
+    lower: u32,
+    /// The supported body.
+    upper: u32,
+    /// The upward cosine of the normal, from the lower body to the upper one (≥ [`SUPPORT_COSINE`]).
+    cosine: f32,
+    /// The lower body's previous link in `above`, [`NONE`] if this is its first.
+    next_above: u32,
+    /// The upper body's previous link in `below`, [`NONE`] if this is its first.
+    next_below: u32,
 }
 
-/// The links of one body, from its entry of `first`.
-fn list(links: &[Link], first: u32) -> impl Iterator<Item = &Link> {
-    core::iter::successors(links.get(first as usize), |link| {
-        links.get(link.next as usize)
+/// The links of one list, from its head `first`, each followed by `next`.
+fn list(links: &[Link], first: u32, next: fn(&Link) -> u32) -> impl Iterator<Item = &Link> {
+    core::iter::successors(links.get(first as usize), move |link| {
+        links.get(next(link) as usize)
     })
 }
 
-/// Whether manifold `c` rests: a point started the step within [`RESTING_GAP`].
-fn resting(c: &Contact) -> bool {
-    c.points().iter().any(|p| p.separation < RESTING_GAP)
-}
-
-/// The upward cosine of manifold `c`'s normal seen from `other` towards `body` (the normal points from
-/// `body_a` to `body_b`).
-fn upward_cosine(c: &Contact, body: usize, up: Vec3) -> f32 {
-    let cosine = c.normal.dot(up);
-    if c.body_b == body { cosine } else { -cosine }
-}
-
 /// Scales the warm-start impulses of `c`'s points so that they sum to its load over a substep `h` (s),
-/// keeping how they share it (equal shares if none pushed): the substeps start from the impulse that holds
-/// the load instead of building it pass by pass, which a light body between a heavy one and the ground
-/// cannot do (a pass moves the heavy body by about the mass ratio of the error).
+/// if none pushed (equal shares): the substeps start from the impulse that holds the load instead of
+/// building it pass by pass, which a light body between a heavy one and the ground cannot do (a pass moves
+/// the heavy body by about the mass ratio of the error).
 fn warm_start_with_load(c: &mut Contact, h: f32) {
     let target = c.load * h;
     let count = c.point_count.min(c.points.len());
@@ -91,16 +91,109 @@ fn warm_start_with_load(c: &mut Contact, h: f32) {
 }
 
 impl StackLoads {
+    /// A manifold rests when one of its points starts the step closer than this (m).
+    pub const RESTING_GAP: f32 = 1e-3;
+
     /// An empty propagation.
     #[must_use]
     pub fn new() -> Self {
         Self::default()
     }
 
-    /// Sets [`Contact::load`] of every manifold in `contacts` (solver indices into `params`): the normal
-    /// force (N) its resting bodies press it with under `gravity` (m/s²), 0 for a manifold that carries no
-    /// body's weight. A loaded manifold's warm-start impulses are set to hold its load over a substep `h`
-    /// (s) if none pushed.
+    /// Starts a propagation under `gravity` (m/s²): forgets the last call's supports. Without a gravity
+    /// direction (zero or not finite) [`StackLoads::add`] links nothing.
+    pub fn begin(&mut self, gravity: Vec3) {
+        self.links.clear();
+        self.queue.clear();
+        let g = gravity.length();
+        (self.up, self.g) = if g > 0.0 && g.is_finite() {
+            (-gravity / g, g)
+        } else {
+            (Vec3::ZERO, 0.0)
+        };
+    }
+
+    /// Offers manifold `c` (index `manifold` into the contacts later given to [`StackLoads::finish`], body
+    /// indices into `params`). It is linked if it is a support: it rests (a point within
+    /// [`StackLoads::RESTING_GAP`]) and its normal points up within 45°, and its upper body is one the
+    /// solver moves; otherwise (a body with itself too) it is dropped.
+    #[inline]
+    pub fn add(&mut self, manifold: usize, c: &Contact, params: &[BodyParams]) {
+        let cosine = c.normal.dot(self.up);
+        let (lower, upper, cosine) = if cosine >= SUPPORT_COSINE {
+            (c.body_a, c.body_b, cosine)
+        } else if -cosine >= SUPPORT_COSINE {
+            (c.body_b, c.body_a, -cosine)
+        } else {
+            return;
+        };
+        if !c.points().iter().any(|p| p.separation < Self::RESTING_GAP) {
+            return;
+        }
+        let (Some(pl), Some(pu)) = (params.get(lower), params.get(upper)) else {
+            return;
+        };
+        if lower == upper || pu.inv_mass <= 0.0 {
+            // Nothing to hand down: no body, or one the solver does not move.
+            return;
+        }
+        if self.level.len() < params.len() {
+            self.grow(params.len());
+        }
+        let index = self.links.len() as u32;
+        self.links.push(Link {
+            manifold: manifold as u32,
+            lower: lower as u32,
+            upper: upper as u32,
+            cosine,
+            next_above: self.above[lower],
+            next_below: self.below[upper],
+        });
+        self.above[lower] = index;
+        self.below[upper] = index;
+        if pl.inv_mass <= 0.0 && self.level[lower] == UNREACHED {
+            self.level[lower] = 0;
+            self.carried[lower] = 0.0;
+            self.queue.push(lower as u32);
+        }
+    }
+
+    /// Room for `body_count` bodies, all unreached and unlinked.
+    #[cold]
+    fn grow(&mut self, body_count: usize) {
+        self.level.resize(body_count, UNREACHED);
+        self.above.resize(body_count, NONE);
+        self.below.resize(body_count, NONE);
+        self.carried.resize(body_count, 0.0);
+        self.support_count.resize(body_count, 0);
+    }
+
+    /// Sets [`Contact::load`] of every added manifold in `contacts` (body indices into `params`): the
+    /// normal force (N) its resting bodies press it with, handed down from the top of the stack. A loaded
+    /// manifold's warm-start impulses are set to hold its load over a substep `h` (s) if none pushed. The
+    /// loads of manifolds not added are left as they are (0 as [`Contact::new`] makes them).
+    pub fn finish(&mut self, contacts: &mut [Contact], params: &[BodyParams], h: f32) {
+        if self.links.is_empty() {
+            return;
+        }
+        self.level_bodies();
+        self.hand_down(contacts, params, h);
+        // Back to unreached and unlinked for the next call.
+        for &body in &self.queue {
+            self.level[body as usize] = UNREACHED;
+        }
+        for link in &self.links {
+            self.above[link.lower as usize] = NONE;
+            self.below[link.upper as usize] = NONE;
+        }
+        self.links.clear();
+        self.queue.clear();
+    }
+
+    /// Sets [`Contact::load`] of every manifold in `contacts` (solver indices into `params`) under
+    /// `gravity` (m/s²), 0 for a manifold that carries no body's weight: [`StackLoads::begin`], every
+    /// manifold to [`StackLoads::add`], [`StackLoads::finish`] for substeps of `h` (s). For a caller
+    /// that has its contacts at hand; one that builds them adds them as it goes instead.
     pub fn compute(
         &mut self,
         contacts: &mut [Contact],
@@ -108,123 +201,22 @@ impl StackLoads {
         gravity: Vec3,
         h: f32,
     ) {
-        let g = gravity.length();
-        if !self.link(contacts, params, g > 0.0 && g.is_finite()) {
-            return;
-        }
-        self.level_bodies();
-        self.hand_down(contacts, params, g, -gravity / g, h);
-        // Back to unreached and unlinked for the next call.
-        for &body in &self.queue {
-            self.level[body as usize] = UNREACHED;
-        }
-        for link in &self.links {
-            self.first[link.other as usize] = NONE;
-        }
-    }
-
-    /// From the top level down: each body's weight (`g`·`s_g`·m, N) and what rests on it to its supports
-    /// (against `up`), in equal shares; each loaded manifold's warm start for a substep `h` (s).
-    fn hand_down(
-        &mut self,
-        contacts: &mut [Contact],
-        params: &[BodyParams],
-        g: f32,
-        up: Vec3,
-        h: f32,
-    ) {
-        let Self {
-            level,
-            carried,
-            first,
-            links,
-            queue,
-            supports,
-        } = self;
-        let (level, first, links) = (&level[..], &first[..], &links[..]);
-        for &body in queue.iter().rev() {
-            let body = body as usize;
-            let level_of_body = level[body];
-            let p = &params[body];
-            if level_of_body == 0 || p.inv_mass <= 0.0 {
-                continue;
-            }
-            let weight = p.gravity_scale * g / p.inv_mass + carried[body];
-            if weight.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
-                continue;
-            }
-            supports.clear();
-            for link in list(links, first[body]) {
-                if level[link.other as usize] >= level_of_body {
-                    continue;
-                }
-                let cosine = upward_cosine(&contacts[link.manifold as usize], body, up);
-                if cosine >= SUPPORT_COSINE {
-                    supports.push((link.manifold, link.other, cosine));
-                }
-            }
-            if supports.is_empty() {
-                continue;
-            }
-            let share = weight / supports.len() as f32;
-            for &(m, other, cosine) in supports.iter() {
-                // Only the upper body of a manifold loads it: this is its one load.
-                let c = &mut contacts[m as usize];
-                c.load = share * cosine;
-                warm_start_with_load(c, h);
-                carried[other as usize] += share;
-            }
-        }
-    }
-
-    /// Clears every load and links the resting manifolds (when `gravity` has a direction) into a list per
-    /// body; the fixed and kinematic bodies they touch start `queue` at level 0. Returns whether any
-    /// manifold rests.
-    fn link(&mut self, contacts: &mut [Contact], params: &[BodyParams], gravity: bool) -> bool {
-        let body_count = params.len();
-        if self.level.len() < body_count {
-            self.level.resize(body_count, UNREACHED);
-            self.first.resize(body_count, NONE);
-            self.carried.resize(body_count, 0.0);
-        }
-        self.links.clear();
-        self.queue.clear();
-        let valid =
-            |c: &Contact| c.body_a < body_count && c.body_b < body_count && c.body_a != c.body_b;
-        let (level, first, carried) = (
-            &mut self.level[..],
-            &mut self.first[..],
-            &mut self.carried[..],
-        );
+        self.begin(gravity);
         for (m, c) in contacts.iter_mut().enumerate() {
             c.load = 0.0;
-            if !(gravity && valid(c) && resting(c)) {
-                continue;
-            }
-            for (body, other) in [(c.body_a, c.body_b), (c.body_b, c.body_a)] {
-                self.links.push(Link {
-                    manifold: m as u32,
-                    other: other as u32,
-                    next: first[body],
-                });
-                first[body] = (self.links.len() - 1) as u32;
-                if level[body] == UNREACHED && params[body].inv_mass <= 0.0 {
-                    level[body] = 0;
-                    carried[body] = 0.0;
-                    self.queue.push(body as u32);
-                }
-            }
+            self.add(m, c, params);
         }
-        !self.links.is_empty()
+        self.finish(contacts, params, h);
     }
 
-    /// Levels by breadth-first search from the fixed and kinematic bodies in `queue` over the links;
-    /// `queue` keeps the order.
+    /// Levels by breadth-first search up the supports from the fixed and kinematic bodies in `queue`, and
+    /// counts each reached body's supports on the level below it; `queue` keeps the order.
     fn level_bodies(&mut self) {
-        let (level, carried, first, links, queue) = (
+        let (level, carried, support_count, above, links, queue) = (
             &mut self.level[..],
             &mut self.carried[..],
-            &self.first[..],
+            &mut self.support_count[..],
+            &self.above[..],
             &self.links[..],
             &mut self.queue,
         );
@@ -233,13 +225,56 @@ impl StackLoads {
             head += 1;
             let body = body as usize;
             let next = level[body] + 1;
-            for link in list(links, first[body]) {
-                let other = link.other as usize;
-                if level[other] == UNREACHED {
-                    level[other] = next;
-                    carried[other] = 0.0;
-                    queue.push(link.other);
+            for link in list(links, above[body], |l| l.next_above) {
+                let upper = link.upper as usize;
+                if level[upper] == UNREACHED {
+                    level[upper] = next;
+                    carried[upper] = 0.0;
+                    support_count[upper] = 1;
+                    queue.push(link.upper);
+                } else if level[upper] == next {
+                    support_count[upper] += 1;
                 }
+            }
+        }
+    }
+
+    /// From the top level down: each body's weight (`|g|`·`s_g`·m, N) and what rests on it to its supports
+    /// on a lower level, in equal shares; each loaded manifold's warm start for a substep `h` (s).
+    fn hand_down(&mut self, contacts: &mut [Contact], params: &[BodyParams], h: f32) {
+        let (level, carried, support_count, below, links, queue, g) = (
+            &self.level[..],
+            &mut self.carried[..],
+            &self.support_count[..],
+            &self.below[..],
+            &self.links[..],
+            &self.queue[..],
+            self.g,
+        );
+        for &body in queue.iter().rev() {
+            let body = body as usize;
+            let level_of_body = level[body];
+            if level_of_body == 0 {
+                // The fixed and kinematic bodies come first in the queue: none is left above them.
+                break;
+            }
+            // Reached from below: one support or more, all on the level below.
+            let count = support_count[body];
+            let p = &params[body];
+            let weight = p.gravity_scale * g / p.inv_mass + carried[body];
+            if weight.partial_cmp(&0.0) != Some(core::cmp::Ordering::Greater) {
+                continue;
+            }
+            let share = weight / count as f32;
+            let supports = list(links, below[body], |l| l.next_below)
+                .filter(|link| level[link.lower as usize] < level_of_body);
+            for link in supports {
+                // Only the upper body of a manifold loads it: this is its one load.
+                if let Some(c) = contacts.get_mut(link.manifold as usize) {
+                    c.load = share * link.cosine;
+                    warm_start_with_load(c, h);
+                }
+                carried[link.lower as usize] += share;
             }
         }
     }

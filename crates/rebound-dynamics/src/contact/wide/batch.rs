@@ -33,8 +33,6 @@ pub(crate) struct PointX4 {
     /// The point's distance from the patch centre (m): its lever against twist.
     pub(crate) twist_radius: Vec4,
     pub(crate) anchor_b: Vec3x4,
-    /// The soft row's preload as a velocity bias (m/s, `PreparedContact::preload`).
-    pub(crate) preload: Vec4,
 }
 
 /// A batch's friction patch in each lane: two tangent rows at the centre of the manifold's points (the twist
@@ -202,7 +200,9 @@ impl Batches {
         // The patch centres, and the friction the points carry from the last step, lane by lane; in a batch of
         // one-point manifolds (a pile of balls), the point itself and its friction — the same bits.
         let single = slot_count == 1;
-        let loaded = headers.iter().any(|c| c.load > 0.0);
+        let loaded = headers.iter().any(|c| c.load_depth > 0.0);
+        // The deepest shift of a loaded point's rest point in each lane (`PreparedContact::load_shift`).
+        let mut load_shift = Vec4::ZERO;
         let mut sums = (!single).then(|| {
             let sums = lanes.map(|c| {
                 c.map_or([Vec3::ZERO; 3], |c| {
@@ -219,7 +219,7 @@ impl Batches {
             let PointLanes {
                 anchor_a,
                 anchor_b,
-                separation,
+                mut separation,
                 normal_impulse,
                 friction,
             } = PointLanes::of(points.map(|p| p.unwrap_or(&NO_POINT)));
@@ -228,7 +228,22 @@ impl Batches {
             let rn_b = anchor_b.cross(&normal);
             let wn_a = inertia_a.mul(&rn_a);
             let wn_b = inertia_b.mul(&rn_b);
-            let normal_mass = invert(mass_sum + rn_a.dot(&wn_a) + rn_b.dot(&wn_b), here);
+            let k_normal = mass_sum + rn_a.dot(&wn_a) + rn_b.dot(&wn_b);
+            let normal_mass = invert(k_normal, here);
+            if loaded {
+                let k = k_normal.to_array();
+                let shift = Vec4::select(
+                    here,
+                    Vec4::from_array(core::array::from_fn(|i| {
+                        headers[i].load_shift(k[i], input.ctx)
+                    })),
+                    Vec4::ZERO,
+                );
+                // As the scalar path: the cap follows what the separation lost.
+                let unshifted = separation;
+                separation -= shift;
+                load_shift = load_shift.max(unshifted - separation);
+            }
             // A lone point is the centre: no lever, no spread.
             let rho2 = if single {
                 Vec4::ZERO
@@ -249,14 +264,6 @@ impl Batches {
                 },
                 max_normal_impulse: Vec4::ZERO,
                 normal_mass,
-                preload: if loaded {
-                    let masses = normal_mass.to_array();
-                    Vec4::from_array(core::array::from_fn(|i| {
-                        headers[i].preload(masses[i], input.ctx)
-                    }))
-                } else {
-                    Vec4::ZERO
-                },
                 twist_radius: rho2.sqrt(),
                 rn_a,
                 rn_b,
@@ -314,7 +321,14 @@ impl Batches {
             bias_rate: gather1(&headers, |c| c.softness.bias_rate),
             mass_scale: gather1(&headers, |c| c.softness.mass_scale),
             impulse_scale: gather1(&headers, |c| c.softness.impulse_scale),
-            max_push: gather1(&headers, |c| -c.max_push_out_speed),
+            max_push: if loaded {
+                let shift = load_shift.to_array();
+                Vec4::from_array(core::array::from_fn(|i| {
+                    -headers[i].max_push_with_shift(shift[i])
+                }))
+            } else {
+                gather1(&headers, |c| -c.max_push_out_speed)
+            },
             body_a: headers.map(|c| c.body_a as u32),
             body_b: headers.map(|c| c.body_b as u32),
             first_slot: first_slot as u32,
@@ -407,11 +421,7 @@ impl Batch {
             let speculative: Mask4 = s.cmpgt(zero);
             let (velocity_bias, mass_scale, impulse_scale) = match bias {
                 Bias::On => (
-                    Vec4::select(
-                        speculative,
-                        s * inv_h,
-                        (self.bias_rate * s).max(max_push) - p.preload,
-                    ),
+                    Vec4::select(speculative, s * inv_h, (self.bias_rate * s).max(max_push)),
                     Vec4::select(speculative, one, self.mass_scale),
                     Vec4::select(speculative, zero, self.impulse_scale),
                 ),
@@ -598,7 +608,7 @@ const EMPTY_LANE: PreparedContact = PreparedContact {
     max_push_out_speed: 0.0,
     both_dynamic: false,
     moving_surface: false,
-    load: 0.0,
+    load_depth: 0.0,
 };
 
 /// What an empty lane's point reads: zeros.
