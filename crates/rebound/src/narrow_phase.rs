@@ -99,6 +99,9 @@ pub(crate) struct NarrowPhase {
     pub(crate) force_pairs: Vec<(u64, ColliderHandle, ColliderHandle)>,
     /// The runs of the parallel collide stage and their manifolds (empty between steps, capacity kept).
     runs: Vec<(PairRun, Vec<ContactManifold>)>,
+    /// Whether some collider has a force event threshold, with the [`ColliderSet::revision`] it was read
+    /// at: a stage without hooks and without such a collider runs the pair loop that watches nothing.
+    thresholds: Option<(u64, bool)>,
 }
 
 /// The key extension of a convex pair's manifold: parry's sub-shape ids of a convex pair (both 0), so that a
@@ -150,6 +153,7 @@ impl NarrowPhase {
         core::mem::swap(&mut self.pairs, &mut self.previous);
         self.force_pairs.clear();
         self.pairs.clear();
+        let watched = hooks.is_some() || self.any_threshold(colliders);
         let input = PairInput {
             reach: &reach,
             colliders,
@@ -159,7 +163,7 @@ impl NarrowPhase {
             previous,
         };
         if hooks.is_none() && par::is_parallel() && pairs.len() >= 2 * PAIRS_PER_TASK {
-            self.collide_runs(pairs, &input, out);
+            self.collide_runs(pairs, &input, watched, out);
         } else {
             let mut run = PairRun {
                 pairs: core::mem::take(&mut self.pairs),
@@ -167,19 +171,41 @@ impl NarrowPhase {
                 convex: core::mem::take(&mut self.convex),
             };
             let mut old = self.previous.drain(..).peekable();
-            run.collide_pairs(pairs, &mut old, &input, hooks, failures, out);
+            if watched {
+                run.collide_pairs::<true, _>(pairs, &mut old, &input, hooks, failures, out);
+            } else {
+                run.collide_pairs::<false, _>(pairs, &mut old, &input, None, failures, out);
+            }
             drop(old);
             (self.pairs, self.force_pairs, self.convex) = (run.pairs, run.force_pairs, run.convex);
         }
         self.force_pairs.sort_unstable_by_key(|&(key, _, _)| key);
     }
 
+    /// Whether some collider of `colliders` has a force event threshold: read again only after the set
+    /// changed (an insertion, edit, removal or restore moves its revision on).
+    fn any_threshold(&mut self, colliders: &ColliderSet) -> bool {
+        let revision = colliders.revision();
+        match self.thresholds {
+            Some((read_at, any)) if read_at == revision => any,
+            _ => {
+                let any = colliders
+                    .iter()
+                    .any(|(_, c)| c.desc.force_event_threshold.is_some());
+                self.thresholds = Some((revision, any));
+                any
+            }
+        }
+    }
+
     /// [`NarrowPhase::collide`] over the pool: `pairs` in runs of [`PAIRS_PER_TASK`], each with the cached
-    /// pairs of its range, its own scratch and its own manifold list, joined in pair order.
+    /// pairs of its range, its own scratch and its own manifold list, joined in pair order. `watched`: some
+    /// collider reports contact forces.
     fn collide_runs(
         &mut self,
         pairs: &[(ColliderHandle, ColliderHandle)],
         input: &PairInput<'_>,
+        watched: bool,
         out: &mut Vec<ContactManifold>,
     ) {
         let count = pairs.len().div_ceil(PAIRS_PER_TASK);
@@ -204,7 +230,11 @@ impl NarrowPhase {
                 .iter_mut()
                 .map(|(key, cache)| (*key, core::mem::take(cache)))
                 .peekable();
-            run.collide_pairs(range, &mut old, input, None, &mut 0, manifolds);
+            if watched {
+                run.collide_pairs::<true, _>(range, &mut old, input, None, &mut 0, manifolds);
+            } else {
+                run.collide_pairs::<false, _>(range, &mut old, input, None, &mut 0, manifolds);
+            }
         });
         drop(tasks);
         self.previous.clear();
@@ -250,11 +280,18 @@ struct PairRun {
 impl PairRun {
     /// The manifolds of `pairs` (sorted) onto `out`, in pair order; `old` holds last step's cached pairs from
     /// the first of `pairs` on, sorted.
+    ///
+    /// `WATCHED`: the stage has hooks or a collider with a force event threshold, so each pair is filtered,
+    /// edited and recorded as it is made. Without (`false`, the common case) the loop is compiled without
+    /// that bookkeeping: no per-pair state or test, and a loop small enough to take the generators inline.
     #[expect(
         clippy::too_many_lines,
         reason = "one loop over the pairs, dispatching to the generators"
     )]
-    fn collide_pairs<I: Iterator<Item = ((ColliderHandle, ColliderHandle), PairCache)>>(
+    fn collide_pairs<
+        const WATCHED: bool,
+        I: Iterator<Item = ((ColliderHandle, ColliderHandle), PairCache)>,
+    >(
         &mut self,
         pairs: &[(ColliderHandle, ColliderHandle)],
         old: &mut core::iter::Peekable<I>,
@@ -277,16 +314,15 @@ impl PairRun {
         let mut reporting: Option<(ColliderHandle, ColliderHandle, usize)> = None;
         let mut cursor = 0;
         for &(h1, h2) in pairs {
-            // Tested first: a world without hooks or force events pays one test per pair for each.
-            if let Some(hooks) = hooks
-                && let Some((pair, first)) = hooked.take()
-            {
-                hooks::modify(hooks, &pair, out, first, failures);
-            }
-            if reporting.is_some()
-                && let Some((a, b, first)) = reporting.take()
-            {
-                record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
+            if WATCHED {
+                if let Some(hooks) = hooks
+                    && let Some((pair, first)) = hooked.take()
+                {
+                    hooks::modify(hooks, &pair, out, first, failures);
+                }
+                if let Some((a, b, first)) = reporting.take() {
+                    record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
+                }
             }
             // Both lists are sorted: drop the old pairs before this one, reuse this one's cache if present.
             while old.next_if(|(key, _)| *key < (h1, h2)).is_some() {}
@@ -299,7 +335,7 @@ impl PairRun {
             let (Some(b1), Some(b2)) = (bodies.get(c1.body), bodies.get(c2.body)) else {
                 continue;
             };
-            if let Some(hooks) = hooks {
+            if WATCHED && let Some(hooks) = hooks {
                 let pair = ContactPair {
                     collider_a: h1,
                     collider_b: h2,
@@ -313,7 +349,10 @@ impl PairRun {
                 }
                 hooked = Some((pair, out.len()));
             }
-            if c1.desc.force_event_threshold.is_some() || c2.desc.force_event_threshold.is_some() {
+            if WATCHED
+                && (c1.desc.force_event_threshold.is_some()
+                    || c2.desc.force_event_threshold.is_some())
+            {
                 reporting = Some((h1, h2, out.len()));
             }
             // Two balls farther apart than this were dropped by the broad phase, with the same test on the
@@ -362,7 +401,7 @@ impl PairRun {
                         let seam = seam(key);
                         let relative = b1.pose().inverse().mul_pose(&b2.pose());
                         // Not with hooks: a recycled manifold would keep the points a hook disabled.
-                        if hooks.is_none()
+                        if (!WATCHED || hooks.is_none())
                             && let Some(old) = recyclable(
                                 previous,
                                 &mut cursor,
@@ -445,11 +484,13 @@ impl PairRun {
             }
             self.pairs.push(((h1, h2), cache));
         }
-        if let (Some(hooks), Some((pair, first))) = (hooks, hooked) {
-            hooks::modify(hooks, &pair, out, first, failures);
-        }
-        if let Some((a, b, first)) = reporting {
-            record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
+        if WATCHED {
+            if let (Some(hooks), Some((pair, first))) = (hooks, hooked) {
+                hooks::modify(hooks, &pair, out, first, failures);
+            }
+            if let Some((a, b, first)) = reporting {
+                record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
+            }
         }
     }
 }
