@@ -109,7 +109,8 @@ pub(crate) struct StartCheck {
 }
 
 impl StartCheck {
-    /// After the write-back: `within` says whether every body written back is within the limits.
+    /// After the write-back: `within` says whether every body written back is within the limits (its
+    /// velocities as solved, its position as written).
     pub(crate) fn written(&mut self, state: &WorldState, within: bool) {
         self.clean = (within && !self.sleeping_beyond)
             .then_some((state.bodies.revision(), state.settings.limits));

@@ -206,6 +206,8 @@ impl<B: CollisionBackend> World<B> {
         };
         pass.run(state);
         quarantine::find_bad_results(state, pass.solver, suspects);
+        // Every solved velocity within the bounds (the passes run again below are not checked at the end).
+        let velocities_within = suspects.is_empty();
         if !suspects.is_empty() {
             let count = pass.quarantine_bad(state, suspects, events);
             pass.report.quarantined_body_count += count;
@@ -216,8 +218,9 @@ impl<B: CollisionBackend> World<B> {
         profile.restitution = phase.elapsed();
 
         phase = Instant::now();
-        let within = store::write_back(&mut state.bodies, solver, &bounds);
-        start_check.written(state, within);
+        let positions_within =
+            store::write_back(&mut state.bodies, solver, state.settings.limits.max_position);
+        start_check.written(state, velocities_within && positions_within);
         events::push_force_events(state, solver, dt, events);
         islands::update_sleep(state, solver, sleep, events, dt);
         events::emit_events(

@@ -11,12 +11,12 @@ use crate::events::Event;
 use crate::handles::JointHandle;
 use crate::manifold::ContactManifold;
 use crate::prepare::Solver;
-use crate::quarantine::Bounds;
 use crate::report::StepReport;
 use crate::state::{JointEntry, WorldState};
 use rebound_constraints::{JointState, JointStates};
 use core::sync::atomic::{AtomicBool, Ordering};
 use rebound_dynamics::{BodyParams, Motion, RigidBody, SolverBody};
+use rebound_math::glam::Vec3A;
 use rebound_math::{Vec3, par};
 
 /// The world's joints as the joint solver writes their states back: joint `i` of the step is the one of
@@ -84,22 +84,23 @@ pub(crate) fn store_impulses(
 }
 
 /// Stage *finalize*: poses and velocities back into the bodies. Returns whether every moving body written
-/// is within `bounds` (its position, speed and angular speed as written).
-pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver, bounds: &Bounds) -> bool {
+/// is within `max_position` (m) of the origin along each axis (the quarantine's position bound; the solver's
+/// velocities were compared with their bounds before).
+pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver, max_position: f32) -> bool {
     // A refused (non-finite) result leaves the body where it was; the finite-state tests guard that this
     // never happens. Fixed bodies do not move, and the quarantine does not look at them.
     let write = |params: &BodyParams, state: &SolverBody, body: &mut RigidBody| {
         let _accepted = params.write_back(state, body);
-        params.motion == Motion::Fixed
-            || bounds.within(
-                body.position(),
-                body.linear_velocity(),
-                body.angular_velocity(),
-            )
+        if params.motion == Motion::Fixed {
+            Vec3A::ZERO
+        } else {
+            Vec3A::from(body.position()).abs()
+        }
     };
+    let bound = Vec3A::splat(max_position);
     if par::is_parallel() {
         // Each body reads its own solver entry: every slot over the pool, the same writes as below. A body
-        // beyond the bounds is rare: one flag, written only then.
+        // beyond the bound is rare: one flag, written only then.
         let within = AtomicBool::new(true);
         bodies.arena.for_each_value_mut(|slot, entry| {
             let Some(&i) = s.solver_index.get(slot as usize) else {
@@ -107,21 +108,23 @@ pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver, bounds: &Bounds) -> b
             };
             let i = i as usize;
             if let (Some(state), Some(params)) = (s.states.get(i), s.params.get(i))
-                && !write(params, state, &mut entry.body)
+                && !write(params, state, &mut entry.body).cmple(bound).all()
             {
                 within.store(false, Ordering::Relaxed);
             }
         });
         return within.into_inner();
     }
-    let mut within = true;
+    // The farthest coordinate of all, compared once (positions are finite: a refused result is not
+    // written).
+    let mut farthest = Vec3A::ZERO;
     for ((handle, state), params) in s.solver_handles.iter().zip(&s.states).zip(&s.params) {
         let Some(handle) = handle else { continue };
         if let Some(entry) = bodies.entry_mut(*handle) {
-            within &= write(params, state, &mut entry.body);
+            farthest = farthest.max(write(params, state, &mut entry.body));
         }
     }
-    within
+    farthest.cmple(bound).all()
 }
 
 /// Sets the impulses of every point whose normal or friction impulse is not finite to zero.
