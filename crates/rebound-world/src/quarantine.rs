@@ -232,20 +232,20 @@ fn check_solved(bounds: &Bounds, solved: &SolverBody) -> Option<QuarantineReason
 /// otherwise (`x·0`), with no branch per body. The same answer as [`solved_within`] for each: a NaN speed
 /// is not counted in the largest but makes the sum NaN, an infinite one is the largest.
 fn all_solved_within(bounds: &Bounds, states: &[SolverBody]) -> bool {
-    let (largest, probe) = states.iter().fold(
-        (Vec3A::ZERO, Vec3A::ZERO),
-        |(largest, probe), solved| {
-            let speeds = Vec3A::new(
-                solved.linear_velocity.length_squared(),
-                solved.angular_velocity.length_squared(),
-                solved.delta_rotation.length_squared(),
-            );
-            (
-                largest.max(speeds),
-                probe + (speeds + Vec3A::from(solved.delta_position)) * 0.0,
-            )
-        },
-    );
+    let (largest, probe) =
+        states
+            .iter()
+            .fold((Vec3A::ZERO, Vec3A::ZERO), |(largest, probe), solved| {
+                let speeds = Vec3A::new(
+                    solved.linear_velocity.length_squared(),
+                    solved.angular_velocity.length_squared(),
+                    solved.delta_rotation.length_squared(),
+                );
+                (
+                    largest.max(speeds),
+                    probe + (speeds + Vec3A::from(solved.delta_position)) * 0.0,
+                )
+            });
     let limits = Vec3A::new(bounds.speed_sq, bounds.angular_speed_sq, f32::INFINITY);
     largest.cmple(limits).all() && probe.cmpeq(Vec3A::ZERO).all()
 }

@@ -218,8 +218,11 @@ impl<B: CollisionBackend> World<B> {
         profile.restitution = phase.elapsed();
 
         phase = Instant::now();
-        let positions_within =
-            store::write_back(&mut state.bodies, solver, state.settings.limits.max_position);
+        let positions_within = store::write_back(
+            &mut state.bodies,
+            solver,
+            state.settings.limits.max_position,
+        );
         start_check.written(state, velocities_within && positions_within);
         events::push_force_events(state, solver, dt, events);
         islands::update_sleep(state, solver, sleep, events, dt);

@@ -49,6 +49,7 @@ use parry3d::query::{
     ContactManifold as ParryManifold, ContactManifoldsWorkspace, DefaultQueryDispatcher,
     PersistentQueryDispatcher,
 };
+use rebound_dynamics::RigidBody;
 use rebound_math::{Pose, Vec3, par, rotate_inverse};
 use rebound_world::{BodySet, ContactBasis, ContactManifold};
 
@@ -311,7 +312,7 @@ impl PairRun {
         // The pair whose manifolds (from `out[first..]`) the hooks edit once they are all made.
         let mut hooked: Option<(ContactPair<'_>, usize)> = None;
         // The pair whose manifolds (from `out[first..]`) report contact forces.
-        let mut reporting: Option<(ColliderHandle, ColliderHandle, usize)> = None;
+        let mut reporting: Option<(ColliderHandle, ColliderHandle, f32, usize)> = None;
         let mut cursor = 0;
         for &(h1, h2) in pairs {
             if WATCHED {
@@ -320,15 +321,11 @@ impl PairRun {
                 {
                     hooks::modify(hooks, &pair, out, first, failures);
                 }
-                if let Some((a, b, first)) = reporting.take() {
-                    record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
+                if let Some((a, b, threshold, first)) = reporting.take() {
+                    report_forces(&mut self.force_pairs, a, b, threshold, &mut out[first..]);
                 }
             }
-            // Both lists are sorted: drop the old pairs before this one, reuse this one's cache if present.
-            while old.next_if(|(key, _)| *key < (h1, h2)).is_some() {}
-            let cached = old
-                .next_if(|(key, _)| *key == (h1, h2))
-                .map(|(_, cache)| cache);
+            let cached = take_cached(old, (h1, h2));
             let (Some(c1), Some(c2)) = (colliders.get(h1), colliders.get(h2)) else {
                 continue;
             };
@@ -349,11 +346,8 @@ impl PairRun {
                 }
                 hooked = Some((pair, out.len()));
             }
-            if WATCHED
-                && (c1.desc.force_event_threshold.is_some()
-                    || c2.desc.force_event_threshold.is_some())
-            {
-                reporting = Some((h1, h2, out.len()));
+            if WATCHED && let Some(threshold) = pair_threshold(c1, c2) {
+                reporting = Some((h1, h2, threshold, out.len()));
             }
             // Two balls farther apart than this were dropped by the broad phase, with the same test on the
             // same values (`centres_clearly_apart`).
@@ -363,15 +357,8 @@ impl PairRun {
                 speculative_margin,
                 dt,
             );
-            // Composed with our scalar rotations, not parry's `Pose::inv_mul` (see `rebound_math::rotate`); only
-            // where a generator runs (a recycled box pair needs none).
-            let pos12 = || {
-                to_parry_pose(
-                    c1.world_pose(b1.pose())
-                        .inverse()
-                        .mul_pose(&c2.world_pose(b2.pose())),
-                )
-            };
+            // Only where a generator runs (a recycled box pair needs none).
+            let pos12 = || relative_pose(c1, b1, c2, b2);
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
             // Read from the descriptions: no call through the shape trait objects.
@@ -488,21 +475,71 @@ impl PairRun {
             if let (Some(hooks), Some((pair, first))) = (hooks, hooked) {
                 hooks::modify(hooks, &pair, out, first, failures);
             }
-            if let Some((a, b, first)) = reporting {
-                record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
+            if let Some((a, b, threshold, first)) = reporting {
+                report_forces(&mut self.force_pairs, a, b, threshold, &mut out[first..]);
             }
         }
     }
 }
 
-/// Records the collider pair (`a`, `b`) of each of `manifolds` (one pair's) by key.
-fn record_force_pairs(
+/// The cache of `pair` from `old` (last step's cached pairs, sorted, from this one on), dropping those
+/// before it: both lists are sorted. Always inlined: `old` is empty but for composite shapes, and the test
+/// is made for every pair.
+#[inline(always)]
+fn take_cached<I: Iterator<Item = ((ColliderHandle, ColliderHandle), PairCache)>>(
+    old: &mut core::iter::Peekable<I>,
+    pair: (ColliderHandle, ColliderHandle),
+) -> Option<PairCache> {
+    while let Some((key, _)) = old.peek() {
+        if *key >= pair {
+            break;
+        }
+        old.next();
+    }
+    match old.peek() {
+        Some((key, _)) if *key == pair => old.next().map(|(_, cache)| cache),
+        _ => None,
+    }
+}
+
+/// Collider 2's pose in collider 1's frame, composed with our scalar rotations, not parry's `Pose::inv_mul`
+/// (see `rebound_math::rotate`). Always inlined: the pair loop computes it for nearly every pair, and its
+/// four call sites (one per kind of generator) would otherwise make it a call.
+#[inline(always)]
+fn relative_pose(
+    c1: &Collider,
+    b1: &RigidBody,
+    c2: &Collider,
+    b2: &RigidBody,
+) -> parry3d::math::Pose {
+    to_parry_pose(
+        c1.world_pose(b1.pose())
+            .inverse()
+            .mul_pose(&c2.world_pose(b2.pose())),
+    )
+}
+
+/// The force event threshold (N) of a pair of colliders: the lower of theirs (`None` if neither sets one).
+fn pair_threshold(c1: &Collider, c2: &Collider) -> Option<f32> {
+    match (c1.desc.force_event_threshold, c2.desc.force_event_threshold) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// Gives each of `manifolds` (one pair's, just made) the pair's force event `threshold` (N), and records
+/// the collider pair (`a`, `b`) of each by key. The manifolds of a pair without a threshold keep `None`.
+fn report_forces(
     pairs: &mut Vec<(u64, ColliderHandle, ColliderHandle)>,
     a: ColliderHandle,
     b: ColliderHandle,
-    manifolds: &[ContactManifold],
+    threshold: f32,
+    manifolds: &mut [ContactManifold],
 ) {
-    pairs.extend(manifolds.iter().map(|m| (m.key, a, b)));
+    for m in manifolds {
+        m.force_event_threshold = Some(threshold);
+        pairs.push((m.key, a, b));
+    }
 }
 
 /// FNV-1a over the two colliders' slot indices: the base of every manifold key of the pair.
