@@ -16,7 +16,7 @@
 
 #![allow(
     clippy::unwrap_used,
-    reason = "test helpers fail loudly on the first unexpected error"
+    reason = "the set-up fails loudly on the first unexpected error"
 )]
 
 use rebound_dynamics::BodyDesc;
