@@ -738,6 +738,7 @@ impl RigidBody {
     ///
     /// # Errors
     /// As [`RigidBody::set_pose`], [`RigidBody::set_linear_velocity`], [`RigidBody::set_angular_velocity`].
+    #[inline]
     pub fn set_solver_state(
         &mut self,
         pose: Pose,

@@ -202,6 +202,7 @@ impl BodyParams {
     /// Writes the solver's result into `body`: pose from the deltas, velocities; clears the force
     /// accumulators (the *finalize* stage). Returns `false`, leaving the pose and velocities as they were,
     /// if the result is not finite — which only a solver fault produces; the world reports it.
+    #[inline]
     pub fn write_back(&self, state: &SolverBody, body: &mut RigidBody) -> bool {
         body.clear_forces();
         if self.motion == Motion::Fixed {

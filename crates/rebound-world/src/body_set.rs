@@ -49,11 +49,12 @@ impl PartialEq for BodySet {
 impl BodySet {
     /// A number that moves on with every body inserted or removed, every mutable access to a body through
     /// the world's API (`body_mut`, which every setter of a [`RigidBody`] is reached through: its mass
-    /// properties, gravity scale, type, pose, velocities, forces) and every restore. A step changes only what
-    /// every step changes (poses, velocities, sleep) and leaves it alone, unless continuous collision
-    /// detection puts a fast body back along its path (an edit through `body_mut`). If two reads of the same
-    /// set give the same revision, no body was inserted, removed or edited in between, so an observer
-    /// (a recorder) that compares what it copied of the bodies can skip the comparison.
+    /// properties, gravity scale, type, pose, velocities, forces), every release from quarantine and every
+    /// restore. A step changes only what every step changes (poses, velocities, sleep) and leaves it alone,
+    /// unless continuous collision detection puts a fast body back along its path (an edit through
+    /// `body_mut`). If two reads of the same set give the same revision, no body was inserted, removed or
+    /// edited in between, so an observer (a recorder, the quarantine's start-of-step check) that compares
+    /// what it saw of the bodies can skip the comparison.
     #[must_use]
     pub const fn revision(&self) -> u64 {
         self.revision

@@ -2,10 +2,13 @@
 //! step (`World::set_kinematic_target`) gets the velocities that take it there.
 
 use crate::body_set::BodySet;
+use crate::quarantine::Bounds;
 use rebound_dynamics::BodyType;
 
-/// Kinematic targets become velocities for this step: `v = Δx/dt`, `ω = axis·angle/dt`.
-pub(crate) fn apply_kinematic_targets(bodies: &mut BodySet, dt: f32) {
+/// Kinematic targets become velocities for this step: `v = Δx/dt`, `ω = axis·angle/dt`. Returns whether
+/// every body given a velocity is within `bounds` (the quarantine then need not check the bodies again).
+pub(crate) fn apply_kinematic_targets(bodies: &mut BodySet, dt: f32, bounds: &Bounds) -> bool {
+    let mut within = true;
     for (_, entry) in bodies.arena.iter_mut() {
         let Some(target) = entry.kinematic_target.take() else {
             continue;
@@ -22,5 +25,12 @@ pub(crate) fn apply_kinematic_targets(bodies: &mut BodySet, dt: f32) {
         // Both are finite: the target and the pose were validated, dt > 0.
         let _ = entry.body.set_linear_velocity(linear);
         let _ = entry.body.set_angular_velocity(axis * (angle / dt));
+        let body = &entry.body;
+        within &= bounds.within(
+            body.position(),
+            body.linear_velocity(),
+            body.angular_velocity(),
+        );
     }
+    within
 }

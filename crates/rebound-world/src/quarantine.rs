@@ -3,7 +3,12 @@
 //!
 //! Two checks. **At the start of the step** (after the kinematic targets became velocities, before
 //! *collide*) every awake moving body's position, speed and angular speed are compared with the limits; a body
-//! beyond them never reaches the collision backend or the solver. **After the solver passes** (before
+//! beyond them never reaches the collision backend or the solver. The bodies the last step wrote back were
+//! compared with the limits as they were written ([`StartCheck`]), so this check runs only when something
+//! could have changed them since: a body inserted, removed or edited (`World::body_mut`, a restore, a release
+//! from quarantine — each moves [`crate::BodySet::revision`] on), other limits, a kinematic target that gives
+//! its body a velocity beyond them, or a body the write-back (or an earlier check) found beyond them. **After
+//! the solver passes** (before
 //! *store*) every solved body's velocities and pose deltas: a body the solve drove beyond the limits or to a
 //! non-finite value — a mass so large that its effective masses overflow, a motor at `f32::MAX`, an explicit
 //! spring past its stability limit — is quarantined and the step's *prepare* and solver passes run again
@@ -42,14 +47,14 @@ pub(crate) const MAX_TRIED_SUSPECTS: usize = 8;
 
 /// The squares of the speed limits, computed once per check (the limits are at most 10¹⁵, so they are
 /// finite).
-struct Bounds {
+pub(crate) struct Bounds {
     speed_sq: f32,
     angular_speed_sq: f32,
     position: f32,
 }
 
 impl Bounds {
-    fn new(limits: &StepLimits) -> Self {
+    pub(crate) fn new(limits: &StepLimits) -> Self {
         Self {
             speed_sq: limits.max_speed * limits.max_speed,
             angular_speed_sq: limits.max_angular_speed * limits.max_angular_speed,
@@ -61,7 +66,7 @@ impl Bounds {
     /// a squared length that overflows to ∞ exceeds every bound, as it should). Every body, every step: the
     /// comparisons side by side and one branch for the answer.
     #[inline]
-    fn within(&self, position: Vec3, v: Vec3, w: Vec3) -> bool {
+    pub(crate) fn within(&self, position: Vec3, v: Vec3, w: Vec3) -> bool {
         let speeds = Vec3A::new(v.length_squared(), w.length_squared(), 0.0).cmple(Vec3A::new(
             self.speed_sq,
             self.angular_speed_sq,
@@ -90,26 +95,68 @@ impl Bounds {
     }
 }
 
+/// What the start-of-step check needs to know of the bodies as the last step left them: whether every body
+/// it would look at was within the limits then, and under which revision of the body set and which limits.
+/// Not part of the world's state: a restore moves the revision on, so the next step checks every body.
+#[derive(Debug, Default)]
+pub(crate) struct StartCheck {
+    /// The body set's revision and the limits after the last write-back, if every body written back was
+    /// within those limits (and no sleeping body was found beyond them).
+    clean: Option<(u64, StepLimits)>,
+    /// Whether the last full check saw a sleeping body beyond the bounds: it is skipped while it sleeps, but
+    /// wakes without an edit, so every step checks again until it is gone or quarantined.
+    sleeping_beyond: bool,
+}
+
+impl StartCheck {
+    /// After the write-back: `within` says whether every body written back is within the limits (its
+    /// velocities as solved, its position as written).
+    pub(crate) fn written(&mut self, state: &WorldState, within: bool) {
+        self.clean = (within && !self.sleeping_beyond)
+            .then_some((state.bodies.revision(), state.settings.limits));
+    }
+
+    /// Whether the bodies may have changed (or the limits) since the last write-back found them all within.
+    fn is_needed(&self, state: &WorldState) -> bool {
+        self.clean != Some((state.bodies.revision(), state.settings.limits))
+    }
+}
+
 /// The check at the start of the step: every awake moving body out of bounds is quarantined. Returns how
-/// many were.
-pub(crate) fn check_bodies(state: &mut WorldState, events: &mut Vec<Event>) -> usize {
+/// many were. Skipped when nothing could have changed the bodies since the last write-back found them all
+/// within the limits (see [`StartCheck`]); `targets_within` says whether the kinematic targets of this step
+/// gave their bodies velocities within them.
+pub(crate) fn check_bodies(
+    state: &mut WorldState,
+    start: &mut StartCheck,
+    targets_within: bool,
+    events: &mut Vec<Event>,
+) -> usize {
+    if targets_within && !start.is_needed(state) {
+        return 0;
+    }
     let bounds = Bounds::new(&state.settings.limits);
     let mut found = Vec::new();
+    let mut sleeping_beyond = false;
     for (index, entry) in state.bodies.arena.iter() {
         let body = &entry.body;
         let (v, w) = (body.linear_velocity(), body.angular_velocity());
         // The bounds first, whatever the body: almost every body is within them, and one branch says so.
         if bounds.within(body.position(), v, w)
             || entry.quarantined
-            || body.is_sleeping()
             || body.body_type() == BodyType::Fixed
         {
+            continue;
+        }
+        if body.is_sleeping() {
+            sleeping_beyond = true;
             continue;
         }
         if let Some(reason) = bounds.reason(body.position(), v, w) {
             found.push((BodyHandle(index), reason));
         }
     }
+    start.sleeping_beyond = sleeping_beyond;
     quarantine(state, &found, events);
     found.len()
 }
@@ -126,10 +173,7 @@ pub(crate) fn find_bad_results(
     let bounds = Bounds::new(&state.settings.limits);
     // Every solved body at once first (the fixed ones are at rest, the kinematic ones were checked): almost
     // always all are within, and the search below, body by body, is skipped.
-    let all_within = s.states.iter().fold(true, |within, solved| {
-        within & solved_within(&bounds, solved)
-    });
-    if all_within {
+    if all_solved_within(&bounds, &s.states) {
         return;
     }
     for ((handle, solved), params) in s.solver_handles.iter().zip(&s.states).zip(&s.params) {
@@ -181,6 +225,29 @@ fn check_solved(bounds: &Bounds, solved: &SolverBody) -> Option<QuarantineReason
     } else {
         bounds.reason(Vec3::ZERO, solved.linear_velocity, solved.angular_velocity)
     }
+}
+
+/// Whether every solved body of `states` has velocities within the bounds and finite pose deltas: the
+/// largest squared speeds against the bounds, and one sum that is 0 when every number is finite and NaN
+/// otherwise (`x·0`), with no branch per body. The same answer as [`solved_within`] for each: a NaN speed
+/// is not counted in the largest but makes the sum NaN, an infinite one is the largest.
+fn all_solved_within(bounds: &Bounds, states: &[SolverBody]) -> bool {
+    let (largest, probe) =
+        states
+            .iter()
+            .fold((Vec3A::ZERO, Vec3A::ZERO), |(largest, probe), solved| {
+                let speeds = Vec3A::new(
+                    solved.linear_velocity.length_squared(),
+                    solved.angular_velocity.length_squared(),
+                    solved.delta_rotation.length_squared(),
+                );
+                (
+                    largest.max(speeds),
+                    probe + (speeds + Vec3A::from(solved.delta_position)) * 0.0,
+                )
+            });
+    let limits = Vec3A::new(bounds.speed_sq, bounds.angular_speed_sq, f32::INFINITY);
+    largest.cmple(limits).all() && probe.cmpeq(Vec3A::ZERO).all()
 }
 
 /// Whether a solved body's velocities are within the bounds and its pose deltas finite.

@@ -8,6 +8,7 @@ use crate::handles::BodyHandle;
 use crate::islands::SleepBuffers;
 use crate::limits::QuarantineReason;
 use crate::prepare::Solver;
+use crate::quarantine::StartCheck;
 
 /// Buffers reused from step to step (no allocation in a steady-state step). Not part of the state.
 #[derive(Debug, Default)]
@@ -22,4 +23,6 @@ pub(crate) struct Scratch {
     pub(crate) events: EventBuffers,
     /// Bodies the solver's result put out of bounds (the quarantine's suspects).
     pub(crate) suspects: Vec<(BodyHandle, QuarantineReason)>,
+    /// What the quarantine's start-of-step check knows of the bodies the last step wrote back.
+    pub(crate) start_check: StartCheck,
 }

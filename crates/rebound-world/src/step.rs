@@ -6,7 +6,8 @@
 //!  1. context             StepContext::new(dt): h, inverses, contact softness
 //!  2. kinematic targets   kinematic.rs   target poses → velocities
 //!  3. wake changed        islands.rs     a body a setter woke wakes its sleeping island
-//!     quarantine          quarantine.rs  moving bodies beyond the bounds leave the step
+//!     quarantine          quarantine.rs  moving bodies beyond the bounds leave the step (checked when the
+//!                                        bodies may have changed since the write-back compared them)
 //!  4. collide             collide.rs     backend → manifolds, validated and warm-started; approach speeds
 //!  5. wake touched        islands.rs     a sleeping body touched, about to be hit or jointed wakes
 //!  6. prepare             prepare.rs     solver bodies (awake, then the fixed bodies needed, then the world
@@ -18,7 +19,7 @@
 //!     quarantine          quarantine.rs  bodies the solve drove beyond the bounds leave the step, and 6–9
 //!                                        run again without them
 //! 10. store               store.rs       impulses back into manifolds and joint states; broken joints
-//! 11. finalize            store.rs       poses and velocities back into the bodies
+//! 11. finalize            store.rs       poses and velocities back into the bodies, compared with the bounds
 //!                         islands.rs     rest timers, islands, sleep
 //!                         events.rs      contact begin/end, woken bodies
 //! 12. report              report.rs      body counts, phase timings
@@ -30,6 +31,7 @@ use crate::handles::BodyHandle;
 use crate::limits::QuarantineReason;
 use crate::manifold::CollisionBackend;
 use crate::prepare::Solver;
+use crate::quarantine::Bounds;
 use crate::report::{Profile, StepReport, StepSkipped};
 use crate::scratch::Scratch;
 use crate::settings::MIN_STEP_DT;
@@ -175,13 +177,16 @@ impl<B: CollisionBackend> World<B> {
             sleep,
             events: event_buffers,
             suspects,
+            start_check,
         } = &mut self.scratch;
 
         let ctx = StepContext::new(dt, &state.settings.solver_settings());
         let phase = Instant::now();
-        kinematic::apply_kinematic_targets(&mut state.bodies, dt);
+        let bounds = Bounds::new(&state.settings.limits);
+        let targets_within = kinematic::apply_kinematic_targets(&mut state.bodies, dt, &bounds);
         islands::wake_changed_bodies(state, woken, sleep);
-        report.quarantined_body_count = quarantine::check_bodies(state, events);
+        report.quarantined_body_count =
+            quarantine::check_bodies(state, start_check, targets_within, events);
         let dropped = collide::collide(&mut self.backend, state, dt, collision);
         report.rejected_contact_count = dropped.rejected;
         report.capped_manifold_count = dropped.capped;
@@ -201,6 +206,8 @@ impl<B: CollisionBackend> World<B> {
         };
         pass.run(state);
         quarantine::find_bad_results(state, pass.solver, suspects);
+        // Every solved velocity within the bounds (the passes run again below are not checked at the end).
+        let velocities_within = suspects.is_empty();
         if !suspects.is_empty() {
             let count = pass.quarantine_bad(state, suspects, events);
             pass.report.quarantined_body_count += count;
@@ -211,7 +218,12 @@ impl<B: CollisionBackend> World<B> {
         profile.restitution = phase.elapsed();
 
         phase = Instant::now();
-        store::write_back(&mut state.bodies, solver);
+        let positions_within = store::write_back(
+            &mut state.bodies,
+            solver,
+            state.settings.limits.max_position,
+        );
+        start_check.written(state, velocities_within && positions_within);
         events::push_force_events(state, solver, dt, events);
         islands::update_sleep(state, solver, sleep, events, dt);
         events::emit_events(

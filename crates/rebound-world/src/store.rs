@@ -1,7 +1,8 @@
 //! Stage *store*, after the solver passes: the solver's results back into the world. Each manifold keeps its
 //! points' impulses for the next step's warm start and whether it pushed (for the touching test of the
 //! events); each joint keeps its state; joints past their break limits are reported broken. Then (stage
-//! *finalize*) the poses and velocities of the solved bodies.
+//! *finalize*) the poses and velocities of the solved bodies, each compared with the quarantine's bounds as
+//! it is written (so that the next step's start need not look at them again).
 
 use crate::arena::Arena;
 use crate::body_set::BodySet;
@@ -12,7 +13,10 @@ use crate::manifold::ContactManifold;
 use crate::prepare::Solver;
 use crate::report::StepReport;
 use crate::state::{JointEntry, WorldState};
+use core::sync::atomic::{AtomicBool, Ordering};
 use rebound_constraints::{JointState, JointStates};
+use rebound_dynamics::{BodyParams, Motion, RigidBody, SolverBody};
+use rebound_math::glam::Vec3A;
 use rebound_math::{Vec3, par};
 
 /// The world's joints as the joint solver writes their states back: joint `i` of the step is the one of
@@ -79,29 +83,48 @@ pub(crate) fn store_impulses(
     core::mem::swap(&mut state.manifolds, &mut c.manifolds);
 }
 
-/// Stage *finalize*: poses and velocities back into the bodies.
-pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver) {
+/// Stage *finalize*: poses and velocities back into the bodies. Returns whether every moving body written
+/// is within `max_position` (m) of the origin along each axis (the quarantine's position bound; the solver's
+/// velocities were compared with their bounds before).
+pub(crate) fn write_back(bodies: &mut BodySet, s: &Solver, max_position: f32) -> bool {
+    // A refused (non-finite) result leaves the body where it was; the finite-state tests guard that this
+    // never happens. Fixed bodies do not move, and the quarantine does not look at them.
+    let write = |params: &BodyParams, state: &SolverBody, body: &mut RigidBody| {
+        let _accepted = params.write_back(state, body);
+        if params.motion == Motion::Fixed {
+            Vec3A::ZERO
+        } else {
+            Vec3A::from(body.position()).abs()
+        }
+    };
+    let bound = Vec3A::splat(max_position);
     if par::is_parallel() {
-        // Each body reads its own solver entry: every slot over the pool, the same writes as below.
+        // Each body reads its own solver entry: every slot over the pool, the same writes as below. A body
+        // beyond the bound is rare: one flag, written only then.
+        let within = AtomicBool::new(true);
         bodies.arena.for_each_value_mut(|slot, entry| {
             let Some(&i) = s.solver_index.get(slot as usize) else {
                 return;
             };
             let i = i as usize;
-            if let (Some(state), Some(params)) = (s.states.get(i), s.params.get(i)) {
-                let _accepted = params.write_back(state, &mut entry.body);
+            if let (Some(state), Some(params)) = (s.states.get(i), s.params.get(i))
+                && !write(params, state, &mut entry.body).cmple(bound).all()
+            {
+                within.store(false, Ordering::Relaxed);
             }
         });
-        return;
+        return within.into_inner();
     }
+    // The farthest coordinate of all, compared once (positions are finite: a refused result is not
+    // written).
+    let mut farthest = Vec3A::ZERO;
     for ((handle, state), params) in s.solver_handles.iter().zip(&s.states).zip(&s.params) {
         let Some(handle) = handle else { continue };
         if let Some(entry) = bodies.entry_mut(*handle) {
-            // A refused (non-finite) result leaves the body where it was; the finite-state tests guard
-            // that this never happens.
-            let _accepted = params.write_back(state, &mut entry.body);
+            farthest = farthest.max(write(params, state, &mut entry.body));
         }
     }
+    farthest.cmple(bound).all()
 }
 
 /// Sets the impulses of every point whose normal or friction impulse is not finite to zero.

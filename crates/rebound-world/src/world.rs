@@ -349,7 +349,11 @@ impl<B: CollisionBackend> World<B> {
             .bodies
             .entry_mut(handle)
             .ok_or(WorldError::StaleBody(handle))?;
-        entry.quarantined = false;
+        if entry.quarantined {
+            entry.quarantined = false;
+            // The body is back among those the step's start checks (see `quarantine.rs`).
+            self.state.bodies.bump_revision();
+        }
         Ok(())
     }
 

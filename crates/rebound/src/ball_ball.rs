@@ -8,6 +8,10 @@ use rebound_math::{Vec3, rotate_inverse};
 /// The contact of two balls of radii `r1` and `r2` (m), ball 2 at `pos12` in ball 1's frame, for gaps up to
 /// `prediction` (m): one point on each ball along the line of centres (the normal is +y for coincident
 /// centres). The formulas of parry's `contact_manifold_ball_ball`, into a [`ShapeManifold`].
+///
+/// Always inlined: the narrow phase's pair loop (one copy with hooks, one without) calls it for every pair
+/// of balls, and a call would cost about as much as the contact itself.
+#[inline(always)]
 pub(crate) fn ball_ball(
     pos12: &parry3d::math::Pose,
     r1: f32,

@@ -467,6 +467,7 @@ impl Collider {
 
     /// The world pose for a body at `body_pose`.
     #[must_use]
+    #[inline]
     pub fn world_pose(&self, body_pose: Pose) -> Pose {
         // Most colliders sit at their body's origin: no composition to compute (the same pose but for the
         // sign of a zero).

@@ -49,6 +49,7 @@ use parry3d::query::{
     ContactManifold as ParryManifold, ContactManifoldsWorkspace, DefaultQueryDispatcher,
     PersistentQueryDispatcher,
 };
+use rebound_dynamics::RigidBody;
 use rebound_math::{Pose, Vec3, par, rotate_inverse};
 use rebound_world::{BodySet, ContactBasis, ContactManifold};
 
@@ -99,6 +100,9 @@ pub(crate) struct NarrowPhase {
     pub(crate) force_pairs: Vec<(u64, ColliderHandle, ColliderHandle)>,
     /// The runs of the parallel collide stage and their manifolds (empty between steps, capacity kept).
     runs: Vec<(PairRun, Vec<ContactManifold>)>,
+    /// Whether some collider has a force event threshold, with the [`ColliderSet::revision`] it was read
+    /// at: a stage without hooks and without such a collider runs the pair loop that watches nothing.
+    thresholds: Option<(u64, bool)>,
 }
 
 /// The key extension of a convex pair's manifold: parry's sub-shape ids of a convex pair (both 0), so that a
@@ -150,6 +154,7 @@ impl NarrowPhase {
         core::mem::swap(&mut self.pairs, &mut self.previous);
         self.force_pairs.clear();
         self.pairs.clear();
+        let watched = hooks.is_some() || self.any_threshold(colliders);
         let input = PairInput {
             reach: &reach,
             colliders,
@@ -159,7 +164,7 @@ impl NarrowPhase {
             previous,
         };
         if hooks.is_none() && par::is_parallel() && pairs.len() >= 2 * PAIRS_PER_TASK {
-            self.collide_runs(pairs, &input, out);
+            self.collide_runs(pairs, &input, watched, out);
         } else {
             let mut run = PairRun {
                 pairs: core::mem::take(&mut self.pairs),
@@ -167,19 +172,41 @@ impl NarrowPhase {
                 convex: core::mem::take(&mut self.convex),
             };
             let mut old = self.previous.drain(..).peekable();
-            run.collide_pairs(pairs, &mut old, &input, hooks, failures, out);
+            if watched {
+                run.collide_pairs::<true, _>(pairs, &mut old, &input, hooks, failures, out);
+            } else {
+                run.collide_pairs::<false, _>(pairs, &mut old, &input, None, failures, out);
+            }
             drop(old);
             (self.pairs, self.force_pairs, self.convex) = (run.pairs, run.force_pairs, run.convex);
         }
         self.force_pairs.sort_unstable_by_key(|&(key, _, _)| key);
     }
 
+    /// Whether some collider of `colliders` has a force event threshold: read again only after the set
+    /// changed (an insertion, edit, removal or restore moves its revision on).
+    fn any_threshold(&mut self, colliders: &ColliderSet) -> bool {
+        let revision = colliders.revision();
+        match self.thresholds {
+            Some((read_at, any)) if read_at == revision => any,
+            _ => {
+                let any = colliders
+                    .iter()
+                    .any(|(_, c)| c.desc.force_event_threshold.is_some());
+                self.thresholds = Some((revision, any));
+                any
+            }
+        }
+    }
+
     /// [`NarrowPhase::collide`] over the pool: `pairs` in runs of [`PAIRS_PER_TASK`], each with the cached
-    /// pairs of its range, its own scratch and its own manifold list, joined in pair order.
+    /// pairs of its range, its own scratch and its own manifold list, joined in pair order. `watched`: some
+    /// collider reports contact forces.
     fn collide_runs(
         &mut self,
         pairs: &[(ColliderHandle, ColliderHandle)],
         input: &PairInput<'_>,
+        watched: bool,
         out: &mut Vec<ContactManifold>,
     ) {
         let count = pairs.len().div_ceil(PAIRS_PER_TASK);
@@ -204,7 +231,11 @@ impl NarrowPhase {
                 .iter_mut()
                 .map(|(key, cache)| (*key, core::mem::take(cache)))
                 .peekable();
-            run.collide_pairs(range, &mut old, input, None, &mut 0, manifolds);
+            if watched {
+                run.collide_pairs::<true, _>(range, &mut old, input, None, &mut 0, manifolds);
+            } else {
+                run.collide_pairs::<false, _>(range, &mut old, input, None, &mut 0, manifolds);
+            }
         });
         drop(tasks);
         self.previous.clear();
@@ -250,11 +281,18 @@ struct PairRun {
 impl PairRun {
     /// The manifolds of `pairs` (sorted) onto `out`, in pair order; `old` holds last step's cached pairs from
     /// the first of `pairs` on, sorted.
+    ///
+    /// `WATCHED`: the stage has hooks or a collider with a force event threshold, so each pair is filtered,
+    /// edited and recorded as it is made. Without (`false`, the common case) the loop is compiled without
+    /// that bookkeeping: no per-pair state or test, and a loop small enough to take the generators inline.
     #[expect(
         clippy::too_many_lines,
         reason = "one loop over the pairs, dispatching to the generators"
     )]
-    fn collide_pairs<I: Iterator<Item = ((ColliderHandle, ColliderHandle), PairCache)>>(
+    fn collide_pairs<
+        const WATCHED: bool,
+        I: Iterator<Item = ((ColliderHandle, ColliderHandle), PairCache)>,
+    >(
         &mut self,
         pairs: &[(ColliderHandle, ColliderHandle)],
         old: &mut core::iter::Peekable<I>,
@@ -274,32 +312,27 @@ impl PairRun {
         // The pair whose manifolds (from `out[first..]`) the hooks edit once they are all made.
         let mut hooked: Option<(ContactPair<'_>, usize)> = None;
         // The pair whose manifolds (from `out[first..]`) report contact forces.
-        let mut reporting: Option<(ColliderHandle, ColliderHandle, usize)> = None;
+        let mut reporting: Option<(ColliderHandle, ColliderHandle, f32, usize)> = None;
         let mut cursor = 0;
         for &(h1, h2) in pairs {
-            // Tested first: a world without hooks or force events pays one test per pair for each.
-            if let Some(hooks) = hooks
-                && let Some((pair, first)) = hooked.take()
-            {
-                hooks::modify(hooks, &pair, out, first, failures);
+            if WATCHED {
+                if let Some(hooks) = hooks
+                    && let Some((pair, first)) = hooked.take()
+                {
+                    hooks::modify(hooks, &pair, out, first, failures);
+                }
+                if let Some((a, b, threshold, first)) = reporting.take() {
+                    report_forces(&mut self.force_pairs, a, b, threshold, &mut out[first..]);
+                }
             }
-            if reporting.is_some()
-                && let Some((a, b, first)) = reporting.take()
-            {
-                record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
-            }
-            // Both lists are sorted: drop the old pairs before this one, reuse this one's cache if present.
-            while old.next_if(|(key, _)| *key < (h1, h2)).is_some() {}
-            let cached = old
-                .next_if(|(key, _)| *key == (h1, h2))
-                .map(|(_, cache)| cache);
+            let cached = take_cached(old, (h1, h2));
             let (Some(c1), Some(c2)) = (colliders.get(h1), colliders.get(h2)) else {
                 continue;
             };
             let (Some(b1), Some(b2)) = (bodies.get(c1.body), bodies.get(c2.body)) else {
                 continue;
             };
-            if let Some(hooks) = hooks {
+            if WATCHED && let Some(hooks) = hooks {
                 let pair = ContactPair {
                     collider_a: h1,
                     collider_b: h2,
@@ -313,8 +346,8 @@ impl PairRun {
                 }
                 hooked = Some((pair, out.len()));
             }
-            if c1.desc.force_event_threshold.is_some() || c2.desc.force_event_threshold.is_some() {
-                reporting = Some((h1, h2, out.len()));
+            if WATCHED && let Some(threshold) = pair_threshold(c1, c2) {
+                reporting = Some((h1, h2, threshold, out.len()));
             }
             // Two balls farther apart than this were dropped by the broad phase, with the same test on the
             // same values (`centres_clearly_apart`).
@@ -324,15 +357,8 @@ impl PairRun {
                 speculative_margin,
                 dt,
             );
-            // Composed with our scalar rotations, not parry's `Pose::inv_mul` (see `rebound_math::rotate`); only
-            // where a generator runs (a recycled box pair needs none).
-            let pos12 = || {
-                to_parry_pose(
-                    c1.world_pose(b1.pose())
-                        .inverse()
-                        .mul_pose(&c2.world_pose(b2.pose())),
-                )
-            };
+            // Only where a generator runs (a recycled box pair needs none).
+            let pos12 = || relative_pose(c1, b1, c2, b2);
             let key_base = pair_key(h1, h2);
             let (shape1, shape2) = (c1.shape.as_ref(), c2.shape.as_ref());
             // Read from the descriptions: no call through the shape trait objects.
@@ -362,7 +388,7 @@ impl PairRun {
                         let seam = seam(key);
                         let relative = b1.pose().inverse().mul_pose(&b2.pose());
                         // Not with hooks: a recycled manifold would keep the points a hook disabled.
-                        if hooks.is_none()
+                        if (!WATCHED || hooks.is_none())
                             && let Some(old) = recyclable(
                                 previous,
                                 &mut cursor,
@@ -445,23 +471,75 @@ impl PairRun {
             }
             self.pairs.push(((h1, h2), cache));
         }
-        if let (Some(hooks), Some((pair, first))) = (hooks, hooked) {
-            hooks::modify(hooks, &pair, out, first, failures);
-        }
-        if let Some((a, b, first)) = reporting {
-            record_force_pairs(&mut self.force_pairs, a, b, &out[first..]);
+        if WATCHED {
+            if let (Some(hooks), Some((pair, first))) = (hooks, hooked) {
+                hooks::modify(hooks, &pair, out, first, failures);
+            }
+            if let Some((a, b, threshold, first)) = reporting {
+                report_forces(&mut self.force_pairs, a, b, threshold, &mut out[first..]);
+            }
         }
     }
 }
 
-/// Records the collider pair (`a`, `b`) of each of `manifolds` (one pair's) by key.
-fn record_force_pairs(
+/// The cache of `pair` from `old` (last step's cached pairs, sorted, from this one on), dropping those
+/// before it: both lists are sorted. Always inlined: `old` is empty but for composite shapes, and the test
+/// is made for every pair.
+#[inline(always)]
+fn take_cached<I: Iterator<Item = ((ColliderHandle, ColliderHandle), PairCache)>>(
+    old: &mut core::iter::Peekable<I>,
+    pair: (ColliderHandle, ColliderHandle),
+) -> Option<PairCache> {
+    while let Some((key, _)) = old.peek() {
+        if *key >= pair {
+            break;
+        }
+        old.next();
+    }
+    match old.peek() {
+        Some((key, _)) if *key == pair => old.next().map(|(_, cache)| cache),
+        _ => None,
+    }
+}
+
+/// Collider 2's pose in collider 1's frame, composed with our scalar rotations, not parry's `Pose::inv_mul`
+/// (see `rebound_math::rotate`). Always inlined: the pair loop computes it for nearly every pair, and its
+/// four call sites (one per kind of generator) would otherwise make it a call.
+#[inline(always)]
+fn relative_pose(
+    c1: &Collider,
+    b1: &RigidBody,
+    c2: &Collider,
+    b2: &RigidBody,
+) -> parry3d::math::Pose {
+    to_parry_pose(
+        c1.world_pose(b1.pose())
+            .inverse()
+            .mul_pose(&c2.world_pose(b2.pose())),
+    )
+}
+
+/// The force event threshold (N) of a pair of colliders: the lower of theirs (`None` if neither sets one).
+fn pair_threshold(c1: &Collider, c2: &Collider) -> Option<f32> {
+    match (c1.desc.force_event_threshold, c2.desc.force_event_threshold) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// Gives each of `manifolds` (one pair's, just made) the pair's force event `threshold` (N), and records
+/// the collider pair (`a`, `b`) of each by key. The manifolds of a pair without a threshold keep `None`.
+fn report_forces(
     pairs: &mut Vec<(u64, ColliderHandle, ColliderHandle)>,
     a: ColliderHandle,
     b: ColliderHandle,
-    manifolds: &[ContactManifold],
+    threshold: f32,
+    manifolds: &mut [ContactManifold],
 ) {
-    pairs.extend(manifolds.iter().map(|m| (m.key, a, b)));
+    for m in manifolds {
+        m.force_event_threshold = Some(threshold);
+        pairs.push((m.key, a, b));
+    }
 }
 
 /// FNV-1a over the two colliders' slot indices: the base of every manifold key of the pair.

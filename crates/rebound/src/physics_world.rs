@@ -5,7 +5,7 @@
 
 use crate::backend::SharedHooks;
 use crate::hooks::ContactHooks;
-use crate::sensors::update_sensors;
+use crate::sensors::{SensorPresence, update_sensors};
 use crate::sweep::{SweepScratch, sweep};
 use crate::{ColliderHandle, Error, Event, ParryBackend};
 use parry3d::bounding_volume::Aabb;
@@ -54,6 +54,8 @@ pub struct PhysicsWorld {
     pub(crate) joints_without_contacts: BTreeSet<JointHandle>,
     /// (sensor, collider) pairs overlapping after the last step, sorted.
     pub(crate) sensor_overlaps: Vec<(ColliderHandle, ColliderHandle)>,
+    /// Whether the colliders hold a sensor: without one (and no overlap left to end), no sensor pass.
+    sensors: SensorPresence,
     /// Time [`PhysicsWorld::advance`] has not yet stepped (s).
     pub(crate) accumulator: f32,
     events: Vec<Event>,
@@ -79,6 +81,7 @@ impl PhysicsWorld {
             own_mass: BTreeMap::new(),
             joints_without_contacts: BTreeSet::new(),
             sensor_overlaps: Vec::new(),
+            sensors: SensorPresence::default(),
             accumulator: 0.0,
             events: Vec::new(),
             sweep: SweepScratch::default(),
@@ -297,15 +300,17 @@ impl PhysicsWorld {
         let mut backend = core::mem::take(self.world.backend_mut());
         let bodies = self.world.bodies();
         backend.broad_phase.refresh(&backend.colliders, bodies);
-        let mut sensor_events = Vec::new();
-        update_sensors(
-            &backend.colliders,
-            bodies,
-            &backend.broad_phase,
-            &mut self.sensor_overlaps,
-            &mut sensor_events,
-        );
-        self.events.extend(sensor_events);
+        if !self.sensor_overlaps.is_empty() || self.sensors.any(&backend.colliders) {
+            let mut sensor_events = Vec::new();
+            update_sensors(
+                &backend.colliders,
+                bodies,
+                &backend.broad_phase,
+                &mut self.sensor_overlaps,
+                &mut sensor_events,
+            );
+            self.events.extend(sensor_events);
+        }
         *self.world.backend_mut() = backend;
     }
 

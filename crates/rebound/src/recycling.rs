@@ -139,7 +139,6 @@ impl Seam<'_> {
             manifold.restitution,
             manifold.rolling_friction,
         ) = self.materials();
-        manifold.force_event_threshold = self.force_event_threshold();
         manifold.basis = Some(basis);
         // s = n·(R·p_B + t − p_A) = (R*·n)·p_B + n·t − n·p_A: one rotation per manifold, two dot products
         // per point.

@@ -116,7 +116,6 @@ impl Seam<'_> {
             return;
         };
         manifold.rolling_friction = rolling_friction;
-        manifold.force_event_threshold = self.force_event_threshold();
         // A shape at its body's origin (the common case) needs no transform.
         let to_body = |frame: &Pose, p: Vec3| {
             if *frame == Pose::IDENTITY {
@@ -138,17 +137,6 @@ impl Seam<'_> {
 }
 
 impl Seam<'_> {
-    /// The pair's force event threshold (N): the lower of the colliders' (`None` if neither sets one).
-    pub(crate) fn force_event_threshold(&self) -> Option<f32> {
-        match (
-            self.c1.desc.force_event_threshold,
-            self.c2.desc.force_event_threshold,
-        ) {
-            (Some(a), Some(b)) => Some(a.min(b)),
-            (a, b) => a.or(b),
-        }
-    }
-
     /// The pair's friction, restitution and rolling friction, each combined with the colliders' rules.
     pub(crate) fn materials(&self) -> (f32, f32, f32) {
         let (d1, d2) = (&self.c1.desc, &self.c2.desc);

@@ -11,6 +11,26 @@ use crate::{ColliderHandle, ColliderSet, Event};
 use parry3d::bounding_volume::BoundingVolume;
 use rebound_world::BodySet;
 
+/// Whether some collider of a set is a sensor, with the [`ColliderSet::revision`] it was read at: read again
+/// only after the set changed, so that a world without sensors pays no pass over its colliders per step.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct SensorPresence(Option<(u64, bool)>);
+
+impl SensorPresence {
+    /// Whether `colliders` holds a sensor (enabled or not).
+    pub(crate) fn any(&mut self, colliders: &ColliderSet) -> bool {
+        let revision = colliders.revision();
+        match self.0 {
+            Some((read_at, any)) if read_at == revision => any,
+            _ => {
+                let any = colliders.iter().any(|(_, c)| c.desc.is_sensor);
+                self.0 = Some((revision, any));
+                any
+            }
+        }
+    }
+}
+
 /// Recomputes the overlaps (sorted (sensor, other) pairs) and appends enter/exit events to `events`.
 pub(crate) fn update_sensors(
     colliders: &ColliderSet,

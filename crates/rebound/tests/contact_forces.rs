@@ -164,3 +164,53 @@ fn a_negative_or_non_finite_threshold_is_refused() {
     }
     assert!(world.world().backend().colliders().iter().count() == 1);
 }
+
+#[test]
+fn a_collider_with_a_threshold_added_to_a_running_world_reports_its_forces() {
+    // A world without thresholds steps a while (its narrow phase skips the force bookkeeping), then a 10 kg
+    // box reporting from 0 N is put on the ground: once at rest it reports its weight, 98.1 N to 1 %, and
+    // the box without a threshold beside it reports nothing.
+    let (mut world, ground) = world_with_ground(0.0);
+    let plain = world
+        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(-3.0, 0.5, 0.0)))
+        .unwrap();
+    world
+        .insert_collider(
+            ColliderDesc::cuboid(Vec3::splat(0.5)).with_density(10.0),
+            plain,
+        )
+        .unwrap();
+    for _ in 0..30 {
+        world.step(DT);
+        assert!(forces(&world).is_empty());
+    }
+    let body = world
+        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(3.0, 0.5, 0.0)))
+        .unwrap();
+    let reporting = world
+        .insert_collider(
+            ColliderDesc::cuboid(Vec3::splat(0.5))
+                .with_density(10.0)
+                .with_force_event_threshold(0.0),
+            body,
+        )
+        .unwrap();
+    for _ in 0..60 {
+        world.step(DT);
+    }
+    let events = forces(&world);
+    assert_eq!(events.len(), 1, "{events:?}");
+    let (colliders, force) = events[0];
+    assert_eq!(
+        colliders,
+        Some((ground.min(reporting), ground.max(reporting)))
+    );
+    assert!(
+        (force.total_force - 98.1).abs() < 0.981,
+        "{}",
+        force.total_force
+    );
+    world.remove_collider(reporting).unwrap();
+    world.step(DT);
+    assert!(forces(&world).is_empty());
+}

@@ -159,3 +159,54 @@ fn removing_or_disabling_the_collider_inside_reports_an_exit() {
     assert_eq!(world.is_sleeping(b_body), Some(true));
     assert_eq!(world.sensor_overlaps(), &[(trigger, b)]);
 }
+
+#[test]
+fn a_sensor_added_to_a_running_world_reports_what_it_holds() {
+    // A world without a sensor steps a while (it skips the sensor pass), then a sensor box is put around a
+    // resting ball: the next step reports the ball inside it; the sensor removed, the next step the exit.
+    let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
+    let ground = world
+        .insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, -0.5, 0.0)))
+        .unwrap();
+    world
+        .insert_collider(ColliderDesc::cuboid(Vec3::new(10.0, 0.5, 10.0)), ground)
+        .unwrap();
+    let ball_body = world
+        .insert_body(BodyDesc::dynamic().with_position(Vec3::new(0.0, 0.5, 0.0)))
+        .unwrap();
+    let ball = world
+        .insert_collider(ColliderDesc::ball(0.5), ball_body)
+        .unwrap();
+    let post = world
+        .insert_body(BodyDesc::fixed().with_position(Vec3::new(0.0, 0.5, 0.0)))
+        .unwrap();
+    for _ in 0..30 {
+        world.step(DT);
+        assert!(sensor_events(&world).is_empty());
+    }
+    let cage = world
+        .insert_collider(
+            ColliderDesc::cuboid(Vec3::splat(2.0)).with_sensor(true),
+            post,
+        )
+        .unwrap();
+    world.step(DT);
+    assert_eq!(
+        sensor_events(&world),
+        [Event::SensorEntered {
+            sensor: cage,
+            collider: ball,
+        }]
+    );
+    assert_eq!(world.sensor_overlaps(), [(cage, ball)]);
+    world.remove_collider(cage).unwrap();
+    world.step(DT);
+    assert_eq!(
+        sensor_events(&world),
+        [Event::SensorExited {
+            sensor: cage,
+            collider: ball,
+        }]
+    );
+    assert!(world.sensor_overlaps().is_empty());
+}
