@@ -71,7 +71,9 @@ impl FactoredRows {
     /// Whether `link` has the rows in the system these were, with the same compliance, each within
     /// [`GRAPH_KEEP_TOLERANCE`] of them.
     fn holds_for(&self, link: &Link) -> bool {
-        if !self.has_pattern_of(link) || self.compliance != compliance(link) {
+        // The same bits, not merely close values: the compliance enters `K` as it is.
+        let bits = |c: &[Real; MAX_ROWS]| c.map(Real::to_bits);
+        if !self.has_pattern_of(link) || bits(&self.compliance) != bits(&compliance(link)) {
             return false;
         }
         let tolerance = GRAPH_KEEP_TOLERANCE * GRAPH_KEEP_TOLERANCE;

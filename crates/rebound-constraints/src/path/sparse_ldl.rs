@@ -359,7 +359,7 @@ mod tests {
         kept.factor(&m, true);
         let mut fresh = SparseLdl::default();
         fresh.factor(&m, false);
-        let b: Vec<Real> = (0..12).map(|i| (i as Real * 0.71).cos()).collect();
+        let b: Vec<Real> = (0..12).map(|i| (Real::from(i) * 0.71).cos()).collect();
         let (mut x, mut y) = (b.clone(), b);
         kept.solve(&mut x);
         fresh.solve(&mut y);
