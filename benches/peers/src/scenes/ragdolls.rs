@@ -61,8 +61,59 @@ enum Kind {
     Hinge(Vector, (f32, f32)),
 }
 
-fn joints() -> Vec<(usize, usize, Vector, Kind)> {
-    let (down, up, forward, x) = (-Vector::Y, Vector::Y, Vector::Z, Vector::X);
+/// A joint of the table: parent, child, pivot and kind.
+type JointRow = (usize, usize, Vector, Kind);
+
+/// The six joints of one side — shoulder, elbow, wrist, hip, knee, ankle — for `side` = +1 (the left, parts
+/// 3–5 and 9–11) or −1 (the right, parts 6–8 and 12–14).
+fn limb_joints(side: f32) -> [JointRow; 6] {
+    let (down, forward, x) = (-Vector::Y, Vector::Z, Vector::X);
+    // Abduction (outwards) is a negative swing on the left, a positive one on the right.
+    let abduct = |out: f32, inward: f32| {
+        if side > 0.0 {
+            (-out, inward)
+        } else {
+            (-inward, out)
+        }
+    };
+    let k = usize::from(side < 0.0);
+    let (upper, fore, hand) = (3 + 3 * k, 4 + 3 * k, 5 + 3 * k);
+    let (thigh, shin, foot) = (9 + 3 * k, 10 + 3 * k, 11 + 3 * k);
+    let (xa, xl) = (0.24 * side, 0.09 * side);
+    [
+        (
+            1,
+            upper,
+            v(xa, 1.45, 0.0),
+            Kind::Ball(down, -x, (-60.0, 180.0), abduct(180.0, 45.0), (-70.0, 90.0)),
+        ),
+        (upper, fore, v(xa, 1.17, 0.0), Kind::Hinge(-x, (0.0, 150.0))),
+        (
+            fore,
+            hand,
+            v(xa, 0.92, 0.0),
+            Kind::Ball(down, -x, (-25.0, 25.0), (-75.0, 75.0), (-80.0, 80.0)),
+        ),
+        (
+            0,
+            thigh,
+            v(xl, 0.92, 0.0),
+            Kind::Ball(down, -x, (-30.0, 120.0), abduct(45.0, 30.0), (-45.0, 45.0)),
+        ),
+        (thigh, shin, v(xl, 0.50, 0.0), Kind::Hinge(x, (0.0, 135.0))),
+        (
+            shin,
+            foot,
+            v(xl, 0.08, 0.0),
+            Kind::Ball(forward, x, (-20.0, 50.0), (-20.0, 20.0), (-25.0, 25.0)),
+        ),
+    ]
+}
+
+/// The 14 joints in Rebound's order: spine, neck, then the left arm, the right arm, the left leg and the
+/// right leg (shoulder, elbow, wrist; hip, knee, ankle).
+fn joints() -> Vec<JointRow> {
+    let (up, x) = (Vector::Y, Vector::X);
     let mut j = vec![
         (
             0,
@@ -77,54 +128,9 @@ fn joints() -> Vec<(usize, usize, Vector, Kind)> {
             Kind::Ball(up, x, (-45.0, 45.0), (-45.0, 45.0), (-70.0, 70.0)),
         ),
     ];
-    for (k, side) in [1.0f32, -1.0].into_iter().enumerate() {
-        let abduct = |out: f32, inward: f32| {
-            if side > 0.0 {
-                (-out, inward)
-            } else {
-                (-inward, out)
-            }
-        };
-        let (upper, fore, hand) = (3 + 3 * k, 4 + 3 * k, 5 + 3 * k);
-        let xa = 0.24 * side;
-        j.push((
-            1,
-            upper,
-            v(xa, 1.45, 0.0),
-            Kind::Ball(down, -x, (-60.0, 180.0), abduct(180.0, 45.0), (-70.0, 90.0)),
-        ));
-        j.push((upper, fore, v(xa, 1.17, 0.0), Kind::Hinge(-x, (0.0, 150.0))));
-        j.push((
-            fore,
-            hand,
-            v(xa, 0.92, 0.0),
-            Kind::Ball(down, -x, (-25.0, 25.0), (-75.0, 75.0), (-80.0, 80.0)),
-        ));
-    }
-    for (k, side) in [1.0f32, -1.0].into_iter().enumerate() {
-        let abduct = |out: f32, inward: f32| {
-            if side > 0.0 {
-                (-out, inward)
-            } else {
-                (-inward, out)
-            }
-        };
-        let (thigh, shin, foot) = (9 + 3 * k, 10 + 3 * k, 11 + 3 * k);
-        let xl = 0.09 * side;
-        j.push((
-            0,
-            thigh,
-            v(xl, 0.92, 0.0),
-            Kind::Ball(down, -x, (-30.0, 120.0), abduct(45.0, 30.0), (-45.0, 45.0)),
-        ));
-        j.push((thigh, shin, v(xl, 0.50, 0.0), Kind::Hinge(x, (0.0, 135.0))));
-        j.push((
-            shin,
-            foot,
-            v(xl, 0.08, 0.0),
-            Kind::Ball(forward, x, (-20.0, 50.0), (-20.0, 20.0), (-25.0, 25.0)),
-        ));
-    }
+    let [left, right] = [1.0, -1.0].map(limb_joints);
+    let ([ls, le, lw, lh, lk, la], [rs, re, rw, rh, rk, ra]) = (left, right);
+    j.extend([ls, le, lw, rs, re, rw, lh, lk, la, rh, rk, ra]);
     j
 }
 

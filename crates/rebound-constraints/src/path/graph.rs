@@ -37,6 +37,75 @@ pub(crate) const MAX_GRAPH_FILL: usize = 4 * MAX_GRAPH_JOINTS;
 /// [`DirectGraph::assemble`]).
 pub(crate) const GRAPH_REGULARIZATION: Real = 1e-9;
 
+/// How far the rows of a graph may move from those its factorisation was made with, as a fraction of each
+/// row's Jacobian (`|J − J₀| ≤ ε·|J₀|`), for a pass to keep that factorisation (see [`DirectGraph::solve`]):
+/// 1 %, about 0.01 rad of turn of a joint's bodies.
+pub(crate) const GRAPH_KEEP_TOLERANCE: f32 = 0.01;
+
+/// One member's rows as a graph's factorisation was made with them: the count, which were in the system,
+/// their compliance in `K` (0 but for a projection's stiffening rows) and each row's Jacobian `[J_a,linear,
+/// J_a,angular, J_b,linear, J_b,angular]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct FactoredRows {
+    count: usize,
+    live: [bool; MAX_ROWS],
+    compliance: [Real; MAX_ROWS],
+    jacobians: [[Vec3; 4]; MAX_ROWS],
+}
+
+impl FactoredRows {
+    fn of(link: &Link) -> Self {
+        Self {
+            count: link.rows.count,
+            live: link.live_rows(),
+            compliance: compliance(link),
+            jacobians: core::array::from_fn(|k| jacobian(&link.rows.rows[k])),
+        }
+    }
+
+    /// Whether `link` has as many rows as these, the same ones in the system.
+    fn has_pattern_of(&self, link: &Link) -> bool {
+        self.count == link.rows.count && self.live == link.live_rows()
+    }
+
+    /// Whether `link` has the rows in the system these were, with the same compliance, each within
+    /// [`GRAPH_KEEP_TOLERANCE`] of them.
+    fn holds_for(&self, link: &Link) -> bool {
+        // The same bits, not merely close values: the compliance enters `K` as it is.
+        let bits = |c: &[Real; MAX_ROWS]| c.map(Real::to_bits);
+        if !self.has_pattern_of(link) || bits(&self.compliance) != bits(&compliance(link)) {
+            return false;
+        }
+        let tolerance = GRAPH_KEEP_TOLERANCE * GRAPH_KEEP_TOLERANCE;
+        link.rows
+            .rows()
+            .iter()
+            .zip(&self.jacobians)
+            .all(|(row, kept)| {
+                let now = jacobian(row);
+                let (mut change, mut size) = (0.0, 0.0);
+                for (now, kept) in now.iter().zip(kept) {
+                    change += (*now - *kept).length_squared();
+                    size += kept.length_squared();
+                }
+                change <= tolerance * size
+            })
+    }
+}
+
+/// The compliance each row of `link` adds to its diagonal of `K` ([`DirectGraph::assemble`]).
+fn compliance(link: &Link) -> [Real; MAX_ROWS] {
+    match link.mode {
+        Mode::Position => link.compliance,
+        Mode::Velocity => [0.0; MAX_ROWS],
+    }
+}
+
+/// A row's Jacobian, side A's then side B's.
+fn jacobian(row: &Row) -> [Vec3; 4] {
+    [row.a.linear, row.a.angular, row.b.linear, row.b.angular]
+}
+
 /// How a joint of a graph is coupled with another one: through one or two shared dynamic bodies, each given
 /// as (the side of this joint on it, the side of the other joint on it), `true` = body B.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,6 +136,10 @@ pub(crate) struct DirectGraph {
     lambda: Vec<Real>,
     k_lambda: Vec<Real>,
     deltas: Vec<[Vec3; 2]>,
+    /// Whether `matrix` and `ldl` hold a factorisation of this step, and per member the rows it was made
+    /// for.
+    factored: bool,
+    kept: Vec<FactoredRows>,
     /// Scratch of `build`: the joints' dynamic sides sorted by body, the adjacency by slot and the order's.
     ends: Vec<(usize, usize, bool)>,
     adjacency: Vec<Vec<usize>>,
@@ -137,7 +210,20 @@ impl DirectGraph {
         for (place, &slot) in self.order.iter().enumerate() {
             self.position[slot] = place;
         }
+        // A new step: new inverse masses, and perhaps new members.
+        self.factored = false;
         fill
+    }
+
+    /// Whether the factorisation made last serves a pass over `links`: the same rows in the system with the
+    /// same compliance, each moved by less than [`GRAPH_KEEP_TOLERANCE`].
+    fn keeps_factorisation(&self, links: &[Link]) -> bool {
+        self.factored
+            && self.kept.len() == links.len()
+            && links
+                .iter()
+                .zip(&self.kept)
+                .all(|(link, kept)| kept.holds_for(link))
     }
 
     /// One solve of the graph's system (as [`super::solve_path`] of a path): the residuals from the bodies'
@@ -151,13 +237,29 @@ impl DirectGraph {
     ) -> Solved {
         out.clear();
         out.resize(links.len(), [0.0; MAX_ROWS]);
-        // The blocks serve the updates (`Link::impulse`, `M⁻¹·Jᵀ` in f32) and the residuals (the lanes).
+        // The updates (`Link::impulse`, `M⁻¹·Jᵀ` in f32) and the residuals (the lanes) at the rows of the pass.
         for link in links.iter_mut() {
-            link.fill_blocks::<MAX_ROWS>(None);
+            link.fill_impulses::<MAX_ROWS>();
             link.fill_lanes();
         }
         let shape = path_shape(links, links.len());
-        self.assemble(links);
+        // `K` and its factorisation at the rows they were made with while those stay within 1 % of the
+        // pass's: the solve is then a step of an iterative refinement of the exact one, see `docs/physics.md`,
+        // "Joint graphs".
+        if !self.keeps_factorisation(links) {
+            // The same rows in the system in the same order give `K` the same pattern, and its factors too.
+            let same_pattern = self.factored
+                && self.kept.len() == links.len()
+                && links
+                    .iter()
+                    .zip(&self.kept)
+                    .all(|(link, kept)| kept.has_pattern_of(link));
+            self.assemble(links);
+            self.ldl.factor(&self.matrix, same_pattern);
+            self.kept.clear();
+            self.kept.extend(links.iter().map(FactoredRows::of));
+            self.factored = true;
+        }
         let n = self.matrix.order();
         self.rhs.clear();
         self.rhs.resize(n, 0.0);
@@ -189,7 +291,6 @@ impl DirectGraph {
                 self.rhs[at..at + count].copy_from_slice(&soft[..count]);
             }
         }
-        self.ldl.factor(&self.matrix);
         self.ldl.solve(&mut self.rhs);
         let mut released = false;
         for ((slot, link), out) in links.iter().enumerate().zip(out.iter_mut()) {

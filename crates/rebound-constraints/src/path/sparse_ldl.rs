@@ -5,9 +5,9 @@
 //! The algorithm is the up-looking one (Davis, *Direct Methods for Sparse Linear Systems*, SIAM 2006, §4.4
 //! and §4.7): row `k` of `L` is the solution of a triangular system with the rows before it, whose pattern is
 //! the set of nodes reached from the entries of column `k` of `A` by walking up the elimination tree. The
-//! symbolic pass (the tree and each column's count) and the numeric one run together per matrix: the
-//! pattern of a joint graph's `K` changes only with its row counts, and the symbolic work is a small part of
-//! the numeric one for the few hundred rows a graph has. Written here rather than taken from a crate: the
+//! symbolic pass (the tree, each column's count and each row's pattern) runs only when the caller says the
+//! pattern changed: that of a joint graph's `K` changes only with its rows in the system, and a graph is
+//! factorised several times a step with the same ones. Written here rather than taken from a crate: the
 //! sparse crates that do this (faer, sprs with sprs-ldl) are large for a system this size, and this one is
 //! a hundred lines that give the same bits for the same calls.
 //!
@@ -44,6 +44,10 @@ pub(crate) struct SparseLdl {
     work: Vec<Real>,
     flag: Vec<usize>,
     pattern: Vec<usize>,
+    /// The pattern of every row of `L` (the nodes of its triangular solve, in topological order), row `k`'s
+    /// at `patterns[pattern_start[k]..pattern_start[k + 1]]`: kept for a matrix of the same pattern.
+    patterns: Vec<usize>,
+    pattern_start: Vec<usize>,
 }
 
 /// A symmetric matrix by the upper triangle of its columns: column `j`'s entries (row `i ≤ j`, value) are
@@ -102,59 +106,43 @@ impl UpperColumns {
 }
 
 impl SparseLdl {
-    /// Factorises `a` (symmetric positive semi-definite): the elimination tree and column counts, then the
-    /// rows of `L` and `D` one after another. Returns the number of entries of `L`.
-    pub fn factor(&mut self, a: &UpperColumns) -> usize {
+    /// Factorises `a` (symmetric positive semi-definite): the elimination tree, column counts and each row's
+    /// pattern — kept from the last factorisation if `same_pattern` (the caller's word that `a` has the
+    /// pattern of the matrix factorised last) — then the rows of `L` and `D` one after another. Returns the
+    /// number of entries of `L`.
+    pub fn factor(&mut self, a: &UpperColumns, same_pattern: bool) -> usize {
         let n = a.order();
+        let same_pattern = same_pattern && self.n == n && self.pattern_start.len() == n + 1;
         self.n = n;
-        self.symbolic(a);
+        if !same_pattern {
+            self.symbolic(a);
+            self.row_patterns(a);
+        }
         let Self {
-            parent,
             start,
             count,
             rows,
             values,
             inv_pivot,
             work,
-            flag,
-            pattern,
+            patterns,
+            pattern_start,
             ..
         } = self;
         inv_pivot.clear();
         inv_pivot.resize(n, 0.0);
         work.clear();
         work.resize(n, 0.0);
-        flag.clear();
-        flag.resize(n, usize::MAX);
-        pattern.clear();
-        pattern.resize(n, 0);
         count.fill(0);
         for k in 0..n {
-            // Scatter column k of A into `work`, and gather the pattern of row k of L (the nodes reached
-            // from the column's entries up the tree), in topological order at `pattern[top..]`.
-            let mut top = n;
-            flag[k] = k;
+            // Scatter column k of A into `work`.
             for &(i, value) in a.column(k) {
                 work[i] += value;
-                let mut length = 0;
-                let mut node = i;
-                while flag[node] != k {
-                    pattern[length] = node;
-                    length += 1;
-                    flag[node] = k;
-                    node = parent[node];
-                }
-                // The walk from `i` sits below what earlier walks found: push it on the stack whole.
-                while length > 0 {
-                    top -= 1;
-                    length -= 1;
-                    pattern[top] = pattern[length];
-                }
             }
             // Row k of L: a sparse triangular solve with the rows before it; D_k what remains of A_kk.
             let mut d = work[k];
             work[k] = 0.0;
-            for &i in &pattern[top..n] {
+            for &i in &patterns[pattern_start[k]..pattern_start[k + 1]] {
                 let y = work[i];
                 work[i] = 0.0;
                 let column = start[i]..start[i] + count[i];
@@ -176,6 +164,49 @@ impl SparseLdl {
             };
         }
         start.get(n).copied().unwrap_or(0)
+    }
+
+    /// The pattern of each row of `L` (after [`SparseLdl::symbolic`]): the nodes reached from the entries of
+    /// column `k` of `a` by walking up the elimination tree, in topological order.
+    fn row_patterns(&mut self, a: &UpperColumns) {
+        let n = self.n;
+        let Self {
+            parent,
+            flag,
+            pattern,
+            patterns,
+            pattern_start,
+            ..
+        } = self;
+        flag.clear();
+        flag.resize(n, usize::MAX);
+        pattern.clear();
+        pattern.resize(n, 0);
+        patterns.clear();
+        pattern_start.clear();
+        pattern_start.push(0);
+        for k in 0..n {
+            let mut top = n;
+            flag[k] = k;
+            for &(i, _) in a.column(k) {
+                let mut length = 0;
+                let mut node = i;
+                while flag[node] != k {
+                    pattern[length] = node;
+                    length += 1;
+                    flag[node] = k;
+                    node = parent[node];
+                }
+                // The walk from `i` sits below what earlier walks found: push it on the stack whole.
+                while length > 0 {
+                    top -= 1;
+                    length -= 1;
+                    pattern[top] = pattern[length];
+                }
+            }
+            patterns.extend_from_slice(&pattern[top..n]);
+            pattern_start.push(patterns.len());
+        }
     }
 
     /// The elimination tree of `a` and the number of entries of each column of `L`, with the columns' starts.
@@ -303,7 +334,7 @@ mod tests {
             let a = matrix(n);
             let m = upper(&a);
             let mut ldl = SparseLdl::default();
-            ldl.factor(&m);
+            ldl.factor(&m, false);
             let b: Vec<Real> = (0..n).map(|i| (i as Real * 0.37).sin()).collect();
             let mut x = b.clone();
             ldl.solve(&mut x);
@@ -316,6 +347,26 @@ mod tests {
     }
 
     #[test]
+    fn a_factorisation_with_the_kept_pattern_gives_the_bits_of_a_fresh_one() {
+        let a = matrix(12);
+        let mut m = upper(&a);
+        let mut kept = SparseLdl::default();
+        kept.factor(&m, false);
+        // New values, same pattern.
+        for (_, value) in &mut m.entries {
+            *value *= 1.5;
+        }
+        kept.factor(&m, true);
+        let mut fresh = SparseLdl::default();
+        fresh.factor(&m, false);
+        let b: Vec<Real> = (0..12).map(|i| (Real::from(i) * 0.71).cos()).collect();
+        let (mut x, mut y) = (b.clone(), b);
+        kept.solve(&mut x);
+        fresh.solve(&mut y);
+        assert!(x.iter().zip(&y).all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+
+    #[test]
     fn a_redundant_row_solves_to_zero_and_the_rest_hold() {
         // Rows 0 and 2 are the same constraint: K has rank 2.
         let a = vec![
@@ -324,7 +375,7 @@ mod tests {
             vec![2.0, 1.0, 2.0],
         ];
         let mut ldl = SparseLdl::default();
-        ldl.factor(&upper(&a));
+        ldl.factor(&upper(&a), false);
         let mut x = vec![1.0, 2.0, 1.0];
         ldl.solve(&mut x);
         assert!(x.iter().all(|v| v.is_finite()));

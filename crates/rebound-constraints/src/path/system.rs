@@ -165,7 +165,7 @@ impl Link {
     /// summed in f32 (the precision of the rows), four lanes at a time, and the blocks kept in f64.
     pub(super) fn fill_blocks<const N: usize>(&mut self, next: Option<&Link>) {
         let live = self.live_rows();
-        let (ma, mb, rows) = (&self.rows.mass_a, &self.rows.mass_b, &self.rows.rows);
+        let rows = &self.rows.rows;
         // Each row's Jacobian `[J_a,linear, J_a,angular, J_b,linear, J_b,angular]` and `M⁻¹·Jᵀ` in the same
         // order, as 4-lane vectors (w = 0), zero for a row not in the system: an entry is then four lane
         // products summed once. Every entry is written once, here and below, rather than the arrays and
@@ -177,15 +177,7 @@ impl Link {
             }
             _ => [Vec4::ZERO; 4],
         });
-        for k in 0..MAX_ROWS {
-            self.impulse[k] = match rows.get(k) {
-                Some(row) if k < N && live[k] => {
-                    let [ta, tb] = self.rows.turned(k);
-                    [row.a.linear * ma.mass, ta, row.b.linear * mb.mass, tb].map(lanes)
-                }
-                _ => [Vec4::ZERO; 4],
-            };
-        }
+        self.fill_impulses::<N>();
         let inverse = &self.impulse;
         // Bᵢⱼ = Jᵢ·M⁻¹·Jⱼᵀ over both bodies, i ≤ j;   Bᵢᵢ·(1 + ε)
         let b = &mut self.b_block;
@@ -241,6 +233,23 @@ impl Link {
                     0.0
                 };
             }
+        }
+    }
+
+    /// Writes `M⁻¹·Jᵀ` of the first `N` rows into `impulse` ([`Link::impulse`]: zero for a row not in the
+    /// system), as [`Link::fill_blocks`] makes it with the blocks.
+    pub(super) fn fill_impulses<const N: usize>(&mut self) {
+        let live = self.live_rows();
+        let (ma, mb, rows) = (&self.rows.mass_a, &self.rows.mass_b, &self.rows.rows);
+        let lanes = |v: Vec3| v.extend(0.0);
+        for k in 0..MAX_ROWS {
+            self.impulse[k] = match rows.get(k) {
+                Some(row) if k < N && live[k] => {
+                    let [ta, tb] = self.rows.turned(k);
+                    [row.a.linear * ma.mass, ta, row.b.linear * mb.mass, tb].map(lanes)
+                }
+                _ => [Vec4::ZERO; 4],
+            };
         }
     }
 
