@@ -15,6 +15,18 @@ impl JointSolver {
     /// the oscillator step of the springs of hinge, prismatic and wheel joints (`docs/physics.md`, "Joint
     /// springs").
     pub fn apply_forces(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
+        if self.pool.is_active() {
+            let (h, coordinate_springs) = (ctx.h, self.coordinate_springs);
+            // Each joint's two stages back to back: no other joint touches its bodies.
+            self.joints_on_pool(solver_bodies, |j, pair, bodies| {
+                j.kind.apply_forces(pair, &mut j.state, bodies, h);
+                if coordinate_springs {
+                    j.kind
+                        .apply_coordinate_spring(pair, &mut j.state, bodies, h);
+                }
+            });
+            return;
+        }
         for j in &mut self.joints {
             j.kind
                 .apply_forces(&j.pair, &mut j.state, solver_bodies, ctx.h);
