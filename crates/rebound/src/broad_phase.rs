@@ -139,6 +139,7 @@ struct Candidate {
 
 impl Candidate {
     /// The record of `collider` (`handle`) on `body`, with its rotation reach (m/s).
+    #[inline]
     fn of(handle: ColliderHandle, collider: &Collider, body: &RigidBody, reach: f32) -> Self {
         let collides = collider.desc.enabled && !collider.desc.is_sensor;
         Self {
@@ -158,18 +159,19 @@ impl Candidate {
     }
 }
 
-/// One collider at the start of the pair search: its fat box, its [`Candidate`], the slack a new leaf gets,
-/// and its body's pose if the body turns far enough to be swept ([`crate::prediction::is_swept`]).
+/// One collider at the start of the pair search: its fat box, its [`Candidate`], whether its body is slow
+/// (its new leaf gets some slack), and its body's pose if the body turns far enough to be swept ([`crate::prediction::is_swept`]).
 struct Fattened {
     fat: Aabb,
     candidate: Candidate,
-    slack: f32,
+    /// The speed part of its margin is below [`LEAF_SLACK_BELOW`] of the speculative margin.
+    slow: bool,
     swept: Option<Pose>,
 }
 
 impl Fattened {
     /// Collider `handle` (`collider`) on `body`, for a step of `dt` seconds.
-    #[inline]
+    #[inline(always)]
     fn of(
         handle: ColliderHandle,
         collider: &Collider,
@@ -192,16 +194,22 @@ impl Fattened {
         } else {
             0.0
         };
-        let slack = if margin - speculative_margin < LEAF_SLACK_BELOW * speculative_margin {
-            LEAF_SLACK * speculative_margin
-        } else {
-            0.0
-        };
         Self {
             fat: aabb.loosened(margin),
             candidate: Candidate::of(handle, collider, body, reach),
-            slack,
+            slow: margin - speculative_margin < LEAF_SLACK_BELOW * speculative_margin,
             swept: (active && is_swept(collider, body, dt)).then(|| body.pose()),
+        }
+    }
+
+    /// How much a new leaf loosens the fat box (m): some slack if the body is slow, so that a resting
+    /// body's jitter does not change its leaf every step.
+    #[inline(always)]
+    fn slack(&self, speculative_margin: f32) -> f32 {
+        if self.slow {
+            LEAF_SLACK * speculative_margin
+        } else {
+            0.0
         }
     }
 }
@@ -260,10 +268,13 @@ impl BroadPhase {
         max_pairs: usize,
     ) {
         // Candidate pairs the last search found, those its cap left out included.
+        #[cfg(feature = "parallel")]
         let last_found = self.pairs.len() + self.capped;
         self.any_mover = false;
         self.capped = 0;
+        // One record per collider slot, `None` until its collider is seen.
         self.candidates.clear();
+        self.candidates.resize(colliders.arena.capacity(), None);
         self.swept.clear();
         let changed = self.fatten_all(colliders, bodies, speculative_margin, dt);
         self.query_ready = false;
@@ -331,8 +342,8 @@ impl BroadPhase {
 
     /// The first part of the pair search: every collider's [`Fattened`] box and [`Candidate`], each leaf
     /// that does not hold its collider's fat box updated, the leaves of colliders on removed bodies removed
-    /// ([`each_collider`]: the boxes and leaf tests over the pool, the tree's updates in collider order).
-    /// Returns how many leaves changed.
+    /// (on a pool of several threads the boxes and leaf tests over the pool, then the tree's updates in
+    /// collider order: `on_pool`). Returns how many leaves changed.
     fn fatten_all(
         &mut self,
         colliders: &ColliderSet,
@@ -341,26 +352,42 @@ impl BroadPhase {
         dt: f32,
     ) -> usize {
         let mut changed = 0;
-        each_collider(
-            self,
-            colliders,
-            |bp, handle, collider| {
-                let body = bodies.get(collider.body)?;
-                let f = Fattened::of(handle, collider, body, speculative_margin, dt);
-                let holds = holds(&bp.bvh, handle, &f.fat);
-                Some((f, holds))
-            },
-            |bp, handle, collider, fattened| {
-                changed += match fattened {
-                    Some((f, holds)) => bp.take(handle, collider.body, &f, holds),
-                    None => bp.remove_gone(handle),
-                };
-            },
-        );
+        #[cfg(feature = "parallel")]
+        if rebound_math::par::is_parallel() {
+            on_pool(
+                self,
+                colliders,
+                |bp, handle, collider| {
+                    let body = bodies.get(collider.body)?;
+                    let f = Fattened::of(handle, collider, body, speculative_margin, dt);
+                    let holds = holds(&bp.bvh, handle, &f.fat);
+                    Some((f, holds))
+                },
+                |bp, handle, collider, fattened| {
+                    changed += match fattened {
+                        Some((f, holds)) => {
+                            bp.take(handle, collider.body, &f, holds, speculative_margin)
+                        }
+                        None => bp.remove_gone(handle),
+                    };
+                },
+            );
+            return changed;
+        }
+        for (handle, collider) in colliders.iter() {
+            let Some(body) = bodies.get(collider.body) else {
+                changed += self.remove_gone(handle);
+                continue;
+            };
+            let f = Fattened::of(handle, collider, body, speculative_margin, dt);
+            let holds = holds(&self.bvh, handle, &f.fat);
+            changed += self.take(handle, collider.body, &f, holds, speculative_margin);
+        }
         changed
     }
 
     /// Removes the leaf of collider `handle`, whose body is gone; returns 1 if there was one.
+    #[inline]
     fn remove_gone(&mut self, handle: ColliderHandle) -> usize {
         let slot = handle.0.index;
         if self.bvh.leaf_node(slot).is_none() {
@@ -371,13 +398,16 @@ impl BroadPhase {
     }
 
     /// Records collider `handle`'s candidate (and its body `body` if swept) and, unless its leaf `holds` its
-    /// fat box, gives the leaf the fat box loosened by its slack; returns 1 if the leaf changed.
+    /// fat box, gives the leaf the fat box loosened by its slack ([`Fattened::slack`]); returns 1 if the leaf
+    /// changed.
+    #[inline(always)]
     fn take(
         &mut self,
         handle: ColliderHandle,
         body: BodyHandle,
         f: &Fattened,
         holds: bool,
+        speculative_margin: f32,
     ) -> usize {
         if let Some(pose) = f.swept
             && !self.swept.iter().any(|&(h, _)| h == body)
@@ -386,19 +416,18 @@ impl BroadPhase {
         }
         self.any_mover |= f.candidate.mover;
         let slot = handle.0.index;
-        let slot_index = slot as usize;
-        if self.candidates.len() <= slot_index {
-            self.candidates.resize(slot_index + 1, None);
+        if let Some(candidate) = self.candidates.get_mut(slot as usize) {
+            *candidate = Some(f.candidate);
         }
-        self.candidates[slot_index] = Some(f.candidate);
         // A leaf that holds the fat box stays (see the module docs); a new one gets some slack if the body is
         // slow, so that a resting body's jitter does not change its leaf every step.
         if holds {
             return 0;
         }
+        let slack = f.slack(speculative_margin);
         let _ = self
             .bvh
-            .insert_or_update_partially(f.fat.loosened(f.slack), slot, 0.0);
+            .insert_or_update_partially(f.fat.loosened(slack), slot, 0.0);
         1
     }
 
@@ -415,22 +444,43 @@ impl BroadPhase {
     /// refit of the whole tree every step.
     pub(crate) fn refresh(&mut self, colliders: &ColliderSet, bodies: &BodySet) {
         let mut changed = 0;
-        each_collider(
-            self,
-            colliders,
-            |bp, handle, collider| {
-                let aabb = world_aabb(collider, bodies.get(collider.body)?);
-                Some((aabb, holds(&bp.bvh, handle, &aabb)))
-            },
-            |bp, handle, _, tight| match tight {
-                Some((_, true)) => {}
-                Some((aabb, false)) => {
-                    let _ = bp.bvh.insert_or_update_partially(aabb, handle.0.index, 0.0);
-                    changed += 1;
-                }
-                None => changed += bp.remove_gone(handle),
-            },
-        );
+        #[cfg(feature = "parallel")]
+        let pooled = rebound_math::par::is_parallel();
+        #[cfg(not(feature = "parallel"))]
+        let pooled = false;
+        #[cfg(feature = "parallel")]
+        if pooled {
+            on_pool(
+                self,
+                colliders,
+                |bp, handle, collider| {
+                    let aabb = world_aabb(collider, bodies.get(collider.body)?);
+                    Some((aabb, holds(&bp.bvh, handle, &aabb)))
+                },
+                |bp, handle, _, tight| match tight {
+                    Some((_, true)) => {}
+                    Some((aabb, false)) => {
+                        let _ = bp.bvh.insert_or_update_partially(aabb, handle.0.index, 0.0);
+                        changed += 1;
+                    }
+                    None => changed += bp.remove_gone(handle),
+                },
+            );
+        }
+        for (handle, collider) in colliders.iter().filter(|_| !pooled) {
+            let Some(body) = bodies.get(collider.body) else {
+                changed += self.remove_gone(handle);
+                continue;
+            };
+            let aabb = world_aabb(collider, body);
+            if holds(&self.bvh, handle, &aabb) {
+                continue;
+            }
+            let _ = self
+                .bvh
+                .insert_or_update_partially(aabb, handle.0.index, 0.0);
+            changed += 1;
+        }
         if changed > 0 {
             refit(&mut self.bvh, &mut self.workspace);
             self.overlaps_current = false;
@@ -635,40 +685,32 @@ fn find_overlaps(
 }
 
 /// Whether the leaf of collider `handle` in `bvh` holds (contains) `aabb`.
-#[inline]
+#[inline(always)]
 fn holds(bvh: &Bvh, handle: ColliderHandle, aabb: &Aabb) -> bool {
     bvh.leaf_node(handle.0.index)
         .is_some_and(|leaf| leaf.contains_aabb(aabb))
 }
 
 /// For every collider, in collider order: `apply(broad_phase, handle, collider, compute(broad_phase, handle,
-/// collider))`. On a pool of more than one thread every `compute` (which only reads) runs over the pool
-/// first, then every `apply` (which changes the tree) one after the other; otherwise each `apply` follows
-/// its `compute`. The same calls on the same values either way.
-fn each_collider<'c, T: Send>(
+/// collider))`, every `compute` (which only reads) over the pool first, then every `apply` (which changes
+/// the tree) one after the other: the calls the one-thread loops make, on the same values.
+#[cfg(feature = "parallel")]
+fn on_pool<'c, T: Send>(
     broad_phase: &mut BroadPhase,
     colliders: &'c ColliderSet,
     compute: impl Fn(&BroadPhase, ColliderHandle, &'c Collider) -> T + Sync + Send,
     mut apply: impl FnMut(&mut BroadPhase, ColliderHandle, &'c Collider, T),
 ) {
-    #[cfg(feature = "parallel")]
-    if rebound_math::par::is_parallel() {
-        let list: Vec<(ColliderHandle, &Collider)> = colliders.iter().collect();
-        let mut computed = Vec::new();
-        let shared = &*broad_phase;
-        rebound_math::par::map_collect_in_order(
-            &list,
-            &mut computed,
-            rebound_math::par::MIN_ITEMS_PER_TASK,
-            |_, &(handle, collider)| compute(shared, handle, collider),
-        );
-        for (&(handle, collider), value) in list.iter().zip(computed) {
-            apply(broad_phase, handle, collider, value);
-        }
-        return;
-    }
-    for (handle, collider) in colliders.iter() {
-        let value = compute(broad_phase, handle, collider);
+    let list: Vec<(ColliderHandle, &Collider)> = colliders.iter().collect();
+    let mut computed = Vec::new();
+    let shared = &*broad_phase;
+    rebound_math::par::map_collect_in_order(
+        &list,
+        &mut computed,
+        rebound_math::par::MIN_ITEMS_PER_TASK,
+        |_, &(handle, collider)| compute(shared, handle, collider),
+    );
+    for (&(handle, collider), value) in list.iter().zip(computed) {
         apply(broad_phase, handle, collider, value);
     }
 }
