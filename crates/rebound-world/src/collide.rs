@@ -163,7 +163,7 @@ pub(crate) fn collide<B: CollisionBackend>(
                 speed: needs_speed.then_some(0.0),
             });
         } else {
-            warm_start_points(manifold, (body_a, body_b), old, rotations);
+            warm_start_points(manifold, (body_a, body_b), old, &rotations);
         }
     }
     if on_pool {
@@ -189,12 +189,12 @@ struct Deferred<'a> {
 
 /// Each point's lever arms, kept from last step's manifold `old` where its point persists (with its
 /// impulses: the warm start), else fresh from the bodies' rotation matrices and centres of mass.
-#[inline]
+#[inline(always)]
 fn warm_start_points(
     manifold: &mut ContactManifold,
     (body_a, body_b): (&RigidBody, &RigidBody),
     old: Option<&ContactManifold>,
-    rotations: [Mat3; 2],
+    rotations: &[Mat3; 2],
 ) {
     let count = manifold.point_count.min(MAX_MANIFOLD_POINTS);
     let old_points = old.map_or(&[][..], ContactManifold::points);
@@ -225,7 +225,7 @@ fn warm_start_on_pool(
         if let Some(speed) = &mut d.speed {
             *speed = approach_speed(manifold, d.bodies.0, d.bodies.1);
         }
-        warm_start_points(manifold, d.bodies, d.old, d.rotations);
+        warm_start_points(manifold, d.bodies, d.old, &d.rotations);
     });
     for (speed, d) in speeds.iter_mut().zip(deferred.iter()) {
         if let Some(computed) = d.speed {

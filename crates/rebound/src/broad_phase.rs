@@ -49,10 +49,15 @@ use crate::{
 };
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use parry3d::partitioning::{Bvh, BvhWorkspace};
+#[cfg(feature = "parallel")]
+use pool::{PAIRS_PER_TASK, POOL_SEARCH_BELOW, on_pool, search_on_pool};
 use rebound_dynamics::{BodyType, RigidBody};
 use rebound_math::{Pose, Vec3};
 use rebound_world::{BodyHandle, BodySet};
 use std::collections::BTreeSet;
+
+#[cfg(feature = "parallel")]
+mod pool;
 
 /// A slow body's new leaf is its fat box loosened by this fraction of the speculative margin, so that it
 /// holds the body's fat box for many steps of resting jitter (see the module docs).
@@ -443,13 +448,22 @@ impl BroadPhase {
     /// than its collider only adds a candidate; keeping the pair search's boxes spares a swinging chain a
     /// refit of the whole tree every step.
     pub(crate) fn refresh(&mut self, colliders: &ColliderSet, bodies: &BodySet) {
+        let changed = self.tighten_all(colliders, bodies);
+        if changed > 0 {
+            refit(&mut self.bvh, &mut self.workspace);
+            self.overlaps_current = false;
+        }
+        self.query_ready = true;
+    }
+
+    /// The leaves of [`BroadPhase::refresh`]: each that does not hold its collider's current box gets it, the
+    /// leaves of colliders on removed bodies are removed (on a pool of several threads the boxes and leaf
+    /// tests over the pool, then the tree's updates in collider order: `on_pool`). Returns how many leaves
+    /// changed.
+    fn tighten_all(&mut self, colliders: &ColliderSet, bodies: &BodySet) -> usize {
         let mut changed = 0;
         #[cfg(feature = "parallel")]
-        let pooled = rebound_math::par::is_parallel();
-        #[cfg(not(feature = "parallel"))]
-        let pooled = false;
-        #[cfg(feature = "parallel")]
-        if pooled {
+        if rebound_math::par::is_parallel() {
             on_pool(
                 self,
                 colliders,
@@ -466,8 +480,9 @@ impl BroadPhase {
                     None => changed += bp.remove_gone(handle),
                 },
             );
+            return changed;
         }
-        for (handle, collider) in colliders.iter().filter(|_| !pooled) {
+        for (handle, collider) in colliders.iter() {
             let Some(body) = bodies.get(collider.body) else {
                 changed += self.remove_gone(handle);
                 continue;
@@ -481,11 +496,7 @@ impl BroadPhase {
                 .insert_or_update_partially(aabb, handle.0.index, 0.0);
             changed += 1;
         }
-        if changed > 0 {
-            refit(&mut self.bvh, &mut self.workspace);
-            self.overlaps_current = false;
-        }
-        self.query_ready = true;
+        changed
     }
 
     /// A new tree holding every collider (after a restore): same leaves, whatever the old tree's shape.
@@ -691,30 +702,6 @@ fn holds(bvh: &Bvh, handle: ColliderHandle, aabb: &Aabb) -> bool {
         .is_some_and(|leaf| leaf.contains_aabb(aabb))
 }
 
-/// For every collider, in collider order: `apply(broad_phase, handle, collider, compute(broad_phase, handle,
-/// collider))`, every `compute` (which only reads) over the pool first, then every `apply` (which changes
-/// the tree) one after the other: the calls the one-thread loops make, on the same values.
-#[cfg(feature = "parallel")]
-fn on_pool<'c, T: Send>(
-    broad_phase: &mut BroadPhase,
-    colliders: &'c ColliderSet,
-    compute: impl Fn(&BroadPhase, ColliderHandle, &'c Collider) -> T + Sync + Send,
-    mut apply: impl FnMut(&mut BroadPhase, ColliderHandle, &'c Collider, T),
-) {
-    let list: Vec<(ColliderHandle, &Collider)> = colliders.iter().collect();
-    let mut computed = Vec::new();
-    let shared = &*broad_phase;
-    rebound_math::par::map_collect_in_order(
-        &list,
-        &mut computed,
-        rebound_math::par::MIN_ITEMS_PER_TASK,
-        |_, &(handle, collider)| compute(shared, handle, collider),
-    );
-    for (&(handle, collider), value) in list.iter().zip(computed) {
-        apply(broad_phase, handle, collider, value);
-    }
-}
-
 /// The kept overlaps that pass `filter`, in their order, into `pairs`: over the pool when it has more than
 /// one thread.
 fn filter_kept(
@@ -751,36 +738,6 @@ fn refit(bvh: &mut Bvh, workspace: &mut BvhWorkspace) {
         return;
     }
     bvh.refit(workspace);
-}
-
-/// The pool's pair search ([`BroadPhase::find_pairs`] on a pool of more than one thread, while the last
-/// search found fewer than `1 / POOL_SEARCH_BELOW` of the cap): it holds every overlapping leaf pair at
-/// once, where the one-thread search trims its list at twice the cap as it goes.
-#[cfg(feature = "parallel")]
-const POOL_SEARCH_BELOW: usize = 4;
-
-/// Overlapping leaf pairs per task of the pool's pair filter.
-#[cfg(feature = "parallel")]
-const PAIRS_PER_TASK: usize = 1024;
-
-/// The pair search over the thread pool: parry's traversal of the tree against itself with its subtrees as
-/// tasks (the overlapping leaves in the order the one-thread traversal finds them), then [`PairFilter`]
-/// over the pool, keeping that order, into `pairs` (unsorted: the caller sorts and caps them as the
-/// one-thread search does, so both give the same pairs).
-#[cfg(feature = "parallel")]
-fn search_on_pool(
-    bvh: &Bvh,
-    filter: &PairFilter<'_>,
-    pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
-) {
-    use rebound_math::par::rayon::prelude::*;
-    let leaves = bvh.traverse_bvtt_single_tree_parallel::<false>();
-    pairs.par_extend(
-        leaves
-            .par_iter()
-            .with_min_len(PAIRS_PER_TASK)
-            .filter_map(|&(slot1, slot2)| filter.keeps_leaves(slot1, slot2)),
-    );
 }
 
 /// Sorts and deduplicates `pairs` and keeps the `cap` lowest; returns how many were left out. Called
