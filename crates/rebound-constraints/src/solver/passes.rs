@@ -2,11 +2,15 @@
 //! (bias off) — and the stages after the substeps that are not the projection: *restitution* and *store
 //! impulses*. Each dispatches over the joint kinds; the paths are solved by `path_pass`.
 
+use super::dispatch::PreparedJoint;
 use super::dispatch::reaction_impulses;
 use super::joint_solver::JointSolver;
+use super::pool::JOINTS_PER_TASK;
+use crate::pair::BodyPair;
 use crate::stage::{Stage, Substep};
 use crate::state::{JointState, JointStates};
 use rebound_dynamics::{Bias, SolverBody, StepContext};
+use rebound_math::par;
 
 impl JointSolver {
     /// Stage *apply forces* (every substep, right after integrate velocities): each spring's impulse over
@@ -209,6 +213,37 @@ impl JointSolver {
                     ..JointState::default()
                 };
             }
+        }
+    }
+}
+
+impl JointSolver {
+    /// Runs `f(joint, its two bodies as a pair with indices 0 and 1, [a, b])` for every joint over the pool
+    /// (see the module docs), then writes the bodies back in joint order.
+    pub(super) fn joints_on_pool<F>(&mut self, solver_bodies: &mut [SolverBody], f: F)
+    where
+        F: Fn(&mut PreparedJoint, &BodyPair, &mut [SolverBody; 2]) + Sync + Send,
+    {
+        let JointSolver { joints, pool, .. } = self;
+        let read = |index: usize| {
+            solver_bodies
+                .get(index)
+                .copied()
+                .unwrap_or(SolverBody::STATIC)
+        };
+        par::map_collect_in_order(joints, &mut pool.bodies, JOINTS_PER_TASK, |_, j| {
+            [read(j.pair.index_a), read(j.pair.index_b)]
+        });
+        par::for_each_zip_both_mut(joints, &mut pool.bodies, JOINTS_PER_TASK, |j, bodies| {
+            let local = BodyPair {
+                index_a: 0,
+                index_b: 1,
+                ..j.pair
+            };
+            f(j, &local, bodies);
+        });
+        for (j, &[a, b]) in joints.iter().zip(&pool.bodies) {
+            j.pair.store(solver_bodies, a, b);
         }
     }
 }

@@ -8,13 +8,11 @@
 //! build and a pool of one thread take the plain loop of `passes.rs`.
 
 use super::dispatch::PreparedJoint;
-use super::joint_solver::JointSolver;
-use crate::pair::BodyPair;
 use rebound_dynamics::SolverBody;
 use rebound_math::par;
 
 /// Joints per task: below twice this the plain loop runs.
-const JOINTS_PER_TASK: usize = 64;
+pub(super) const JOINTS_PER_TASK: usize = 64;
 
 /// The pool's plan for this step's joints and its scratch.
 #[derive(Debug, Clone, Default)]
@@ -22,7 +20,7 @@ pub(super) struct JointPool {
     /// Whether the joints of the prepared step may be solved at once (see the module docs).
     apart: bool,
     /// Scratch: per joint, its two bodies while the pool runs it.
-    bodies: Vec<[SolverBody; 2]>,
+    pub(super) bodies: Vec<[SolverBody; 2]>,
     /// Scratch: per solver body, whether a joint of the step uses it.
     used: Vec<bool>,
 }
@@ -52,36 +50,5 @@ impl JointPool {
     /// Whether this step's *apply forces* runs on the pool.
     pub(super) fn is_active(&self) -> bool {
         self.apart && par::is_parallel()
-    }
-}
-
-impl JointSolver {
-    /// Runs `f(joint, its two bodies as a pair with indices 0 and 1, [a, b])` for every joint over the pool
-    /// (see the module docs), then writes the bodies back in joint order.
-    pub(super) fn joints_on_pool<F>(&mut self, solver_bodies: &mut [SolverBody], f: F)
-    where
-        F: Fn(&mut PreparedJoint, &BodyPair, &mut [SolverBody; 2]) + Sync + Send,
-    {
-        let JointSolver { joints, pool, .. } = self;
-        let read = |index: usize| {
-            solver_bodies
-                .get(index)
-                .copied()
-                .unwrap_or(SolverBody::STATIC)
-        };
-        par::map_collect_in_order(joints, &mut pool.bodies, JOINTS_PER_TASK, |_, j| {
-            [read(j.pair.index_a), read(j.pair.index_b)]
-        });
-        par::for_each_zip_both_mut(joints, &mut pool.bodies, JOINTS_PER_TASK, |j, bodies| {
-            let local = BodyPair {
-                index_a: 0,
-                index_b: 1,
-                ..j.pair
-            };
-            f(j, &local, bodies);
-        });
-        for (j, &[a, b]) in joints.iter().zip(&pool.bodies) {
-            j.pair.store(solver_bodies, a, b);
-        }
     }
 }

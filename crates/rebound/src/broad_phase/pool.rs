@@ -2,7 +2,6 @@
 //! thread): the colliders' boxes and leaf tests, then parry's traversal of the tree against itself with the
 //! pair filter. Each gives what the one-thread code of `broad_phase.rs` gives, in the same order.
 
-use super::{BroadPhase, PairFilter};
 use crate::{Collider, ColliderHandle, ColliderSet};
 use parry3d::partitioning::Bvh;
 use rebound_math::par::rayon::prelude::*;
@@ -16,12 +15,12 @@ pub(super) const POOL_SEARCH_BELOW: usize = 4;
 pub(super) const PAIRS_PER_TASK: usize = 1024;
 
 /// The pair search over the thread pool: parry's traversal of the tree against itself with its subtrees as
-/// tasks (the overlapping leaves in the order the one-thread traversal finds them), then [`PairFilter`]
-/// over the pool, keeping that order, into `pairs` (unsorted: the caller sorts and caps them as the
+/// tasks (the overlapping leaves in the order the one-thread traversal finds them), then `keep` (the pair
+/// filter's verdict on two leaves) over the pool, keeping that order, into `pairs` (unsorted: the caller sorts and caps them as the
 /// one-thread search does, so both give the same pairs).
 pub(super) fn search_on_pool(
     bvh: &Bvh,
-    filter: &PairFilter<'_>,
+    keep: impl Fn(u32, u32) -> Option<(ColliderHandle, ColliderHandle)> + Sync + Send,
     pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
 ) {
     let leaves = bvh.traverse_bvtt_single_tree_parallel::<false>();
@@ -29,18 +28,18 @@ pub(super) fn search_on_pool(
         leaves
             .par_iter()
             .with_min_len(PAIRS_PER_TASK)
-            .filter_map(|&(slot1, slot2)| filter.keeps_leaves(slot1, slot2)),
+            .filter_map(|&(slot1, slot2)| keep(slot1, slot2)),
     );
 }
 
 /// For every collider, in collider order: `apply(broad_phase, handle, collider, compute(broad_phase, handle,
 /// collider))`, every `compute` (which only reads) over the pool first, then every `apply` (which changes
 /// the tree) one after the other: the calls the one-thread loops make, on the same values.
-pub(super) fn on_pool<'c, T: Send>(
-    broad_phase: &mut BroadPhase,
+pub(super) fn on_pool<'c, S: Sync, T: Send>(
+    broad_phase: &mut S,
     colliders: &'c ColliderSet,
-    compute: impl Fn(&BroadPhase, ColliderHandle, &'c Collider) -> T + Sync + Send,
-    mut apply: impl FnMut(&mut BroadPhase, ColliderHandle, &'c Collider, T),
+    compute: impl Fn(&S, ColliderHandle, &'c Collider) -> T + Sync + Send,
+    mut apply: impl FnMut(&mut S, ColliderHandle, &'c Collider, T),
 ) {
     let list: Vec<(ColliderHandle, &Collider)> = colliders.iter().collect();
     let mut computed = Vec::new();
