@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run --release --bin compare -- [--rounds R] [--steps N] [--scene NAME|all]... [--json]
 //! cargo run --release --bin compare -- --engine rebound [--rounds R] [--steps N] [--scene NAME|all]...
-//! cargo run --release --bin compare -- --scaling [--rounds R] [--steps N] [--json]
+//! cargo run --release --bin compare -- --scaling [--rounds R] [--steps N] [--threads N] [--json]
 //! cargo run --release --features parallel --bin compare -- --threads N [--rounds R] [--scene NAME|all]...
 //! ```
 //!
@@ -27,7 +27,8 @@
 //! "Layout check").
 //!
 //! `--scaling` runs Rebound alone on growing scenes instead: balls with 1,024, 4,096 and 16,384 balls and
-//! pyramids of base 20, 40 and 80, and fits the cost-growth exponent (the slope of log ms against log n).
+//! pyramids of base 20, 40 and 80, and fits the cost-growth exponent (the slope of log ms against log n);
+//! with `--threads N`, on a pool of N threads.
 
 #![allow(
     clippy::print_stdout,
@@ -51,7 +52,7 @@ use run::{Phases, Run, WARMUP_STEPS, rebound_engine, run_rebound};
 
 const USAGE: &str = "\
 usage: compare [--engine both|rebound] [--rounds R] [--steps N] [--threads N] [--scene NAME|all]... [--json]
-       compare --scaling [--rounds R] [--steps N] [--json]
+       compare --scaling [--rounds R] [--steps N] [--threads N] [--json]
 
   --engine E    both (default): Rebound beside rapier; rebound: Rebound alone, rapier neither built nor run
   --rounds R    rounds of every scene in both engines (default 3); times are the median over rounds
@@ -62,7 +63,7 @@ usage: compare [--engine both|rebound] [--rounds R] [--steps N] [--threads N] [-
                 build of benches/peers with its `parallel` feature); default: one thread, serial builds
   --scaling     Rebound alone: balls at 1k, 4k, 16k and pyramid bases 20, 40, 80, with the cost-growth
                 exponent (default 180 steps, 1 round: about 3.5 minutes, most of it
-                the 16k-ball pile)
+                the 16k-ball pile); with --threads N, on a pool of N threads
   --json        one JSON object per line instead of the tables
 ";
 
@@ -619,7 +620,7 @@ fn main() -> ExitCode {
         eprintln!("compare: warning: a debug build; run with `cargo run --release --bin compare`");
     }
     let outcome = if args.scaling {
-        scaling::scaling(args.rounds, args.steps, args.json)
+        scaling::scaling(args.rounds, args.steps, args.threads, args.json)
     } else if args.engines == Engines::Rebound {
         rebound_alone(&args)
     } else {

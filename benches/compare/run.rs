@@ -102,21 +102,30 @@ pub(crate) fn run_scene(scene: &mut dyn Scene, steps: usize) -> (TimingStats, Ph
     )
 }
 
+/// Runs `f` on the current thread, or with `threads` inside a rayon pool of that many threads (the parallel
+/// build; `parse_args` refuses `--threads` in the serial one).
+pub(crate) fn on_threads<R: Send>(
+    threads: Option<usize>,
+    f: impl FnOnce() -> R + Send,
+) -> Result<R, String> {
+    match threads {
+        #[cfg(feature = "parallel")]
+        Some(threads) => Ok(rebound::math::par::rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .map_err(|e| format!("a pool of {threads} threads: {e}"))?
+            .install(f)),
+        _ => Ok(f()),
+    }
+}
+
 /// Builds and runs a scene in Rebound: on the current thread, or with `threads` inside a rayon pool of that
 /// many threads (the parallel build; `parse_args` refuses `--threads` in the serial one).
 pub(crate) fn run_rebound(name: &str, steps: usize, threads: Option<usize>) -> Result<Run, String> {
     let mut scene = scenes::build(name, SceneOptions::default())
         .map_err(|e| format!("building `{name}` in Rebound: {e}"))?
         .ok_or_else(|| format!("unknown scene `{name}`"))?;
-    let (timing, phases) = match threads {
-        #[cfg(feature = "parallel")]
-        Some(threads) => rebound::math::par::rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| format!("a pool of {threads} threads: {e}"))?
-            .install(|| run_scene(scene.as_mut(), steps)),
-        _ => run_scene(scene.as_mut(), steps),
-    };
+    let (timing, phases) = on_threads(threads, || run_scene(scene.as_mut(), steps))?;
     Ok(Run {
         bodies: scene.body_count(),
         joints: scene.joint_count(),

@@ -6,7 +6,7 @@ use rebound_suite::scenes::metrics::median;
 use rebound_suite::scenes::{Balls, Pyramid, Scene, SceneOptions};
 use serde_json::{Map, json};
 
-use crate::run::{Phases, WARMUP_STEPS, rebound_engine, run_scene};
+use crate::run::{Phases, WARMUP_STEPS, on_threads, rebound_engine, run_scene};
 
 /// One point of a scaling series.
 #[derive(Debug, Clone, Copy)]
@@ -31,6 +31,7 @@ pub(crate) fn growth_exponent(points: &[ScalingPoint]) -> f64 {
 pub(crate) fn scaling(
     rounds: Option<usize>,
     steps: Option<usize>,
+    threads: Option<usize>,
     json: bool,
 ) -> Result<(), String> {
     let rounds = rounds.unwrap_or(1);
@@ -49,9 +50,10 @@ pub(crate) fn scaling(
     let mut table = String::new();
     let _ = writeln!(
         table,
-        "{}: scaling, single thread, dt = 1/60, sleeping off, {steps} steps; ms/step = median over rounds ({rounds}) \
+        "{}: scaling, {}, dt = 1/60, sleeping off, {steps} steps; ms/step = median over rounds ({rounds}) \
          of each run's median over steps {WARMUP_STEPS}..{steps}; phases: mean ms/step (StepReport::profile)\n",
-        rebound_engine()
+        rebound_engine(),
+        threads.map_or_else(|| "single thread".to_owned(), |n| format!("{n} threads")),
     );
     let _ = writeln!(
         table,
@@ -67,7 +69,7 @@ pub(crate) fn scaling(
             let mut bodies = 0;
             for _ in 0..rounds {
                 let mut scene = build(size).map_err(|e| format!("building {name} {size}: {e}"))?;
-                let (timing, p) = run_scene(scene.as_mut(), steps);
+                let (timing, p) = on_threads(threads, || run_scene(scene.as_mut(), steps))?;
                 bodies = scene.body_count();
                 medians.push(timing.median_ms);
                 phases.push(p);

@@ -80,6 +80,30 @@ where
     }
 }
 
+/// Calls `f(item, with)` for every pair of `items` and `with`, both changed in place (zipped: the shorter
+/// sets the length), each once, on as many threads as the pool has.
+#[inline]
+pub fn for_each_zip_both_mut<T, U, F>(items: &mut [T], with: &mut [U], min_len: usize, f: F)
+where
+    T: Send,
+    U: Send,
+    F: Fn(&mut T, &mut U) + Sync + Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() && items.len() > min_len {
+        items
+            .par_iter_mut()
+            .zip(with)
+            .with_min_len(min_len.max(1))
+            .for_each(|(item, w)| f(item, w));
+        return;
+    }
+    let _ = min_len;
+    for (item, w) in items.iter_mut().zip(with) {
+        f(item, w);
+    }
+}
+
 /// `out` becomes `[f(0, &items[0]), f(1, &items[1]), …]`, in index order whichever thread computed each
 /// (`out`'s allocation is reused).
 #[inline]
@@ -141,6 +165,13 @@ mod tests {
         let with: Vec<u32> = (0..1000).collect();
         for_each_zip_mut(&mut items, &with, 8, |x, &w| *x -= w);
         assert!(items.iter().all(|&x| x == 1));
+        let mut with = with;
+        for_each_zip_both_mut(&mut items, &mut with, 8, |x, w| {
+            *w += *x;
+            *x = 0;
+        });
+        assert!(items.iter().all(|&x| x == 0));
+        assert!(with.iter().enumerate().all(|(i, &w)| w == i as u32 + 1));
     }
 
     #[test]

@@ -9,6 +9,7 @@ use crate::manifold::{CollisionBackend, ContactManifold, MAX_MANIFOLD_POINTS, Ma
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
 use rebound_dynamics::{BodyType, RigidBody};
+use rebound_math::par::{self, MIN_ITEMS_PER_TASK};
 use rebound_math::{Mat3, Vec3};
 
 /// This step's manifolds and what the stages after *collide* learn about each, reused from step to step.
@@ -92,6 +93,11 @@ pub(crate) fn collide<B: CollisionBackend>(
         }
         entry.1
     };
+    // On a pool of several threads the walk leaves each kept manifold's approach speed and lever arms to a
+    // pass over the pool after it (`warm_start_on_pool`), noting here what that pass needs; the rotation
+    // matrices are still computed here, once per body.
+    let on_pool = par::is_parallel();
+    let mut deferred: Vec<Deferred<'_>> = Vec::new();
     let mut previous = state.manifolds.iter().peekable();
     let mut kept = 0;
     let mut counts = Dropped::default();
@@ -125,13 +131,16 @@ pub(crate) fn collide<B: CollisionBackend>(
         let key = manifold.order_key();
         let old = walk_to(&mut previous, &key, ContactManifold::order_key);
         let may_begin = old.is_none_or(|o| !o.is_touching());
-        speeds.push(
-            if may_begin || body_a.is_sleeping() || body_b.is_sleeping() {
+        let needs_speed = may_begin || body_a.is_sleeping() || body_b.is_sleeping();
+        if on_pool {
+            speeds.push(0.0);
+        } else {
+            speeds.push(if needs_speed {
                 approach_speed(manifold, body_a, body_b)
             } else {
                 0.0
-            },
-        );
+            });
+        }
         if carried {
             pushed.push(
                 !moves(body_a)
@@ -142,26 +151,23 @@ pub(crate) fn collide<B: CollisionBackend>(
                         .is_ok(),
             );
         }
-        let count = manifold.point_count.min(MAX_MANIFOLD_POINTS);
-        let old_points = old.map_or(&[][..], ContactManifold::points);
         let rotations = [
             rotation_of(manifold.body_a, body_a),
             rotation_of(manifold.body_b, body_b),
         ];
-        let centers = [
-            body_a.mass_properties().local_center_of_mass(),
-            body_b.mass_properties().local_center_of_mass(),
-        ];
-        for point in &mut manifold.points[..count] {
-            let fresh = [
-                rotations[0] * (point.local_anchor_a - centers[0]),
-                rotations[1] * (point.local_anchor_b - centers[1]),
-            ];
-            if let Some(previous) = point.refresh_lever_arms(fresh, old_points) {
-                point.normal_impulse = previous.normal_impulse;
-                point.tangent_impulse = previous.tangent_impulse;
-            }
+        if on_pool {
+            deferred.push(Deferred {
+                bodies: (body_a, body_b),
+                old,
+                rotations,
+                speed: needs_speed.then_some(0.0),
+            });
+        } else {
+            warm_start_points(manifold, (body_a, body_b), old, &rotations);
         }
+    }
+    if on_pool {
+        warm_start_on_pool(&mut manifolds[..kept], &mut deferred, &mut speeds);
     }
     counts.rejected = manifolds.len() - kept - counts.quarantined - counts.capped;
     manifolds.truncate(kept);
@@ -170,6 +176,62 @@ pub(crate) fn collide<B: CollisionBackend>(
     c.pushed = pushed;
     c.manifolds = manifolds;
     counts
+}
+
+/// What the pass over the pool needs of a kept manifold: its bodies, last step's manifold of its key, its
+/// bodies' rotation matrices, and its approach speed if one is needed (computed by the pass).
+struct Deferred<'a> {
+    bodies: (&'a RigidBody, &'a RigidBody),
+    old: Option<&'a ContactManifold>,
+    rotations: [Mat3; 2],
+    speed: Option<f32>,
+}
+
+/// Each point's lever arms, kept from last step's manifold `old` where its point persists (with its
+/// impulses: the warm start), else fresh from the bodies' rotation matrices and centres of mass.
+#[inline(always)]
+fn warm_start_points(
+    manifold: &mut ContactManifold,
+    (body_a, body_b): (&RigidBody, &RigidBody),
+    old: Option<&ContactManifold>,
+    rotations: &[Mat3; 2],
+) {
+    let count = manifold.point_count.min(MAX_MANIFOLD_POINTS);
+    let old_points = old.map_or(&[][..], ContactManifold::points);
+    let centers = [
+        body_a.mass_properties().local_center_of_mass(),
+        body_b.mass_properties().local_center_of_mass(),
+    ];
+    for point in &mut manifold.points[..count] {
+        let fresh = [
+            rotations[0] * (point.local_anchor_a - centers[0]),
+            rotations[1] * (point.local_anchor_b - centers[1]),
+        ];
+        if let Some(previous) = point.refresh_lever_arms(fresh, old_points) {
+            point.normal_impulse = previous.normal_impulse;
+            point.tangent_impulse = previous.tangent_impulse;
+        }
+    }
+}
+
+/// The approach speeds and lever arms the walk left to the pool: each manifold's alone, computed as the walk
+/// would have, then the speeds written in manifold order.
+fn warm_start_on_pool(
+    manifolds: &mut [ContactManifold],
+    deferred: &mut [Deferred<'_>],
+    speeds: &mut [f32],
+) {
+    par::for_each_zip_both_mut(manifolds, deferred, MIN_ITEMS_PER_TASK, |manifold, d| {
+        if let Some(speed) = &mut d.speed {
+            *speed = approach_speed(manifold, d.bodies.0, d.bodies.1);
+        }
+        warm_start_points(manifold, d.bodies, d.old, &d.rotations);
+    });
+    for (speed, d) in speeds.iter_mut().zip(deferred.iter()) {
+        if let Some(computed) = d.speed {
+            *speed = computed;
+        }
+    }
 }
 
 /// The backend's manifolds *collide* left out, by cause.

@@ -16,6 +16,7 @@ mod events;
 mod hooks;
 mod narrow_phase;
 mod one_way;
+mod pair_sort;
 mod physics_world;
 mod prediction;
 mod query;

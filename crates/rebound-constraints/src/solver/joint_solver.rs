@@ -3,6 +3,7 @@
 //! stages themselves are in the sibling modules: `prepare`, `passes`, `path_pass` and `project`.
 
 use super::dispatch::{JointRecord, PreparedJoint};
+use super::pool::JointPool;
 use crate::error::ConstraintError;
 use crate::path::tether::{Edge, JointGraph, Tether};
 use crate::path::topology::Topology;
@@ -98,6 +99,8 @@ pub struct JointSolver {
     /// Relax passes since [`JointSolver::prepare`], for [`JointSolver::solve`], which does not name its
     /// substep.
     pub(super) relax_passes: u32,
+    /// Whether *apply forces* runs on the thread pool this step, and its scratch.
+    pub(super) pool: JointPool,
 }
 
 impl Default for JointSolver {
@@ -123,6 +126,7 @@ impl Default for JointSolver {
             h: 0.0,
             carry_angle: CARRY_ANGLE,
             relax_passes: 0,
+            pool: JointPool::default(),
         }
     }
 }

@@ -9,6 +9,7 @@
 //! for each substep:
 //!     integrate velocities                      (rebound-dynamics)
 //!     apply_forces               passes.rs      SpringModel::Force: the explicit Hooke force as a velocity change
+//!                                pool.rs        (joints that share no body: over the thread pool)
 //!     warm_start                 passes.rs      the impulses of the last substep, again
 //!     solve_substep(Bias::On)    passes.rs      solve_iterations Gauss–Seidel passes with soft position
 //!                                               correction, then each path (path_pass.rs), then the tethers
@@ -30,6 +31,7 @@ mod dispatch;
 mod joint_solver;
 mod passes;
 mod path_pass;
+mod pool;
 mod prepare;
 mod project;
 mod projection_velocity;

@@ -2,11 +2,15 @@
 //! (bias off) — and the stages after the substeps that are not the projection: *restitution* and *store
 //! impulses*. Each dispatches over the joint kinds; the paths are solved by `path_pass`.
 
+use super::dispatch::PreparedJoint;
 use super::dispatch::reaction_impulses;
 use super::joint_solver::JointSolver;
+use super::pool::JOINTS_PER_TASK;
+use crate::pair::BodyPair;
 use crate::stage::{Stage, Substep};
 use crate::state::{JointState, JointStates};
 use rebound_dynamics::{Bias, SolverBody, StepContext};
+use rebound_math::par;
 
 impl JointSolver {
     /// Stage *apply forces* (every substep, right after integrate velocities): each spring's impulse over
@@ -15,6 +19,18 @@ impl JointSolver {
     /// the oscillator step of the springs of hinge, prismatic and wheel joints (`docs/physics.md`, "Joint
     /// springs").
     pub fn apply_forces(&mut self, solver_bodies: &mut [SolverBody], ctx: &StepContext) {
+        if self.pool.is_active() {
+            let (h, coordinate_springs) = (ctx.h, self.coordinate_springs);
+            // Each joint's two stages back to back: no other joint touches its bodies.
+            self.joints_on_pool(solver_bodies, |j, pair, bodies| {
+                j.kind.apply_forces(pair, &mut j.state, bodies, h);
+                if coordinate_springs {
+                    j.kind
+                        .apply_coordinate_spring(pair, &mut j.state, bodies, h);
+                }
+            });
+            return;
+        }
         for j in &mut self.joints {
             j.kind
                 .apply_forces(&j.pair, &mut j.state, solver_bodies, ctx.h);
@@ -201,6 +217,37 @@ impl JointSolver {
                     ..JointState::default()
                 };
             }
+        }
+    }
+}
+
+impl JointSolver {
+    /// Runs `f(joint, its two bodies as a pair with indices 0 and 1, [a, b])` for every joint over the pool
+    /// (see the module docs), then writes the bodies back in joint order.
+    pub(super) fn joints_on_pool<F>(&mut self, solver_bodies: &mut [SolverBody], f: F)
+    where
+        F: Fn(&mut PreparedJoint, &BodyPair, &mut [SolverBody; 2]) + Sync + Send,
+    {
+        let JointSolver { joints, pool, .. } = self;
+        let read = |index: usize| {
+            solver_bodies
+                .get(index)
+                .copied()
+                .unwrap_or(SolverBody::STATIC)
+        };
+        par::map_collect_in_order(joints, &mut pool.bodies, JOINTS_PER_TASK, |_, j| {
+            [read(j.pair.index_a), read(j.pair.index_b)]
+        });
+        par::for_each_zip_both_mut(joints, &mut pool.bodies, JOINTS_PER_TASK, |j, bodies| {
+            let local = BodyPair {
+                index_a: 0,
+                index_b: 1,
+                ..j.pair
+            };
+            f(j, &local, bodies);
+        });
+        for (j, &[a, b]) in joints.iter().zip(&pool.bodies) {
+            j.pair.store(solver_bodies, a, b);
         }
     }
 }

@@ -144,6 +144,7 @@ impl JointSolver {
         self.list_iterated();
         self.analyse_graph(params);
         self.find_closed_paths(body_count);
+        self.pool.plan(&self.joints, body_count);
         skipped
     }
 
