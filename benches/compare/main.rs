@@ -401,7 +401,7 @@ fn rebound_alone(args: &Args) -> Result<(), String> {
     let mut out = String::new();
     let _ = writeln!(
         out,
-        "{}: SCENES peer scenes alone, {}, dt = 1/60, sleeping off, {steps} steps; \
+        "{}: peer scenes, Rebound alone, {}, dt = 1/60, sleeping off, {steps} steps; \
          ms/step = median over rounds ({rounds}) of each run's median over steps {warmup}..{steps}\n",
         rebound_engine(),
         threads_label(args.threads)
