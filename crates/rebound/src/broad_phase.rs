@@ -39,23 +39,20 @@
 //! what makes a restored snapshot step like the world that never stopped.
 
 use crate::pair_sort::radix_sort_pairs;
-use crate::prediction::{
-    ball_center, ball_center_at, centres_clearly_apart, is_swept, prediction_distance,
-    rotation_reach,
-};
+use crate::prediction::{ball_center_at, is_swept, rotation_reach};
 use crate::shape::to_parry_pose;
-use crate::{
-    Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups, MAX_SHAPE_COORDINATE,
-};
+use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, MAX_SHAPE_COORDINATE};
+use pair_filter::{Candidate, PairFilter, filter_kept, leaf_pair};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use parry3d::partitioning::{Bvh, BvhWorkspace};
 #[cfg(feature = "parallel")]
-use pool::{PAIRS_PER_TASK, POOL_SEARCH_BELOW, on_pool, search_on_pool};
+use pool::{POOL_SEARCH_BELOW, on_pool, search_on_pool};
 use rebound_dynamics::{BodyType, RigidBody};
 use rebound_math::{Pose, Vec3};
 use rebound_world::{BodyHandle, BodySet};
 use std::collections::BTreeSet;
 
+mod pair_filter;
 #[cfg(feature = "parallel")]
 mod pool;
 
@@ -103,65 +100,6 @@ pub(crate) fn aabb_at(collider: &Collider, body_pose: Pose) -> Aabb {
     collider
         .shape
         .compute_aabb(&to_parry_pose(collider.world_pose(body_pose)))
-}
-
-/// Whether two colliders (on existing bodies) may touch: different bodies, both enabled, neither a sensor,
-/// groups that accept each other, contacts not disabled by a joint, and at least one dynamic body.
-fn can_collide(
-    x: &Candidate,
-    y: &Candidate,
-    disabled_pairs: &BTreeSet<(BodyHandle, BodyHandle)>,
-) -> bool {
-    x.body != y.body
-        && x.collides
-        && y.collides
-        && x.groups.interacts_with(y.groups)
-        && (x.dynamic || y.dynamic)
-        && !disabled_pairs.contains(&ordered(x.body, y.body))
-}
-
-/// What the pair filter reads of one collider and its body, gathered once a step in a dense array by collider
-/// slot ([`BroadPhase::find_pairs`]): every overlapping pair reads two of these instead of looking both
-/// colliders and both bodies up in their arenas.
-#[derive(Debug, Clone, Copy)]
-struct Candidate {
-    /// The collider (a pair of handles from an older traversal must still name it).
-    handle: ColliderHandle,
-    body: BodyHandle,
-    /// Enabled and not a sensor.
-    collides: bool,
-    /// Collides, and its body is awake and not fixed.
-    mover: bool,
-    /// Its body is dynamic.
-    dynamic: bool,
-    groups: CollisionGroups,
-    /// A ball's world centre and radius (m).
-    ball: Option<(Vec3, f32)>,
-    /// The body's linear velocity (m/s) and the collider's rotation reach `|ω|·r` (m/s).
-    velocity: Vec3,
-    reach: f32,
-}
-
-impl Candidate {
-    /// The record of `collider` (`handle`) on `body`, with its rotation reach (m/s).
-    #[inline]
-    fn of(handle: ColliderHandle, collider: &Collider, body: &RigidBody, reach: f32) -> Self {
-        let collides = collider.desc.enabled && !collider.desc.is_sensor;
-        Self {
-            handle,
-            body: collider.body,
-            collides,
-            mover: collides && is_active(body),
-            dynamic: body.is_dynamic(),
-            groups: collider.desc.groups,
-            ball: match collider.desc.shape {
-                ColliderShape::Ball { radius } => Some((ball_center(collider, body), radius)),
-                _ => None,
-            },
-            velocity: body.linear_velocity(),
-            reach,
-        }
-    }
 }
 
 /// One collider at the start of the pair search: its fat box, its [`Candidate`], whether its body is slow
@@ -583,87 +521,6 @@ impl BroadPhase {
     }
 }
 
-/// The filters a pair of overlapping leaves passes to become a candidate: at least one of the two colliders
-/// moves, [`can_collide`], and two balls are not farther apart than the narrow phase's prediction distance (a
-/// swinging chain's fat boxes overlap four times as many neighbours as can touch this step) — the narrow
-/// phase's own test ([`centres_clearly_apart`]) on the same values.
-struct PairFilter<'a> {
-    candidates: &'a [Option<Candidate>],
-    disabled_pairs: &'a BTreeSet<(BodyHandle, BodyHandle)>,
-    speculative_margin: f32,
-    dt: f32,
-}
-
-impl PairFilter<'_> {
-    /// Whether colliders `h1` < `h2` are a candidate pair.
-    fn keeps(&self, h1: ColliderHandle, h2: ColliderHandle) -> bool {
-        let candidate = |h: ColliderHandle| {
-            self.candidates
-                .get(h.0.index as usize)
-                .and_then(Option::as_ref)
-                .filter(|c| c.handle == h)
-        };
-        let (Some(x), Some(y)) = (candidate(h1), candidate(h2)) else {
-            return false;
-        };
-        self.keeps_candidates(x, y)
-    }
-
-    /// The candidate pair of two overlapping leaves (slots), lower handle first, if it passes: what
-    /// [`leaf_pair`] then [`PairFilter::keeps`] give, with the handles read from this step's candidates (every
-    /// collider on a live body has one, holding its current handle) instead of from the collider arena.
-    fn keeps_leaves(&self, slot1: u32, slot2: u32) -> Option<(ColliderHandle, ColliderHandle)> {
-        if slot1 == slot2 {
-            return None;
-        }
-        let candidate = |slot: u32| self.candidates.get(slot as usize).and_then(Option::as_ref);
-        let (mut x, mut y) = (candidate(slot1)?, candidate(slot2)?);
-        if y.handle < x.handle {
-            core::mem::swap(&mut x, &mut y);
-        }
-        self.keeps_candidates(x, y).then_some((x.handle, y.handle))
-    }
-
-    /// The filters on the candidates of colliders `x` and `y` (`x` the lower handle).
-    fn keeps_candidates(&self, x: &Candidate, y: &Candidate) -> bool {
-        if !(x.mover || y.mover) {
-            return false;
-        }
-        // The distance test of two balls before the pair filter's ordered-set lookup of disabled body pairs:
-        // most overlapping boxes of a swinging chain fail it (the same answer in either order).
-        if let (Some(ball1), Some(ball2)) = (x.ball, y.ball) {
-            let prediction = prediction_distance(
-                (x.velocity, y.velocity),
-                (x.reach, y.reach),
-                self.speculative_margin,
-                self.dt,
-            );
-            if centres_clearly_apart(ball1, ball2, prediction) {
-                return false;
-            }
-        }
-        can_collide(x, y, self.disabled_pairs)
-    }
-}
-
-/// The colliders of two overlapping leaves (slots), lower handle first; `None` for a leaf overlapping itself
-/// or a slot without a collider.
-#[inline]
-fn leaf_pair(
-    colliders: &ColliderSet,
-    slot1: u32,
-    slot2: u32,
-) -> Option<(ColliderHandle, ColliderHandle)> {
-    if slot1 == slot2 {
-        return None;
-    }
-    let (Some((h1, _)), Some((h2, _))) = (colliders.at_slot(slot1), colliders.at_slot(slot2))
-    else {
-        return None;
-    };
-    Some(ordered(h1, h2))
-}
-
 /// One traversal of `bvh` against itself: every pair of overlapping leaves into `overlaps` (cleared first),
 /// sorted by the two slot indices — the same order as the handles' (live colliders have distinct slots, and
 /// a handle orders by slot first) — whatever the tree's shape.
@@ -704,33 +561,6 @@ fn find_overlaps(
 fn holds(bvh: &Bvh, handle: ColliderHandle, aabb: &Aabb) -> bool {
     bvh.leaf_node(handle.0.index)
         .is_some_and(|leaf| leaf.contains_aabb(aabb))
-}
-
-/// The kept overlaps that pass `filter`, in their order, into `pairs`: over the pool when it has more than
-/// one thread.
-fn filter_kept(
-    overlaps: &[(ColliderHandle, ColliderHandle)],
-    filter: &PairFilter<'_>,
-    pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
-) {
-    #[cfg(feature = "parallel")]
-    if rebound_math::par::is_parallel() {
-        use rebound_math::par::rayon::prelude::*;
-        pairs.par_extend(
-            overlaps
-                .par_iter()
-                .with_min_len(PAIRS_PER_TASK)
-                .copied()
-                .filter(|&(h1, h2)| filter.keeps(h1, h2)),
-        );
-        return;
-    }
-    pairs.extend(
-        overlaps
-            .iter()
-            .copied()
-            .filter(|&(h1, h2)| filter.keeps(h1, h2)),
-    );
 }
 
 /// Refits the tree after leaves changed: on the pool (parry's refit with its subtrees as tasks, the same
