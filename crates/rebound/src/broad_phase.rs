@@ -43,11 +43,12 @@ use crate::prediction::{ball_center_at, is_swept, rotation_reach};
 use crate::shape::to_parry_pose;
 use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, MAX_SHAPE_COORDINATE};
 use pair_filter::{Candidate, PairFilter, filter_kept, leaf_pair};
+pub(crate) use pair_filter::{is_active, ordered};
 use parry3d::bounding_volume::{Aabb, BoundingVolume};
 use parry3d::partitioning::{Bvh, BvhWorkspace};
 #[cfg(feature = "parallel")]
 use pool::{POOL_SEARCH_BELOW, on_pool, search_on_pool};
-use rebound_dynamics::{BodyType, RigidBody};
+use rebound_dynamics::RigidBody;
 use rebound_math::{Pose, Vec3};
 use rebound_world::{BodyHandle, BodySet};
 use std::collections::BTreeSet;
@@ -70,11 +71,6 @@ const KEEP_OVERLAPS_BELOW: usize = 8;
 /// The largest fattening margin (m). A margin beyond this (absurd velocities or steps) already makes every
 /// box overlap every other; capping it keeps the tree's arithmetic finite.
 const MAX_MARGIN: f32 = 1.0e7;
-
-/// A body that moves and may push or be pushed this step: awake and not fixed.
-pub(crate) fn is_active(body: &RigidBody) -> bool {
-    !body.is_sleeping() && body.body_type() != BodyType::Fixed
-}
 
 /// The world-space box of `collider` on a body at `body`'s pose.
 pub(crate) fn world_aabb(collider: &Collider, body: &RigidBody) -> Aabb {
@@ -155,11 +151,6 @@ impl Fattened {
             0.0
         }
     }
-}
-
-/// A pair in ascending order.
-pub(crate) fn ordered<T: Ord>(a: T, b: T) -> (T, T) {
-    if a <= b { (a, b) } else { (b, a) }
 }
 
 /// The BVH and the candidate pairs of the last step.

@@ -1,15 +1,24 @@
 //! The pair filter: what an overlapping pair of leaves must pass to become a candidate pair, and the dense
 //! per-collider record ([`Candidate`]) it reads instead of looking colliders and bodies up in their arenas.
 
-use super::ordered;
 #[cfg(feature = "parallel")]
 use super::pool::PAIRS_PER_TASK;
 use crate::prediction::{ball_center, centres_clearly_apart, prediction_distance};
 use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups};
-use rebound_dynamics::RigidBody;
+use rebound_dynamics::{BodyType, RigidBody};
 use rebound_math::Vec3;
 use rebound_world::BodyHandle;
 use std::collections::BTreeSet;
+
+/// A body that moves and may push or be pushed this step: awake and not fixed.
+pub(crate) fn is_active(body: &RigidBody) -> bool {
+    !body.is_sleeping() && body.body_type() != BodyType::Fixed
+}
+
+/// A pair in ascending order.
+pub(crate) fn ordered<T: Ord>(a: T, b: T) -> (T, T) {
+    if a <= b { (a, b) } else { (b, a) }
+}
 
 /// Whether two colliders (on existing bodies) may touch: different bodies, both enabled, neither a sensor,
 /// groups that accept each other, contacts not disabled by a joint, and at least one dynamic body.
@@ -62,7 +71,7 @@ impl Candidate {
             handle,
             body: collider.body,
             collides,
-            mover: collides && super::is_active(body),
+            mover: collides && is_active(body),
             dynamic: body.is_dynamic(),
             groups: collider.desc.groups,
             ball: match collider.desc.shape {
