@@ -626,19 +626,35 @@ fn the_long_randomised_run() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(100_000);
-    let (calls, steps) = (Cell::new(0u64), Cell::new(0u64));
+    let (calls, steps, done) = (Cell::new(0u64), Cell::new(0u64), Cell::new(0u64));
+    let slowest = Cell::new(std::time::Duration::ZERO);
     let start = std::time::Instant::now();
     let mut runner = TestRunner::new(ProptestConfig { cases, ..config() });
     let result = runner.run(&prop::collection::vec(op(), 1..80), |ops| {
+        let case_start = std::time::Instant::now();
         calls.set(calls.get() + ops.len() as u64);
         steps.set(steps.get() + run(&ops));
+        slowest.set(slowest.get().max(case_start.elapsed()));
+        done.set(done.get() + 1);
+        // Progress, so that a long run shows how far it got and its slowest case so far.
+        if done.get() % 1000 == 0 {
+            eprintln!(
+                "api fuzz: {} cases, {} calls, {} steps in {:?}, slowest case {:?}",
+                done.get(),
+                calls.get(),
+                steps.get(),
+                start.elapsed(),
+                slowest.get()
+            );
+        }
         Ok(())
     });
     eprintln!(
-        "api fuzz: {cases} cases, {} calls, {} steps in {:?}: {result:?}",
+        "api fuzz: {cases} cases, {} calls, {} steps in {:?}, slowest case {:?}: {result:?}",
         calls.get(),
         steps.get(),
-        start.elapsed()
+        start.elapsed(),
+        slowest.get()
     );
     result.unwrap();
 }
