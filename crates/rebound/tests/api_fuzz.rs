@@ -248,6 +248,26 @@ fn timed<T>(op: &Op, f: impl FnOnce() -> T) -> T {
     value
 }
 
+/// The case now running (its start and its calls), watched by a thread: a call that never returns would
+/// leave the long run waiting for ever, so a case running past [`STEP_BUDGET`] is printed and ends the run
+/// with a failure.
+fn watchdog() -> std::sync::Arc<std::sync::Mutex<Option<(std::time::Instant, String)>>> {
+    let current = std::sync::Arc::new(std::sync::Mutex::new(None::<(std::time::Instant, String)>));
+    let watched = std::sync::Arc::clone(&current);
+    std::thread::spawn(move || {
+        loop {
+            std::thread::sleep(std::time::Duration::from_secs(1));
+            if let Some((start, ops)) = watched.lock().unwrap().as_ref() {
+                if start.elapsed().as_secs_f32() > STEP_BUDGET {
+                    eprintln!("api fuzz: a case ran past {STEP_BUDGET} s (a hang): {ops}");
+                    std::process::exit(1);
+                }
+            }
+        }
+    });
+    current
+}
+
 /// Runs the calls on a small scene; returns how many steps the world took.
 fn run(ops: &[Op]) -> u64 {
     let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
@@ -629,11 +649,14 @@ fn the_long_randomised_run() {
     let (calls, steps, done) = (Cell::new(0u64), Cell::new(0u64), Cell::new(0u64));
     let slowest = Cell::new(std::time::Duration::ZERO);
     let start = std::time::Instant::now();
+    let current = watchdog();
     let mut runner = TestRunner::new(ProptestConfig { cases, ..config() });
     let result = runner.run(&prop::collection::vec(op(), 1..80), |ops| {
         let case_start = std::time::Instant::now();
+        *current.lock().unwrap() = Some((case_start, format!("{ops:?}")));
         calls.set(calls.get() + ops.len() as u64);
         steps.set(steps.get() + run(&ops));
+        *current.lock().unwrap() = None;
         slowest.set(slowest.get().max(case_start.elapsed()));
         done.set(done.get() + 1);
         // Progress, so that a long run shows how far it got and its slowest case so far.
@@ -657,4 +680,66 @@ fn the_long_randomised_run() {
         slowest.get()
     );
     result.unwrap();
+}
+
+/// Found by the long run (shrunk): a turning body with a flat box (half-thickness 10⁻²⁰ m) starts a step
+/// touching a triangle mesh. Parry's nonlinear cast, asked for a later impact of a pair
+/// that touches at the start, steps through the time span by the pair's thinnest thickness — 10²⁰ steps:
+/// the world's `step` never returned. The sweep now leaves touching pairs to the contacts.
+#[test]
+fn a_flat_box_touching_a_mesh_while_it_turns_does_not_hang_the_sweep() {
+    run(&[
+        Op::InsertBody {
+            kind: 1,
+            position: Vec3::new(-0.4122645, -1.9907694, 1.3278117),
+            velocity: Vec3::new(1.5974134, 1.3589829, 1.5189598),
+        },
+        Op::Step(0.13557902),
+        Op::SetPosition(
+            8577109464562683476,
+            Vec3::new(0.9081203, -1.1402464, -1.3176337),
+        ),
+        Op::InsertJoint {
+            a: 12509288012878791063,
+            b: 9636421770191113476,
+            length: f32::NEG_INFINITY,
+            to_world: false,
+            hinge: true,
+        },
+        Op::InsertCollider {
+            body: 8056654481347918851,
+            shape: ColliderShape::TriMesh {
+                vertices: vec![
+                    Vec3::new(0.381599, 0.8733378, 0.2086486),
+                    Vec3::new(0.45255905, -0.46333265, 1.3875666),
+                    Vec3::new(0.72282255, 0.15525669, 1.6279317),
+                    Vec3::new(-1.907571, 1.5161417, 1.661916),
+                    Vec3::new(-1.3979055, 1.5829467, 0.39338335),
+                ],
+                indices: vec![[2, 2, 4], [1, 0, 1], [4, 3, 0]],
+            },
+            density: 2.2217298,
+            friction: 0.75924253,
+            restitution: 0.02149414,
+            sensor: true,
+            offset: Vec3::new(0.0, 0.0, 0.0),
+        },
+        Op::SetSensor(17088285226763541374, false),
+        Op::InsertCollider {
+            body: 15231375113066169857,
+            shape: ColliderShape::Cuboid {
+                half_extents: Vec3::new(0.38753918, 1e-20, 0.8902262),
+            },
+            density: 2.4576392,
+            friction: 0.6039716,
+            restitution: 0.8852877,
+            sensor: false,
+            offset: Vec3::new(0.0, 0.0, 0.0),
+        },
+        Op::SetLocalPose(
+            14532879949502722801,
+            Vec3::new(0.06930992, 0.069069415, 0.06390921),
+            -3.4028235e38,
+        ),
+    ]);
 }
