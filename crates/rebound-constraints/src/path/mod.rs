@@ -93,6 +93,7 @@
 
 mod active_set;
 mod components;
+mod elimination;
 mod factor;
 mod graph;
 mod link;

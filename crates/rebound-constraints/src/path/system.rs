@@ -154,8 +154,9 @@ impl Link {
     }
 
     /// Makes the diagonal block `B` of this link (`J·M⁻¹·Jᵀ` of its rows over both bodies, each diagonal
-    /// entry regularised) and its coupling block `C` with `next` through their shared body, over the first
-    /// `N` rows, in `b_block` and `c_block`. A row not in the system — inactive, or past the link's row count
+    /// entry regularised) and its coupling block `C` with `next` through their shared body (`next`'s second
+    /// element: this link's side on it, then `next`'s; `true` = body B) — the next link, or the previous one
+    /// in a path's side solved backward — over the first `N` rows, in `b_block` and `c_block`. A row not in the system — inactive, or past the link's row count
     /// — has a zero row and column in both, which the factorisation ([`ldl_factor`]) solves to 0.
     ///
     /// `B` is symmetric: its upper triangle is computed and mirrored. Each row's `I⁻¹·J_angular`, turned once
@@ -163,7 +164,7 @@ impl Link {
     /// `i` on the shared body and `sⱼ` the next link's, `Cᵢⱼ = sⱼ·M⁻¹·sᵢᵀ = m⁻¹·(sⱼ.linear·sᵢ.linear) +
     /// sⱼ.angular·(I⁻¹·sᵢ.angular)`, so the next link's rows are not turned again here. The entries are
     /// summed in f32 (the precision of the rows), four lanes at a time, and the blocks kept in f64.
-    pub(super) fn fill_blocks<const N: usize>(&mut self, next: Option<&Link>) {
+    pub(super) fn fill_blocks<const N: usize>(&mut self, next: Option<(&Link, (bool, bool))>) {
         let live = self.live_rows();
         let rows = &self.rows.rows;
         // Each row's Jacobian `[J_a,linear, J_a,angular, J_b,linear, J_b,angular]` and `M⁻¹·Jᵀ` in the same
@@ -207,7 +208,7 @@ impl Link {
         // Cᵢⱼ = sⱼ·(M⁻¹·sᵢᵀ) through the shared body (`s` = `[linear, angular]` of a row's side on it); 0
         // without a next link.
         let c = &mut self.c_block;
-        let Some((next, (this_b, next_b))) = next.zip(self.shared_with_next) else {
+        let Some((next, (this_b, next_b))) = next else {
             for row in c.iter_mut().take(N) {
                 row[..N].fill(0.0);
             }
