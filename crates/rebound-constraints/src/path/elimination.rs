@@ -133,7 +133,15 @@ pub(super) fn block_side<'b, const N: usize, L>(
     let toward = order.1;
     for_each_in_order(side, order, boundary, |i, link, ahead, done| {
         let keep = sweep.stale.keeps(i, toward);
-        block_step::<N>(link, ahead, [done, None], (sweep.load)(i), sweep.uniform, keep, toward);
+        block_step::<N>(
+            link,
+            ahead,
+            [done, None],
+            (sweep.load)(i),
+            sweep.uniform,
+            keep,
+            toward,
+        );
     });
 }
 
@@ -146,7 +154,15 @@ pub(super) fn block_meet<'b, const N: usize>(
     uniform: Option<Softness>,
     keep: bool,
 ) -> [Real; MAX_ROWS] {
-    block_step::<N>(link, None, [before, after], bodies, uniform, keep, Toward::Both);
+    block_step::<N>(
+        link,
+        None,
+        [before, after],
+        bodies,
+        uniform,
+        keep,
+        Toward::Both,
+    );
     let mut x = link.y;
     back_substitute::<N>(&link.factor, &mut x);
     x
@@ -166,7 +182,7 @@ fn block_step<const N: usize>(
 ) {
     let split = uniform.is_some();
     if !keep {
-        link.fill_blocks::<N>(ahead);
+        link.fill_blocks::<N>(ahead, toward == Toward::Previous);
         link.fill_lanes();
     }
     let r = bodies.map_or([0.0; MAX_ROWS], |(a, b)| link.residual(a, b));
@@ -312,7 +328,13 @@ pub(super) fn scalar_meet<'b, L>(
 where
     L: Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
 {
-    scalar_step(link, (None, Toward::Both), [before, after], (i, sweep), keep);
+    scalar_step(
+        link,
+        (None, Toward::Both),
+        [before, after],
+        (i, sweep),
+        keep,
+    );
     link.scalar.r_prime
 }
 

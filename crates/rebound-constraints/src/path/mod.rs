@@ -109,6 +109,8 @@ mod system;
 mod tests;
 pub mod tether;
 pub(crate) mod topology;
+#[cfg(test)]
+mod two_sided_tests;
 
 pub(crate) use active_set::activate_violations;
 pub(crate) use graph::DirectGraph;

@@ -62,7 +62,10 @@ pub(crate) fn solve_path<'b>(
         _ if meet.is_some() => (0, Stale(Some((0, links.len())))),
         _ => {
             let first = first_stale(links, widest.max(1), 0);
-            (0, Stale((first < links.len()).then_some((first, links.len()))))
+            (
+                0,
+                Stale((first < links.len()).then_some((first, links.len()))),
+            )
         }
     };
     resume.swept = Some(key);
@@ -168,10 +171,9 @@ impl PathShape {
             return Stale(None);
         }
         let last = match self.start_width {
-            Some(width) if width == self.widest.max(1) => self
-                .last_unkeyed
-                .max(self.last_width_change)
-                .unwrap_or(len),
+            Some(width) if width == self.widest.max(1) => {
+                self.last_unkeyed.max(self.last_width_change).unwrap_or(len)
+            }
             _ => len,
         };
         Stale(Some((first, last)))
