@@ -4,7 +4,7 @@
 use super::elimination::{Stale, Sweep, TWO_SIDED_MIN_LINKS, meet_of};
 use super::link::Link;
 use super::row::{InvMass, JointRows, MAX_ROWS, Real, TargetRule};
-use super::sweep::{Resume, block_sweep, solve_path, solve_scalar_path};
+use super::sweep::{block_sweep, solve_scalar_path};
 use crate::part::{AnglePart, AxisPart, RowTarget};
 use proptest::prelude::*;
 use rebound_dynamics::{Softness, SolverBody};
@@ -232,8 +232,8 @@ proptest! {
     ) {
         let softness = |i: usize| Softness {
             bias_rate: 10.0,
-            mass_scale: if i % 3 == 0 { 1.0 } else { 0.9 },
-            impulse_scale: if i % 3 == 0 { 0.0 } else { 0.1 },
+            mass_scale: if i.is_multiple_of(3) { 1.0 } else { 0.9 },
+            impulse_scale: if i.is_multiple_of(3) { 0.0 } else { 0.1 },
         };
         let (mut one_sided, bodies) = random_path(width, &params, softness);
         let mut two_sided = one_sided.clone();
@@ -255,6 +255,7 @@ fn a_path_shorter_than_the_minimum_is_swept_from_one_end_and_a_longer_one_from_b
 /// A solve of a long path, twice (the second keeping the factorisation), and the bits of both solutions.
 #[cfg(feature = "parallel")]
 fn solve_bits(width: usize, len: usize) -> Vec<u64> {
+    use super::sweep::{Resume, solve_path};
     let params: Vec<BodyParams> = (0..=len)
         .map(|k| {
             let t = k as f32 / len as f32;
