@@ -254,7 +254,10 @@ fn block_step<const N: usize>(
                 link.v_t[col][row] = link.w[row][col] * link.inv_pivot[row];
             }
         }
-        let shared = ahead.map(|(_, shared)| shared);
+        let shared = match toward {
+            Toward::Previous => ahead.map(|(_, shared)| shared),
+            Toward::Next | Toward::Both => link.shared_with_next,
+        };
         link.factored = Some(FactorKey::toward(link, N, toward, shared));
     }
     // y = D⁻¹·L⁻¹·rhs

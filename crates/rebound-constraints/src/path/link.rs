@@ -11,7 +11,7 @@ use rebound_math::{Mat3, Vec4};
 
 /// What a link's stored factorisation was made for: the block width of the sweep (1 for the scalar sweep),
 /// the rows in the system, the neighbour its elimination passes its block on to ([`Toward`]) and the
-/// sharing of their body (as the link before stores it). Together with unchanged rows (the key is dropped
+/// sharing of their body (this link's side first). Together with unchanged rows (the key is dropped
 /// when they are built again) and the same key for every link of the path, the factorisation would come out
 /// the same bits, so [`solve_path`] keeps it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

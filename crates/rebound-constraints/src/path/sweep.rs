@@ -191,7 +191,8 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
     let (mut first_unkeyed, mut first_width_change) = (links.len(), links.len());
     let (mut last_unkeyed, mut last_width_change) = (None, None);
     let mut start_width = None;
-    // A link of a path solved from both ends past its meeting link is keyed with the link before's sharing.
+    // A link of a path solved from both ends past its meeting link is keyed with the sharing of the link
+    // before (this link's side first).
     let meet = meet_of(links.len());
     let mut shared_before = None;
     for (i, link) in links.iter().enumerate() {
@@ -199,7 +200,7 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
         if i >= start {
             let toward = Toward::of(i, meet);
             let shared = match toward {
-                Toward::Previous => shared_before,
+                Toward::Previous => shared_before.map(|(before, this)| (this, before)),
                 _ => link.shared_with_next,
             };
             match link.factored {

@@ -246,6 +246,29 @@ proptest! {
 }
 
 #[test]
+fn a_second_solve_of_a_long_path_keeps_every_factorisation() {
+    // Ropes (the scalar sweep) and hinges (the block sweep), 40 links: solved once, then nothing is stale.
+    use super::sweep::{Resume, path_shape, solve_path};
+    let params: Vec<BodyParams> = (0..=40)
+        .map(|k| (1.0, 1.0, 0.02 * k as f32, 0.1, -0.1))
+        .collect();
+    for width in [1, 5] {
+        let (mut links, bodies) = random_path(width, &params, |_| Softness::RIGID);
+        let load = |i: usize| Some((&bodies[i], &bodies[i + 1]));
+        assert_eq!(
+            path_shape(&links, 0).stale(links.len()),
+            Stale(Some((0, links.len())))
+        );
+        solve_path(&mut links, load, &mut Vec::new(), &mut Resume::default());
+        assert_eq!(
+            path_shape(&links, 0).stale(links.len()),
+            Stale(None),
+            "width {width}"
+        );
+    }
+}
+
+#[test]
 fn a_path_shorter_than_the_minimum_is_swept_from_one_end_and_a_longer_one_from_both() {
     assert_eq!(meet_of(TWO_SIDED_MIN_LINKS - 1), None);
     assert_eq!(meet_of(TWO_SIDED_MIN_LINKS), Some(TWO_SIDED_MIN_LINKS / 2));
