@@ -30,29 +30,12 @@ pub(super) fn meet_of(len: usize) -> Option<usize> {
     (len >= TWO_SIDED_MIN_LINKS).then_some(len / 2)
 }
 
-/// Which neighbour a link's elimination passes its block on to: the next link (the side before the meeting
-/// link, and every link of a path solved from one end), the previous one (the side after the meeting link,
-/// eliminated from the last link backward) or neither (the meeting link, which takes both sides' blocks).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Toward {
-    /// The next link.
-    Next,
-    /// The previous link.
-    Previous,
-    /// Neither: the meeting link.
-    Both,
-}
-
-impl Toward {
-    /// The role of link `i` in a path whose sides meet at `meet` ([`meet_of`]).
-    #[inline]
-    pub(super) fn of(i: usize, meet: Option<usize>) -> Self {
-        match meet {
-            Some(m) if i > m => Self::Previous,
-            Some(m) if i == m => Self::Both,
-            _ => Self::Next,
-        }
-    }
+/// The part of a path's factorisation keys ([`FactorKey`]'s `width`) that says how the path of `len` links
+/// is swept: 0 from its first link to its last, `len × 8` from both ends (the length places the meeting link,
+/// and so which way each link is eliminated; block widths are below 8).
+#[inline]
+pub(super) fn layout(len: usize) -> usize {
+    meet_of(len).map_or(0, |_| len << 3)
 }
 
 /// The links whose factorisation a sweep makes again: `None` when every link keeps its own, else the
@@ -64,85 +47,104 @@ impl Toward {
 pub(super) struct Stale(pub(super) Option<(usize, usize)>);
 
 impl Stale {
-    /// Whether link `i`, eliminated toward `toward`, keeps its factorisation.
+    /// Whether link `i` keeps its factorisation, eliminated toward the next link (`backward` false) or the
+    /// previous one.
     #[inline]
-    pub(super) fn keeps(self, i: usize, toward: Toward) -> bool {
-        match (self.0, toward) {
-            (None, _) => true,
-            (Some((first, _)), Toward::Next) => i + 1 < first,
-            (Some((_, last)), Toward::Previous) => i > last + 1,
-            (Some(_), Toward::Both) => false,
+    pub(super) fn keeps(self, i: usize, backward: bool) -> bool {
+        match self.0 {
+            None => true,
+            Some((first, _)) if !backward => i + 1 < first,
+            Some((_, last)) => i > last + 1,
         }
+    }
+
+    /// Whether the meeting link keeps its factorisation.
+    #[inline]
+    pub(super) fn keeps_meet(self) -> bool {
+        self.0.is_none()
     }
 }
 
 /// What every step of one sweep shares: the bodies of each link (`load(i)`, `i` the link's index in the
-/// path), the common softness ([`super::solve_path`]) and the stale factorisations.
+/// path), the common softness ([`super::solve_path`]), the stale factorisations and the path's [`layout`].
 pub(super) struct Sweep<'l, L> {
     pub(super) load: &'l L,
     pub(super) uniform: Option<Softness>,
     pub(super) stale: Stale,
+    pub(super) layout: usize,
 }
 
-/// One side's links in elimination order — `side[from..]` forward, or all of `side` backward — each with
-/// its index in the path, the neighbour it passes its block on to (the next link of the side, or the
-/// meeting link `boundary` past its end) with the sharing of their body (this link's side first), and the
+/// Link `j` of a side with its neighbours in the elimination order (`BACKWARD`: from the side's last link
+/// to its first): the neighbour it passes its block on to — the next link of the side in that order, or the
+/// meeting link `boundary` past its end — with the sharing of their body (this link's side first), and the
 /// neighbour eliminated before it.
-fn for_each_in_order(
-    side: &mut [Link],
-    (offset, toward, from): (usize, Toward, usize),
-    boundary: Option<&Link>,
-    mut step: impl FnMut(usize, &mut Link, Option<(&Link, (bool, bool))>, Option<&Link>),
-) {
-    let len = side.len();
-    for k in from..len {
-        let j = if toward == Toward::Previous {
-            len - 1 - k
-        } else {
-            k
-        };
-        let (before, rest) = side.split_at_mut(j);
-        let Some((link, after)) = rest.split_first_mut() else {
-            break;
-        };
-        if toward == Toward::Previous {
-            let ahead = before.last().or(boundary);
-            // The sharing is stored with the link before: (its side, this link's side).
-            let shared = ahead
-                .and_then(|a| a.shared_with_next)
-                .map(|(a, this)| (this, a));
-            step(offset + j, link, ahead.zip(shared), after.first());
-        } else {
-            let ahead = after.first().or(boundary);
-            let shared = link.shared_with_next;
-            step(offset + j, link, ahead.zip(shared), before.last());
-        }
+#[inline(always)]
+fn neighbours<'s, const BACKWARD: bool>(
+    side: &'s mut [Link],
+    j: usize,
+    boundary: Option<&'s Link>,
+) -> Option<(
+    &'s mut Link,
+    Option<(&'s Link, (bool, bool))>,
+    Option<&'s Link>,
+)> {
+    let (before, rest) = side.split_at_mut(j);
+    let (link, after) = rest.split_first_mut()?;
+    if BACKWARD {
+        let ahead = before.last().or(boundary);
+        // The sharing is stored with the link before: (its side, this link's side).
+        let shared = ahead
+            .and_then(|a| a.shared_with_next)
+            .map(|(a, this)| (this, a));
+        Some((link, ahead.zip(shared), after.first()))
+    } else {
+        let ahead = after.first().or(boundary);
+        let shared = link.shared_with_next;
+        Some((link, ahead.zip(shared), before.last()))
     }
 }
 
 /// The forward step of the block Thomas sweep over one side ([`super::sweep`]'s `block_sweep`): each link's
-/// `Sᵢ` from the links eliminated before it, factorised (kept when [`Stale::keeps`]), and its `y`.
-pub(super) fn block_side<'b, const N: usize, L>(
+/// `Sᵢ` from the link eliminated before it, factorised (kept when [`Stale::keeps`]), and its `y`; the links
+/// from `from` on (forward; all of them backward), `offset` the side's first link in the path.
+pub(super) fn block_side<'b, const N: usize, const BACKWARD: bool, L>(
     side: &mut [Link],
-    order: (usize, Toward, usize),
+    (offset, from): (usize, usize),
     boundary: Option<&Link>,
     sweep: &Sweep<'_, L>,
 ) where
     L: Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
 {
-    let toward = order.1;
-    for_each_in_order(side, order, boundary, |i, link, ahead, done| {
-        let keep = sweep.stale.keeps(i, toward);
+    let len = side.len();
+    for k in from..len {
+        let j = if BACKWARD { len - 1 - k } else { k };
+        let Some((link, ahead, done)) = neighbours::<BACKWARD>(side, j, boundary) else {
+            break;
+        };
+        let i = offset + j;
+        let step = Step {
+            keep: sweep.stale.keeps(i, BACKWARD),
+            before: BACKWARD,
+            key: N + sweep.layout,
+        };
         block_step::<N>(
             link,
             ahead,
             [done, None],
             (sweep.load)(i),
             sweep.uniform,
-            keep,
-            toward,
+            step,
         );
-    });
+    }
+}
+
+/// How one link is eliminated: whether it keeps its factorisation, whether the neighbour it passes its
+/// block on to is the previous link, and the layout its key records.
+#[derive(Clone, Copy)]
+struct Step {
+    keep: bool,
+    before: bool,
+    key: usize,
 }
 
 /// The meeting link of a path solved from both ends: its `S` from both sides (`before`, the last link
@@ -151,18 +153,15 @@ pub(super) fn block_meet<'b, const N: usize>(
     link: &mut Link,
     (before, after): (Option<&Link>, Option<&Link>),
     bodies: Option<(&'b SolverBody, &'b SolverBody)>,
-    uniform: Option<Softness>,
+    (uniform, layout): (Option<Softness>, usize),
     keep: bool,
 ) -> [Real; MAX_ROWS] {
-    block_step::<N>(
-        link,
-        None,
-        [before, after],
-        bodies,
-        uniform,
+    let step = Step {
         keep,
-        Toward::Both,
-    );
+        before: false,
+        key: N + layout,
+    };
+    block_step::<N>(link, None, [before, after], bodies, uniform, step);
     let mut x = link.y;
     back_substitute::<N>(&link.factor, &mut x);
     x
@@ -177,12 +176,11 @@ fn block_step<const N: usize>(
     done: [Option<&Link>; 2],
     bodies: Option<(&SolverBody, &SolverBody)>,
     uniform: Option<Softness>,
-    keep: bool,
-    toward: Toward,
+    Step { keep, before, key }: Step,
 ) {
     let split = uniform.is_some();
     if !keep {
-        link.fill_blocks::<N>(ahead, toward == Toward::Previous);
+        link.fill_blocks::<N>(ahead, before);
         link.fill_lanes();
     }
     let r = bodies.map_or([0.0; MAX_ROWS], |(a, b)| link.residual(a, b));
@@ -254,11 +252,7 @@ fn block_step<const N: usize>(
                 link.v_t[col][row] = link.w[row][col] * link.inv_pivot[row];
             }
         }
-        let shared = match toward {
-            Toward::Previous => ahead.map(|(_, shared)| shared),
-            Toward::Next | Toward::Both => link.shared_with_next,
-        };
-        link.factored = Some(FactorKey::toward(link, N, toward, shared));
+        link.factored = Some(FactorKey::of(link, key));
     }
     // y = D⁻¹·L⁻¹·rhs
     forward_substitute::<N>(&link.factor, &mut rhs);
@@ -268,19 +262,24 @@ fn block_step<const N: usize>(
 }
 
 /// The back substitution of one side of the block sweep, from the link next to `boundary` (the meeting
-/// link's solution, 0 past the end of a path solved from one end) outward: `xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xₐ)`, `xₐ`
-/// the solution of the link ahead, a column of V (a row of the stored Vᵀ) at a time. Writes each link's
-/// solution ([`Link::finish`]) into `out`; returns whether one would release a row.
-pub(super) fn block_back<const N: usize>(
+/// link's solution, 0 past the end of a path solved from one end) outward (`BACKWARD`: the side after the
+/// meeting link, from its first link to its last): `xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xₐ)`, `xₐ` the solution of the link
+/// ahead, a column of V (a row of the stored Vᵀ) at a time. Writes each link's solution ([`Link::finish`])
+/// into `out`; returns whether one would release a row.
+pub(super) fn block_back<const N: usize, const BACKWARD: bool>(
     side: &[Link],
     out: &mut [[Real; MAX_ROWS]],
-    toward: Toward,
     boundary: [Real; MAX_ROWS],
     uniform: Option<Softness>,
 ) -> bool {
     let mut x_next = boundary;
     let mut released = false;
-    let mut step = |link: &Link, out: &mut [Real; MAX_ROWS]| {
+    let len = side.len().min(out.len());
+    for k in 0..len {
+        let j = if BACKWARD { k } else { len - 1 - k };
+        let (Some(link), Some(out)) = (side.get(j), out.get_mut(j)) else {
+            break;
+        };
         let mut x = link.y;
         for k in 0..N {
             let (v, f) = (&link.v_t[k], x_next[k]);
@@ -292,33 +291,36 @@ pub(super) fn block_back<const N: usize>(
         *out = link.finish(x, uniform);
         released |= link.would_deactivate(out);
         x_next = x;
-    };
-    let links = side.iter().zip(out.iter_mut());
-    if toward == Toward::Previous {
-        links.for_each(|(link, out)| step(link, out));
-    } else {
-        links.rev().for_each(|(link, out)| step(link, out));
     }
     released
 }
 
 /// The forward step of the scalar Thomas sweep over one side (`solve_scalar_path`): `c'ᵢ = cᵢ/sᵢ`, `r'ᵢ =
 /// (r̃ᵢ − cₚ·r'ₚ)/sᵢ` with `sᵢ = bᵢ − cₚ·c'ₚ`, `p` the link eliminated before it and `cᵢ` the coupling with
-/// the link ahead; `b`, `c`, `1/s` and `c'` kept when [`Stale::keeps`].
-pub(super) fn scalar_side<'b, L>(
+/// the link ahead; `b`, `c`, `1/s` and `c'` kept when [`Stale::keeps`]. The links as [`block_side`] takes
+/// them.
+pub(super) fn scalar_side<'b, const BACKWARD: bool, L>(
     side: &mut [Link],
-    order: (usize, Toward, usize),
+    (offset, from): (usize, usize),
     boundary: Option<&Link>,
     sweep: &Sweep<'_, L>,
 ) where
     L: Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
 {
-    let toward = order.1;
-    for_each_in_order(side, order, boundary, |i, link, ahead, done| {
-        let keep = sweep.stale.keeps(i, toward);
-        let ahead = ahead.map(|(a, _)| a);
-        scalar_step(link, (ahead, toward), [done, None], (i, sweep), keep);
-    });
+    let len = side.len();
+    for k in from..len {
+        let j = if BACKWARD { len - 1 - k } else { k };
+        let Some((link, ahead, done)) = neighbours::<BACKWARD>(side, j, boundary) else {
+            break;
+        };
+        let i = offset + j;
+        let step = Step {
+            keep: sweep.stale.keeps(i, BACKWARD),
+            before: BACKWARD,
+            key: 1 + sweep.layout,
+        };
+        scalar_step(link, ahead.map(|(a, _)| a), [done, None], (i, sweep), step);
+    }
 }
 
 /// The meeting link of a scalar sweep from both ends ([`block_meet`]); returns its solution.
@@ -331,13 +333,12 @@ pub(super) fn scalar_meet<'b, L>(
 where
     L: Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
 {
-    scalar_step(
-        link,
-        (None, Toward::Both),
-        [before, after],
-        (i, sweep),
+    let step = Step {
         keep,
-    );
+        before: false,
+        key: 1 + sweep.layout,
+    };
+    scalar_step(link, None, [before, after], (i, sweep), step);
     link.scalar.r_prime
 }
 
@@ -346,10 +347,10 @@ where
 #[inline(always)]
 fn scalar_step<'b, L>(
     link: &mut Link,
-    (ahead, toward): (Option<&Link>, Toward),
+    ahead: Option<&Link>,
     done: [Option<&Link>; 2],
     (i, sweep): (usize, &Sweep<'_, L>),
-    keep: bool,
+    Step { keep, before, key }: Step,
 ) where
     L: Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
 {
@@ -357,10 +358,10 @@ fn scalar_step<'b, L>(
     let active = link.rows.count == 1 && link.active[0];
     if !keep {
         // The coupling is computed as the link before in the path computes it with the link after.
-        let c = match (ahead, toward) {
-            (Some(next), Toward::Next) => link.coupling_scalar(next),
-            (Some(prev), Toward::Previous) => prev.coupling_scalar(link),
-            _ => 0.0,
+        let c = match ahead {
+            Some(prev) if before => prev.coupling_scalar(link),
+            Some(next) => link.coupling_scalar(next),
+            None => 0.0,
         };
         let diagonal = if active {
             Real::from(link.rows.self_coupling(0)) * (1.0 + REGULARIZATION)
@@ -387,11 +388,7 @@ fn scalar_step<'b, L>(
             c_prime: c * inv_s,
             r_prime: link.scalar.r_prime,
         };
-        let shared = match toward {
-            Toward::Previous => ahead.and_then(|a| a.shared_with_next).map(|(a, t)| (t, a)),
-            _ => link.shared_with_next,
-        };
-        link.factored = Some(FactorKey::toward(link, 1, toward, shared));
+        link.factored = Some(FactorKey::of(link, key));
     }
     let (diagonal, c) = (link.scalar.b, link.scalar.c);
     let mut r = if active {
@@ -424,26 +421,24 @@ fn scalar_step<'b, L>(
 }
 
 /// The back substitution of one side of the scalar sweep ([`block_back`]): `xᵢ = r'ᵢ − c'ᵢ·xₐ`.
-pub(super) fn scalar_back(
+pub(super) fn scalar_back<const BACKWARD: bool>(
     side: &[Link],
     out: &mut [[Real; MAX_ROWS]],
-    toward: Toward,
     boundary: Real,
     uniform: Option<Softness>,
 ) -> bool {
     let mut next = boundary;
     let mut released = false;
-    let mut step = |link: &Link, out: &mut [Real; MAX_ROWS]| {
+    let len = side.len().min(out.len());
+    for k in 0..len {
+        let j = if BACKWARD { k } else { len - 1 - k };
+        let (Some(link), Some(out)) = (side.get(j), out.get_mut(j)) else {
+            break;
+        };
         let x = link.scalar.r_prime - link.scalar.c_prime * next;
         *out = link.finish([x, 0.0, 0.0, 0.0, 0.0], uniform);
         released |= link.would_deactivate(out);
         next = x;
-    };
-    let links = side.iter().zip(out.iter_mut());
-    if toward == Toward::Previous {
-        links.for_each(|(link, out)| step(link, out));
-    } else {
-        links.rev().for_each(|(link, out)| step(link, out));
     }
     released
 }

@@ -3,47 +3,32 @@
 //! carried from an earlier pose). Lives from *prepare* through every solve and relax pass to the projection,
 //! and (its rows) into the next step.
 
-use super::elimination::Toward;
 use super::factor::Block;
 use super::pose::{BuiltAt, PoseKey};
 use super::row::{InvMass, JointRows, MAX_ROWS, Real};
 use rebound_math::{Mat3, Vec4};
 
-/// What a link's stored factorisation was made for: the block width of the sweep (1 for the scalar sweep),
-/// the rows in the system, the neighbour its elimination passes its block on to ([`Toward`]) and the
-/// sharing of their body (this link's side first). Together with unchanged rows (the key is dropped
-/// when they are built again) and the same key for every link of the path, the factorisation would come out
-/// the same bits, so [`solve_path`] keeps it.
+/// What a link's stored factorisation was made for: the sweep's layout (`width`: the block width, 1 for the
+/// scalar sweep, plus, for a path solved from both ends, its length times 8 — the length places the meeting
+/// link and so which way each link was eliminated, see [`super::elimination::layout`]), the rows in the
+/// system and the sharing with the next link. Together with unchanged rows (the key is dropped when they are
+/// built again) and the same key for every link of the path, the factorisation would come out the same
+/// bits, so [`solve_path`] keeps it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct FactorKey {
     pub(super) width: usize,
     pub(super) active: [bool; MAX_ROWS],
     pub(super) shared: Option<(bool, bool)>,
-    pub(super) toward: Toward,
 }
 
 impl FactorKey {
-    /// The key of `link`'s current rows in the system, for a sweep of blocks `width` wide from the path's
-    /// first link to its last.
+    /// The key of `link`'s current rows in the system, for a sweep of layout `width`.
     #[inline]
     pub(super) fn of(link: &Link, width: usize) -> Self {
-        Self::toward(link, width, Toward::Next, link.shared_with_next)
-    }
-
-    /// The key of `link`'s current rows in the system, for a sweep of blocks `width` wide that eliminates
-    /// it toward `toward`, with whose body it shares as `shared` says (this link's side first).
-    #[inline]
-    pub(super) fn toward(
-        link: &Link,
-        width: usize,
-        toward: Toward,
-        shared: Option<(bool, bool)>,
-    ) -> Self {
         Self {
             width,
             active: link.active,
-            shared,
-            toward,
+            shared: link.shared_with_next,
         }
     }
 }

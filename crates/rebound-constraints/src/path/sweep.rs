@@ -8,7 +8,7 @@
 )]
 
 use super::elimination::{
-    Stale, Sweep, Toward, block_back, block_meet, block_side, meet_of, scalar_back, scalar_meet,
+    Stale, Sweep, block_back, block_meet, block_side, layout, meet_of, scalar_back, scalar_meet,
     scalar_side,
 };
 use super::link::{FactorKey, Link};
@@ -61,7 +61,7 @@ pub(crate) fn solve_path<'b>(
         _ if resumable == 0 => (0, shape.stale(links.len())),
         _ if meet.is_some() => (0, Stale(Some((0, links.len())))),
         _ => {
-            let first = first_stale(links, widest.max(1), 0);
+            let first = first_stale(links, widest.max(1) + layout(links.len()), 0);
             (
                 0,
                 Stale((first < links.len()).then_some((first, links.len()))),
@@ -74,6 +74,7 @@ pub(crate) fn solve_path<'b>(
         load: &load,
         uniform: shape.uniform,
         stale,
+        layout: layout(links.len()),
     };
     let released = if widest <= 1 {
         solve_scalar_path(links, out, &sweep, (start, meet))
@@ -145,15 +146,17 @@ pub(super) struct PathShape {
     pub(super) last_width_change: Option<usize>,
     /// Where the keys were first looked at.
     pub(super) start: usize,
+    /// The number of links.
+    pub(super) len: usize,
 }
 
 impl PathShape {
     /// [`first_stale`] from the scan's `start` for the sweep `solve_path` makes — scalar (keys of width 1)
-    /// up to one row, else blocks `widest` wide: the first link whose [`FactorKey`] differs, or the number of
+    /// up to one row, else blocks `widest` wide, laid out as [`layout`] says: the first link whose [`FactorKey`] differs, or the number of
     /// links if there is none.
     pub(super) fn first_stale(&self) -> usize {
         match self.start_width {
-            Some(width) if width == self.widest.max(1) => {
+            Some(width) if width == self.widest.max(1) + layout(self.len) => {
                 self.first_unkeyed.min(self.first_width_change)
             }
             // The link at `start` is keyed for another width (and `first_unkeyed` is past it).
@@ -171,7 +174,7 @@ impl PathShape {
             return Stale(None);
         }
         let last = match self.start_width {
-            Some(width) if width == self.widest.max(1) => {
+            Some(width) if width == self.widest.max(1) + layout(self.len) => {
                 self.last_unkeyed.max(self.last_width_change).unwrap_or(len)
             }
             _ => len,
@@ -191,24 +194,11 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
     let (mut first_unkeyed, mut first_width_change) = (links.len(), links.len());
     let (mut last_unkeyed, mut last_width_change) = (None, None);
     let mut start_width = None;
-    // A link of a path solved from both ends past its meeting link is keyed with the sharing of the link
-    // before (this link's side first).
-    let meet = meet_of(links.len());
-    let mut shared_before = None;
     for (i, link) in links.iter().enumerate() {
         widest = widest.max(link.rows.count);
         if i >= start {
-            let toward = Toward::of(i, meet);
-            let shared = match toward {
-                Toward::Previous => shared_before.map(|(before, this)| (this, before)),
-                _ => link.shared_with_next,
-            };
             match link.factored {
-                Some(key)
-                    if key.active == link.active
-                        && key.shared == shared
-                        && key.toward == toward =>
-                {
+                Some(key) if key.active == link.active && key.shared == link.shared_with_next => {
                     match start_width {
                         None if i == start => start_width = Some(key.width),
                         Some(width) if width != key.width => {
@@ -224,7 +214,6 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
                 }
             }
         }
-        shared_before = link.shared_with_next;
         for (row, &active) in link.rows.rows().iter().zip(&link.active) {
             if !active {
                 left_out |= row.is_bounded_at_zero();
@@ -252,6 +241,7 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
         last_unkeyed,
         last_width_change,
         start,
+        len: links.len(),
     }
 }
 
@@ -312,8 +302,8 @@ where
     L: Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
 {
     let Some(m) = meet.filter(|&m| m < links.len()) else {
-        block_side::<N, L>(links, (0, Toward::Next, start), None, sweep);
-        return block_back::<N>(links, out, Toward::Next, [0.0; MAX_ROWS], sweep.uniform);
+        block_side::<N, false, L>(links, (0, start), None, sweep);
+        return block_back::<N, false>(links, out, [0.0; MAX_ROWS], sweep.uniform);
     };
     let (before, rest) = links.split_at_mut(m);
     let Some((link, after)) = rest.split_first_mut() else {
@@ -321,13 +311,13 @@ where
     };
     let middle = &*link;
     par::join(
-        || block_side::<N, L>(before, (0, Toward::Next, start), Some(middle), sweep),
-        || block_side::<N, L>(after, (m + 1, Toward::Previous, 0), Some(middle), sweep),
+        || block_side::<N, false, L>(before, (0, start), Some(middle), sweep),
+        || block_side::<N, true, L>(after, (m + 1, 0), Some(middle), sweep),
     );
-    let keep = sweep.stale.keeps(m, Toward::Both);
+    let keep = sweep.stale.keeps_meet();
     let bodies = (sweep.load)(m);
     let ends = (before.last(), after.first());
-    let x = block_meet::<N>(link, ends, bodies, sweep.uniform, keep);
+    let x = block_meet::<N>(link, ends, bodies, (sweep.uniform, sweep.layout), keep);
     let (out_before, out_rest) = out.split_at_mut(m);
     let Some((out_middle, out_after)) = out_rest.split_first_mut() else {
         return false;
@@ -336,8 +326,8 @@ where
     let released = link.would_deactivate(out_middle);
     let uniform = sweep.uniform;
     let (a, b) = par::join(
-        || block_back::<N>(before, out_before, Toward::Next, x, uniform),
-        || block_back::<N>(after, out_after, Toward::Previous, x, uniform),
+        || block_back::<N, false>(before, out_before, x, uniform),
+        || block_back::<N, true>(after, out_after, x, uniform),
     );
     released | a | b
 }
@@ -371,8 +361,8 @@ where
     // right-hand side of `solve_path`; bᵢ is the row's regularised `K` (1 for a row not in the system).
     // Link i − 1 holds cᵢ₋₁, c'ᵢ₋₁ and r'ᵢ₋₁ (`scalar`). The sweep starts at link `start` (see [`Resume`]).
     let Some(m) = meet.filter(|&m| m < links.len()) else {
-        scalar_side(links, (0, Toward::Next, start), None, sweep);
-        return scalar_back(links, out, Toward::Next, 0.0, sweep.uniform);
+        scalar_side::<false, L>(links, (0, start), None, sweep);
+        return scalar_back::<false>(links, out, 0.0, sweep.uniform);
     };
     let (before, rest) = links.split_at_mut(m);
     let Some((link, after)) = rest.split_first_mut() else {
@@ -380,10 +370,10 @@ where
     };
     let middle = &*link;
     par::join(
-        || scalar_side(before, (0, Toward::Next, start), Some(middle), sweep),
-        || scalar_side(after, (m + 1, Toward::Previous, 0), Some(middle), sweep),
+        || scalar_side::<false, L>(before, (0, start), Some(middle), sweep),
+        || scalar_side::<true, L>(after, (m + 1, 0), Some(middle), sweep),
     );
-    let keep = sweep.stale.keeps(m, Toward::Both);
+    let keep = sweep.stale.keeps_meet();
     let x = scalar_meet(link, (before.last(), after.first()), (m, sweep), keep);
     let (out_before, out_rest) = out.split_at_mut(m);
     let Some((out_middle, out_after)) = out_rest.split_first_mut() else {
@@ -393,8 +383,8 @@ where
     let released = link.would_deactivate(out_middle);
     let uniform = sweep.uniform;
     let (a, b) = par::join(
-        || scalar_back(before, out_before, Toward::Next, x, uniform),
-        || scalar_back(after, out_after, Toward::Previous, x, uniform),
+        || scalar_back::<false>(before, out_before, x, uniform),
+        || scalar_back::<true>(after, out_after, x, uniform),
     );
     released | a | b
 }

@@ -102,6 +102,7 @@ fn sweep_with(
         load: &load,
         uniform,
         stale: Stale(Some((0, links.len()))),
+        layout: 0,
     };
     let width = links.iter().map(|l| l.rows.count).max().unwrap_or(0);
     match width {
