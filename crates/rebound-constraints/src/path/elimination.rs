@@ -400,12 +400,12 @@ fn scalar_step<'b, L>(
         } else {
             let mut rhs = Real::from(softness.mass_scale) * residual;
             if softness.impulse_scale > 0.0 {
-                let mut k_lambda = diagonal * link.active_lambda()[0];
+                let mut k_lambda = diagonal * first_lambda(link);
                 if let Some(next) = ahead {
-                    k_lambda += c * next.active_lambda()[0];
+                    k_lambda += c * first_lambda(next);
                 }
                 for prev in done.into_iter().flatten() {
-                    k_lambda += prev.scalar.c * prev.active_lambda()[0];
+                    k_lambda += prev.scalar.c * first_lambda(prev);
                 }
                 rhs += Real::from(softness.impulse_scale) * k_lambda;
             }
@@ -441,4 +441,15 @@ pub(super) fn scalar_back<const BACKWARD: bool>(
         next = x;
     }
     released
+}
+
+/// The first row's accumulated impulse as the scalar sweep's unknown (0 when it is not in the system): what
+/// `Link::active_lambda` gives for it, without the other rows.
+#[inline(always)]
+fn first_lambda(link: &Link) -> Real {
+    if link.active[0] {
+        Real::from(link.lambda[0])
+    } else {
+        0.0
+    }
 }

@@ -97,6 +97,7 @@ impl Link {
     /// The solution `y` of this link's rows from the solution `x` of `K·x = r` when every row of the path
     /// has the softness `uniform`: `y = mass_scale·x + impulse_scale·λ`, in f32 as the per-row soft step
     /// computes it (so that `λ − y` is bit for bit its `λ + Δλ`). Without a uniform softness `x` is `y`.
+    #[inline(always)]
     pub(super) fn finish(
         &self,
         mut x: [Real; MAX_ROWS],
