@@ -205,7 +205,7 @@ fn block_step<const N: usize>(
         }
     }
     let mut rhs = if split { r } else { [0.0; MAX_ROWS] };
-    for prev in done.into_iter().flatten() {
+    each(done, |prev| {
         // rhs = r̃ − Wₚᵀ·yₚ, a row of W at a time (contiguous, so the rows pair into SIMD lanes).
         for k in 0..N {
             let (w, y) = (&prev.w[k], prev.y[k]);
@@ -222,7 +222,7 @@ fn block_step<const N: usize>(
                 }
             }
         }
-    }
+    });
     if !split {
         let soft = link.soft_rhs(&r, &k_lambda);
         for row in 0..N {
@@ -237,11 +237,11 @@ fn block_step<const N: usize>(
         for row in 0..N {
             for col in row..N {
                 let mut value = link.b_block[row][col];
-                for prev in done.into_iter().flatten() {
+                each(done, |prev| {
                     for k in 0..N {
                         value -= (prev.w[k][row] * prev.inv_pivot[k]) * prev.w[k][col];
                     }
-                }
+                });
                 s[row][col] = value;
             }
         }
@@ -274,12 +274,7 @@ pub(super) fn block_back<const N: usize, const BACKWARD: bool>(
 ) -> bool {
     let mut x_next = boundary;
     let mut released = false;
-    let len = side.len().min(out.len());
-    for k in 0..len {
-        let j = if BACKWARD { k } else { len - 1 - k };
-        let (Some(link), Some(out)) = (side.get(j), out.get_mut(j)) else {
-            break;
-        };
+    let mut step = |link: &Link, out: &mut [Real; MAX_ROWS]| {
         let mut x = link.y;
         for k in 0..N {
             let (v, f) = (&link.v_t[k], x_next[k]);
@@ -291,6 +286,15 @@ pub(super) fn block_back<const N: usize, const BACKWARD: bool>(
         *out = link.finish(x, uniform);
         released |= link.would_deactivate(out);
         x_next = x;
+    };
+    // One of the two loops is compiled for each direction.
+    if BACKWARD {
+        side.iter().zip(out).for_each(|(link, out)| step(link, out));
+    } else {
+        side.iter()
+            .zip(out)
+            .rev()
+            .for_each(|(link, out)| step(link, out));
     }
     released
 }
@@ -369,9 +373,9 @@ fn scalar_step<'b, L>(
             1.0
         };
         let mut s = diagonal;
-        for prev in done.into_iter().flatten() {
+        each(done, |prev| {
             s -= prev.scalar.c * prev.scalar.c_prime;
-        }
+        });
         let scale = Real::from(link.rows.mass_a.mass.max(link.rows.mass_b.mass));
         // A vanishing pivot gets 1/s = 0 (never a pivot that passes the test: |s| > MIN_POSITIVE). The
         // reciprocal is kept so that the sweeps multiply: the forward sweep's chain from link to link is
@@ -404,9 +408,9 @@ fn scalar_step<'b, L>(
                 if let Some(next) = ahead {
                     k_lambda += c * first_lambda(next);
                 }
-                for prev in done.into_iter().flatten() {
+                each(done, |prev| {
                     k_lambda += prev.scalar.c * first_lambda(prev);
-                }
+                });
                 rhs += Real::from(softness.impulse_scale) * k_lambda;
             }
             rhs
@@ -414,9 +418,9 @@ fn scalar_step<'b, L>(
     } else {
         0.0
     };
-    for prev in done.into_iter().flatten() {
+    each(done, |prev| {
         r -= prev.scalar.c * prev.scalar.r_prime;
-    }
+    });
     link.scalar.r_prime = r * link.scalar.inv_s;
 }
 
@@ -429,16 +433,19 @@ pub(super) fn scalar_back<const BACKWARD: bool>(
 ) -> bool {
     let mut next = boundary;
     let mut released = false;
-    let len = side.len().min(out.len());
-    for k in 0..len {
-        let j = if BACKWARD { k } else { len - 1 - k };
-        let (Some(link), Some(out)) = (side.get(j), out.get_mut(j)) else {
-            break;
-        };
+    let mut step = |link: &Link, out: &mut [Real; MAX_ROWS]| {
         let x = link.scalar.r_prime - link.scalar.c_prime * next;
         *out = link.finish([x, 0.0, 0.0, 0.0, 0.0], uniform);
         released |= link.would_deactivate(out);
         next = x;
+    };
+    if BACKWARD {
+        side.iter().zip(out).for_each(|(link, out)| step(link, out));
+    } else {
+        side.iter()
+            .zip(out)
+            .rev()
+            .for_each(|(link, out)| step(link, out));
     }
     released
 }
@@ -451,5 +458,17 @@ fn first_lambda(link: &Link) -> Real {
         Real::from(link.lambda[0])
     } else {
         0.0
+    }
+}
+
+/// Calls `f` with each link of `done` there is, in order — written out for the two places, so that a side's
+/// step, whose second place is always empty, compiles to the one-neighbour loop.
+#[inline(always)]
+fn each<'l>(done: [Option<&'l Link>; 2], mut f: impl FnMut(&'l Link)) {
+    if let Some(prev) = done[0] {
+        f(prev);
+    }
+    if let Some(prev) = done[1] {
+        f(prev);
     }
 }

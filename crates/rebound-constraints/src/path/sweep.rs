@@ -57,8 +57,8 @@ pub(crate) fn solve_path<'b>(
     let widest = shape.widest;
     let key = (widest, shape.uniform.map(softness_bits));
     let (start, stale) = match resume.swept {
-        Some(swept) if swept == key => (resumable, shape.stale(links.len())),
-        _ if resumable == 0 => (0, shape.stale(links.len())),
+        Some(swept) if swept == key => (resumable, shape.stale(links)),
+        _ if resumable == 0 => (0, shape.stale(links)),
         _ if meet.is_some() => (0, Stale(Some((0, links.len())))),
         _ => {
             let first = first_stale(links, widest.max(1) + layout(links.len()), 0);
@@ -140,10 +140,6 @@ pub(super) struct PathShape {
     pub(super) first_unkeyed: usize,
     pub(super) first_width_change: usize,
     pub(super) start_width: Option<usize>,
-    /// The last link without a factorisation for its current active set and link ([`FactorKey`] but its
-    /// width), and the last whose factorisation's width differs from that of the link at `start`.
-    pub(super) last_unkeyed: Option<usize>,
-    pub(super) last_width_change: Option<usize>,
     /// Where the keys were first looked at.
     pub(super) start: usize,
     /// The number of links.
@@ -165,19 +161,23 @@ impl PathShape {
         }
     }
 
-    /// The links of a path of `len` links whose factorisations the sweep makes again ([`Stale`]): from
-    /// [`PathShape::first_stale`] to the last link whose [`FactorKey`] differs — every link from the first
-    /// one on when the link at `start` is keyed for another width or not at all.
-    pub(super) fn stale(&self, len: usize) -> Stale {
+    /// The links of the path `links` (the one scanned) whose factorisations the sweep makes again
+    /// ([`Stale`]): from [`PathShape::first_stale`] to the last link whose [`FactorKey`] differs, looked for
+    /// from the end (only a path solved from both ends needs it: its links after the meeting link depend
+    /// on the links after them) — every link from the first one on when the link at `start` is keyed for
+    /// another width or not at all.
+    pub(super) fn stale(&self, links: &[Link]) -> Stale {
         let first = self.first_stale();
-        if first >= len {
+        if first >= self.len {
             return Stale(None);
         }
+        let width = self.widest.max(1) + layout(self.len);
         let last = match self.start_width {
-            Some(width) if width == self.widest.max(1) + layout(self.len) => {
-                self.last_unkeyed.max(self.last_width_change).unwrap_or(len)
-            }
-            _ => len,
+            Some(start) if start == width && layout(self.len) > 0 => links
+                .iter()
+                .rposition(|link| link.factored != Some(FactorKey::of(link, width)))
+                .unwrap_or(self.len),
+            _ => self.len,
         };
         Stale(Some((first, last)))
     }
@@ -192,7 +192,6 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
     let mut uniform = true;
     let mut left_out = false;
     let (mut first_unkeyed, mut first_width_change) = (links.len(), links.len());
-    let (mut last_unkeyed, mut last_width_change) = (None, None);
     let mut start_width = None;
     for (i, link) in links.iter().enumerate() {
         widest = widest.max(link.rows.count);
@@ -203,15 +202,11 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
                         None if i == start => start_width = Some(key.width),
                         Some(width) if width != key.width => {
                             first_width_change = first_width_change.min(i);
-                            last_width_change = Some(i);
                         }
                         _ => {}
                     }
                 }
-                _ => {
-                    first_unkeyed = first_unkeyed.min(i);
-                    last_unkeyed = Some(i);
-                }
+                _ => first_unkeyed = first_unkeyed.min(i),
             }
         }
         for (row, &active) in link.rows.rows().iter().zip(&link.active) {
@@ -238,8 +233,6 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
         first_unkeyed,
         first_width_change,
         start_width,
-        last_unkeyed,
-        last_width_change,
         start,
         len: links.len(),
     }
