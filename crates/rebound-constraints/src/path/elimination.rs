@@ -74,6 +74,13 @@ pub(super) struct Sweep<'l, L> {
     pub(super) layout: usize,
 }
 
+/// A link of a side with its neighbours ([`neighbours`]).
+type Neighbours<'s> = (
+    &'s mut Link,
+    Option<(&'s Link, (bool, bool))>,
+    Option<&'s Link>,
+);
+
 /// Link `j` of a side with its neighbours in the elimination order (`BACKWARD`: from the side's last link
 /// to its first): the neighbour it passes its block on to — the next link of the side in that order, or the
 /// meeting link `boundary` past its end — with the sharing of their body (this link's side first), and the
@@ -83,11 +90,7 @@ fn neighbours<'s, const BACKWARD: bool>(
     side: &'s mut [Link],
     j: usize,
     boundary: Option<&'s Link>,
-) -> Option<(
-    &'s mut Link,
-    Option<(&'s Link, (bool, bool))>,
-    Option<&'s Link>,
-)> {
+) -> Option<Neighbours<'s>> {
     let (before, rest) = side.split_at_mut(j);
     let (link, after) = rest.split_first_mut()?;
     if BACKWARD {
