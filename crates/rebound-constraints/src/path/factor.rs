@@ -75,6 +75,7 @@ pub(super) fn ldl_factor<const N: usize>(block: &mut Block, inv_pivots: &mut [Re
 /// `W = L⁻¹·C` for the top-left `N × N` of `c`, written into `w` (forward substitution with the unit lower
 /// triangular factor of [`ldl_factor`]): `wᵢ = cᵢ − Σₖ<ᵢ Lᵢₖ·wₖ`, a row at a time (no copy of `C` first,
 /// which would call `memcpy`).
+#[inline(always)]
 pub(super) fn forward_substitute_block<const N: usize>(l: &Block, c: &Block, w: &mut Block) {
     for i in 0..N {
         let mut row = c[i];

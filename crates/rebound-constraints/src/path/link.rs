@@ -8,10 +8,12 @@ use super::pose::{BuiltAt, PoseKey};
 use super::row::{InvMass, JointRows, MAX_ROWS, Real};
 use rebound_math::{Mat3, Vec4};
 
-/// What a link's stored factorisation was made for: the block width of the sweep (1 for the scalar sweep),
-/// the rows in the system and the sharing with the next link. Together with unchanged rows (the key is
-/// dropped when they are built again) and the same key for every link of the path, the factorisation would
-/// come out the same bits, so [`solve_path`] keeps it.
+/// What a link's stored factorisation was made for: the sweep's layout (`width`: the block width, 1 for the
+/// scalar sweep, plus, for a path solved from both ends, its length times 8 — the length places the meeting
+/// link and so which way each link was eliminated, see [`super::elimination::layout`]), the rows in the
+/// system and the sharing with the next link. Together with unchanged rows (the key is dropped when they are
+/// built again) and the same key for every link of the path, the factorisation would come out the same
+/// bits, so [`solve_path`] keeps it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct FactorKey {
     pub(super) width: usize,
@@ -20,7 +22,7 @@ pub(super) struct FactorKey {
 }
 
 impl FactorKey {
-    /// The key of `link`'s current rows in the system, for a sweep of blocks `width` wide.
+    /// The key of `link`'s current rows in the system, for a sweep of layout `width`.
     #[inline]
     pub(super) fn of(link: &Link, width: usize) -> Self {
         Self {

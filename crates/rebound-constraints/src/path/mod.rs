@@ -24,7 +24,8 @@
 //! xₙ = r'ₙ,                     xᵢ = r'ᵢ − C'ᵢ·xᵢ₊₁
 //! ```
 //!
-//! solves `K·x = r` in O(n). The soft step of all rows at once takes `r = mass_scale∘(Ċ + bias) +
+//! solves `K·x = r` in O(n). A path of 32 links or more is swept from both ends at once, the two sides meeting
+//! at its middle link, so that they can run on two threads (`elimination.rs`; the same bits on any pool). The soft step of all rows at once takes `r = mass_scale∘(Ċ + bias) +
 //! impulse_scale∘(K·λ)` row by row and `Δλ = −x` (for one row this is exactly the Gauss–Seidel row update of
 //! [`crate::part::solve_row`]; see `solve_path` for why not each row's soft step from one solve), clamped
 //! to the bounds. A rope that is slack and not closing its slack this substep is left out of the system (its
@@ -93,6 +94,7 @@
 
 mod active_set;
 mod components;
+mod elimination;
 mod factor;
 mod graph;
 mod link;
@@ -108,6 +110,8 @@ mod system;
 mod tests;
 pub mod tether;
 pub(crate) mod topology;
+#[cfg(test)]
+mod two_sided_tests;
 
 pub(crate) use active_set::activate_violations;
 pub(crate) use graph::DirectGraph;

@@ -7,13 +7,14 @@
     reason = "dense block algebra (Thomas sweep) reads as the formulas with indices"
 )]
 
-use super::factor::{
-    REGULARIZATION, RELATIVE_PIVOT, back_substitute, forward_substitute, forward_substitute_block,
-    ldl_factor,
+use super::elimination::{
+    Stale, Sweep, block_back, block_meet, block_side, layout, meet_of, scalar_back, scalar_meet,
+    scalar_side,
 };
-use super::link::{FactorKey, Link, ScalarEntries};
+use super::link::{FactorKey, Link};
 use super::row::{MAX_ROWS, Real};
 use rebound_dynamics::{Softness, SolverBody};
+use rebound_math::par;
 
 /// Steps 2 and 3 of a pass: the residuals from the bodies' current velocities (`load(i)` gives link `i`'s
 /// bodies), then the block Thomas sweep; returns the solution `y` of each link in `out`, the change of its
@@ -35,7 +36,7 @@ use rebound_dynamics::{Softness, SolverBody};
 /// ones it was made with.
 pub(crate) fn solve_path<'b>(
     links: &mut [Link],
-    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
+    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
     out: &mut Vec<[Real; MAX_ROWS]>,
     resume: &mut Resume,
 ) -> Solved {
@@ -47,22 +48,38 @@ pub(crate) fn solve_path<'b>(
     // projection) the soft step splits into `K·x = r` and `y = mass_scale·x + impulse_scale·λ`: the same
     // result, without `K·λ`, and bit for bit that of the per-row form.
     // The factorisation keys are scanned from where a resumed sweep would start; if the shape changed, the
-    // sweep starts at the first link and (rarely) the keys are scanned again from there.
+    // sweep starts at the first link and (rarely) the keys are scanned again from there. A path solved
+    // from both ends resumes only the side before its meeting link.
+    let meet = meet_of(links.len());
     let resumable = resume.swept.map_or(0, |_| resume.from.min(links.len()));
+    let resumable = meet.map_or(resumable, |m| resumable.min(m));
     let shape = path_shape(links, resumable);
     let widest = shape.widest;
     let key = (widest, shape.uniform.map(softness_bits));
     let (start, stale) = match resume.swept {
-        Some(swept) if swept == key => (resumable, shape.first_stale()),
-        _ if resumable == 0 => (0, shape.first_stale()),
-        _ => (0, first_stale(links, widest.max(1), 0)),
+        Some(swept) if swept == key => (resumable, shape.stale(links)),
+        _ if resumable == 0 => (0, shape.stale(links)),
+        _ if meet.is_some() => (0, Stale(Some((0, links.len())))),
+        _ => {
+            let first = first_stale(links, widest.max(1) + layout(links.len()), 0);
+            (
+                0,
+                Stale((first < links.len()).then_some((first, links.len()))),
+            )
+        }
     };
     resume.swept = Some(key);
     resume.from = links.len();
+    let sweep = Sweep {
+        load: &load,
+        uniform: shape.uniform,
+        stale,
+        layout: layout(links.len()),
+    };
     let released = if widest <= 1 {
-        solve_scalar_path(links, load, out, shape.uniform, start, stale)
+        solve_scalar_path(links, out, &sweep, (start, meet))
     } else {
-        solve_block_path(links, load, out, (widest, stale), shape.uniform, start)
+        solve_block_path(links, out, &sweep, widest, (start, meet))
     };
     Solved {
         left_out: shape.left_out,
@@ -125,21 +142,44 @@ pub(super) struct PathShape {
     pub(super) start_width: Option<usize>,
     /// Where the keys were first looked at.
     pub(super) start: usize,
+    /// The number of links.
+    pub(super) len: usize,
 }
 
 impl PathShape {
     /// [`first_stale`] from the scan's `start` for the sweep `solve_path` makes — scalar (keys of width 1)
-    /// up to one row, else blocks `widest` wide: the first link whose [`FactorKey`] differs, or the number of
+    /// up to one row, else blocks `widest` wide, laid out as [`layout`] says: the first link whose [`FactorKey`] differs, or the number of
     /// links if there is none.
     pub(super) fn first_stale(&self) -> usize {
         match self.start_width {
-            Some(width) if width == self.widest.max(1) => {
+            Some(width) if width == self.widest.max(1) + layout(self.len) => {
                 self.first_unkeyed.min(self.first_width_change)
             }
             // The link at `start` is keyed for another width (and `first_unkeyed` is past it).
             Some(_) => self.start,
             None => self.first_unkeyed,
         }
+    }
+
+    /// The links of the path `links` (the one scanned) whose factorisations the sweep makes again
+    /// ([`Stale`]): from [`PathShape::first_stale`] to the last link whose [`FactorKey`] differs, looked for
+    /// from the end (only a path solved from both ends needs it: its links after the meeting link depend
+    /// on the links after them) — every link from the first one on when the link at `start` is keyed for
+    /// another width or not at all.
+    pub(super) fn stale(&self, links: &[Link]) -> Stale {
+        let first = self.first_stale();
+        if first >= self.len {
+            return Stale(None);
+        }
+        let width = self.widest.max(1) + layout(self.len);
+        let last = match self.start_width {
+            Some(start) if start == width && layout(self.len) > 0 => links
+                .iter()
+                .rposition(|link| link.factored != Some(FactorKey::of(link, width)))
+                .unwrap_or(self.len),
+            _ => self.len,
+        };
+        Stale(Some((first, last)))
     }
 }
 
@@ -194,27 +234,29 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
         first_width_change,
         start_width,
         start,
+        len: links.len(),
     }
 }
 
 /// [`solve_path`] for paths with multi-row joints: the block Thomas algorithm, over blocks of the path's
-/// largest row count (a link with fewer rows is padded with rows that solve to 0; a path of hinges runs the
-/// 5 × 5 sweep, one of ball joints the 3 × 3). With a `uniform` softness the right-hand side is the residual
-/// alone and the soft step is finished in the back substitution. `rows` is the largest row count of the links.
-pub(super) fn solve_block_path<'b>(
+/// largest row count `rows` (a link with fewer rows is padded with rows that solve to 0; a path of hinges
+/// runs the 5 × 5 sweep, one of ball joints the 3 × 3). With a `uniform` softness the right-hand side is the
+/// residual alone and the soft step is finished in the back substitution.
+pub(super) fn solve_block_path<'b, L>(
     links: &mut [Link],
-    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
-    (rows, stale): (usize, usize),
-    uniform: Option<Softness>,
-    start: usize,
-) -> bool {
-    let sweep = (start, stale);
+    sweep: &Sweep<'_, L>,
+    rows: usize,
+    from: (usize, Option<usize>),
+) -> bool
+where
+    L: Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
+{
     match rows {
-        0..=2 => block_sweep::<2>(links, load, out, uniform, sweep),
-        3 => block_sweep::<3>(links, load, out, uniform, sweep),
-        4 => block_sweep::<4>(links, load, out, uniform, sweep),
-        _ => block_sweep::<MAX_ROWS>(links, load, out, uniform, sweep),
+        0..=2 => block_sweep::<2, L>(links, out, sweep, from),
+        3 => block_sweep::<3, L>(links, out, sweep, from),
+        4 => block_sweep::<4, L>(links, out, sweep, from),
+        _ => block_sweep::<MAX_ROWS, L>(links, out, sweep, from),
     }
 }
 
@@ -228,136 +270,59 @@ pub(super) fn solve_block_path<'b>(
 /// xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁)       (= Sᵢ⁻¹·(rhsᵢ − Cᵢ·xᵢ₊₁))
 /// ```
 ///
+/// from link `start` on (the links before it are as the last sweep left them, see [`Resume`]). A path with
+/// a meeting link `m` ([`meet_of`]) is swept so from its first link to `m − 1` and, with `C` the coupling
+/// to the previous link, from its last link back to `m + 1`, both at once (on two threads if the pool has
+/// them); link `m` takes both sides' blocks, `Sₘ = Bₘ − Wₘ₋₁ᵀ·Vₘ₋₁ − Wₘ₊₁ᵀ·Vₘ₊₁`, and is solved first, and
+/// the back substitutions run outward from it, again both at once.
+///
 /// The products are written as sums of scaled rows (`rhs −= yₖ·(row k of W)`, `x −= xₖ·(column k of V)`,
 /// with `V` stored transposed), not as dot products: the rows are contiguous, so the compiler pairs them
 /// into two-lane f64 operations.
 ///
 /// `B`, `C`, `L`, `D⁻¹`, `W` and `V` depend on the rows and on which of them are in the system, not on the
-/// velocities: while the links up to the next one still have the rows and the active sets they were
-/// factorised with ([`FactorKey`], [`keeps_factor`]; a pass at an unchanged pose), they are kept and only the
+/// velocities: while the links a link depends on still have the rows and the active sets they were
+/// factorised with ([`FactorKey`], [`Stale`]; a pass at an unchanged pose), they are kept and only the
 /// right-hand side is swept (`rhsᵢ`, then `y = D⁻¹·L⁻¹·rhsᵢ`) — the same operations on the same values, so
 /// the same bits.
-pub(super) fn block_sweep<'b, const N: usize>(
+pub(super) fn block_sweep<'b, const N: usize, L>(
     links: &mut [Link],
-    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
-    uniform: Option<Softness>,
-    (start, stale): (usize, usize),
-) -> bool {
-    let split = uniform.is_some();
-    // Forward sweep from link `start` on (the links before it are as the last sweep left them, see
-    // [`Resume`]). `lambda_prev` holds λᵢ₋₁; Cᵢ₋₁, Wᵢ₋₁, Vᵢ₋₁ and yᵢ₋₁ are stored in link i − 1.
-    let mut lambda_prev = match start.checked_sub(1).and_then(|p| links.get(p)) {
-        Some(prev) if !split => prev.active_lambda(),
-        _ => [0.0; MAX_ROWS],
+    sweep: &Sweep<'_, L>,
+    (start, meet): (usize, Option<usize>),
+) -> bool
+where
+    L: Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
+{
+    let Some(m) = meet.filter(|&m| m < links.len()) else {
+        block_side::<N, false, L>(links, (0, start), None, sweep);
+        return block_back::<N, false>(links, out, [0.0; MAX_ROWS], sweep.uniform);
     };
-    for i in start..links.len() {
-        let reuse = keeps_factor(i, stale, links.len());
-        let (done, rest) = links.split_at_mut(i);
-        let Some((link, after)) = rest.split_first_mut() else {
-            break;
-        };
-        let next = after.first();
-        if !reuse {
-            link.fill_blocks::<N>(next);
-            link.fill_lanes();
-        }
-        let r = load(i).map_or([0.0; MAX_ROWS], |(a, b)| link.residual(a, b));
-        let lambda = if split {
-            [0.0; MAX_ROWS]
-        } else {
-            link.active_lambda()
-        };
-        // K·λ, for the soft rows only: this link's block, then the couplings to the next and the previous
-        // link. (No row is soft in the relax pass and in a projection.)
-        let soft_rows = !split && link.has_soft_rows();
-        let mut k_lambda = [0.0; MAX_ROWS];
-        if soft_rows {
-            let lambda_next = next.map_or([0.0; MAX_ROWS], Link::active_lambda);
-            let (b, c) = (&link.b_block, &link.c_block);
-            for row in 0..N {
-                let mut sum = 0.0;
-                for k in 0..N {
-                    sum += b[row][k] * lambda[k] + c[row][k] * lambda_next[k];
-                }
-                k_lambda[row] = sum;
-            }
-        }
-        let mut rhs = if split { r } else { [0.0; MAX_ROWS] };
-        if let Some(prev) = done.last() {
-            // rhs = r̃ − Wᵢ₋₁ᵀ·yᵢ₋₁, a row of W at a time (contiguous, so the rows pair into SIMD lanes).
-            for k in 0..N {
-                let (w, y) = (&prev.w[k], prev.y[k]);
-                for row in 0..N {
-                    rhs[row] -= w[row] * y;
-                }
-            }
-            if soft_rows {
-                for k in 0..N {
-                    let (c, l) = (&prev.c_block[k], lambda_prev[k]);
-                    for row in 0..N {
-                        k_lambda[row] += c[row] * l;
-                    }
-                }
-            }
-        }
-        if !split {
-            let soft = link.soft_rhs(&r, &k_lambda);
-            for row in 0..N {
-                rhs[row] += soft[row];
-            }
-        }
-        // S = B − Wᵢ₋₁ᵀ·D⁻¹ᵢ₋₁·Wᵢ₋₁ (upper triangle);  S = L·D·Lᵀ;  W = L⁻¹·C,  Vᵀ = (D⁻¹·W)ᵀ  (kept when
-        // `reuse`)
-        if !reuse {
-            // `S` (upper triangle) straight into the factor storage, an entry at a time (copying the
-            // 200-byte `B` first would call `memcpy`), then factorised there.
-            let s = &mut link.factor;
-            for row in 0..N {
-                for col in row..N {
-                    let mut value = link.b_block[row][col];
-                    if let Some(prev) = done.last() {
-                        for k in 0..N {
-                            value -= (prev.w[k][row] * prev.inv_pivot[k]) * prev.w[k][col];
-                        }
-                    }
-                    s[row][col] = value;
-                }
-            }
-            ldl_factor::<N>(&mut link.factor, &mut link.inv_pivot);
-            forward_substitute_block::<N>(&link.factor, &link.c_block, &mut link.w);
-            for row in 0..N {
-                for col in 0..N {
-                    link.v_t[col][row] = link.w[row][col] * link.inv_pivot[row];
-                }
-            }
-            link.factored = Some(FactorKey::of(link, N));
-        }
-        // y = D⁻¹·L⁻¹·rhs
-        forward_substitute::<N>(&link.factor, &mut rhs);
-        for row in 0..N {
-            link.y[row] = rhs[row] * link.inv_pivot[row];
-        }
-        lambda_prev = lambda;
-    }
-    // Back substitution: xᵢ = Lᵢ⁻ᵀ·(yᵢ − Vᵢ·xᵢ₊₁) (`V` of the last link is 0), a column of V (a row of the
-    // stored Vᵀ) at a time.
-    let mut x_next = [0.0; MAX_ROWS];
-    let mut released = false;
-    for (link, out) in links.iter().zip(out.iter_mut()).rev() {
-        let mut x = link.y;
-        for k in 0..N {
-            let (v, f) = (&link.v_t[k], x_next[k]);
-            for row in 0..N {
-                x[row] -= v[row] * f;
-            }
-        }
-        back_substitute::<N>(&link.factor, &mut x);
-        *out = link.finish(x, uniform);
-        released |= link.would_deactivate(out);
-        x_next = x;
-    }
-    released
+    let (before, rest) = links.split_at_mut(m);
+    let Some((link, after)) = rest.split_first_mut() else {
+        return false;
+    };
+    let middle = &*link;
+    par::join(
+        || block_side::<N, false, L>(before, (0, start), Some(middle), sweep),
+        || block_side::<N, true, L>(after, (m + 1, 0), Some(middle), sweep),
+    );
+    let keep = sweep.stale.keeps_meet();
+    let bodies = (sweep.load)(m);
+    let ends = (before.last(), after.first());
+    let x = block_meet::<N>(link, ends, bodies, (sweep.uniform, sweep.layout), keep);
+    let (out_before, out_rest) = out.split_at_mut(m);
+    let Some((out_middle, out_after)) = out_rest.split_first_mut() else {
+        return false;
+    };
+    *out_middle = link.finish(x, sweep.uniform);
+    let released = link.would_deactivate(out_middle);
+    let uniform = sweep.uniform;
+    let (a, b) = par::join(
+        || block_back::<N, false>(before, out_before, x, uniform),
+        || block_back::<N, true>(after, out_after, x, uniform),
+    );
+    released | a | b
 }
 
 /// The first link of the path whose stored factorisation is not for its current rows and active set in a
@@ -372,113 +337,47 @@ pub(super) fn first_stale(links: &[Link], width: usize, start: usize) -> usize {
         .map_or(links.len(), |(i, _)| i)
 }
 
-/// Whether link `i` of a path of `len` links keeps its factorisation when link `stale` is the first one
-/// whose key changed ([`first_stale`]): `Sᵢ` depends on links `0..=i` and `Cᵢ` on link `i + 1`, so every
-/// link before `stale − 1` does (all of them when none changed). A kept link's factorisation is then the
-/// one that the links it depends on had — they were factorised in the same sweep or kept with it.
-#[inline]
-pub(super) fn keeps_factor(i: usize, stale: usize, len: usize) -> bool {
-    stale == len || i + 1 < stale
-}
-
 /// [`solve_path`] for a path of one-row joints (a rope chain): the scalar Thomas algorithm, without the
-/// block machinery. `uniform` as in [`solve_block_path`]. As there, the entries `b`, `c`, `s` and `c'` of a
-/// link are kept from the last pass while it and the links before and after it have the rows and active
-/// sets they were computed for ([`keeps_factor`]).
-pub(super) fn solve_scalar_path<'b>(
+/// block machinery, from both ends at once for a path with a meeting link as [`block_sweep`]. As there, the
+/// entries `b`, `c`, `s` and `c'` of a link are kept from the last pass while the links it depends on have
+/// the rows and active sets they were computed for ([`Stale`]).
+pub(super) fn solve_scalar_path<'b, L>(
     links: &mut [Link],
-    load: impl Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)>,
     out: &mut [[Real; MAX_ROWS]],
-    uniform: Option<Softness>,
-    start: usize,
-    stale: usize,
-) -> bool {
-    let split = uniform.is_some();
+    sweep: &Sweep<'_, L>,
+    (start, meet): (usize, Option<usize>),
+) -> bool
+where
+    L: Fn(usize) -> Option<(&'b SolverBody, &'b SolverBody)> + Sync,
+{
     // Forward sweep: c'ᵢ = cᵢ/sᵢ, r'ᵢ = (r̃ᵢ − cᵢ₋₁·r'ᵢ₋₁)/sᵢ with sᵢ = bᵢ − cᵢ₋₁·c'ᵢ₋₁ and r̃ the soft
     // right-hand side of `solve_path`; bᵢ is the row's regularised `K` (1 for a row not in the system).
-    // Link i − 1 holds cᵢ₋₁, c'ᵢ₋₁ and r'ᵢ₋₁ (`scalar`); `lambda_prev` is λᵢ₋₁.
-    // The sweep starts at link `start` (see [`Resume`]).
-    let mut lambda_prev = start
-        .checked_sub(1)
-        .and_then(|p| links.get(p))
-        .map_or(0.0, |prev| prev.active_lambda()[0]);
-    for i in start..links.len() {
-        if !keeps_factor(i, stale, links.len()) {
-            let link = &links[i];
-            let active = link.rows.count == 1 && link.active[0];
-            let c = links
-                .get(i + 1)
-                .map_or(0.0, |next| links[i].coupling_scalar(next));
-            let diagonal = if active {
-                Real::from(link.rows.self_coupling(0)) * (1.0 + REGULARIZATION)
-            } else {
-                1.0
-            };
-            let mut s = diagonal;
-            if let Some(prev) = i.checked_sub(1).and_then(|p| links.get(p)) {
-                s -= prev.scalar.c * prev.scalar.c_prime;
-            }
-            let scale = Real::from(link.rows.mass_a.mass.max(link.rows.mass_b.mass));
-            // A vanishing pivot gets 1/s = 0 (never a pivot that passes the test: |s| > MIN_POSITIVE). The
-            // reciprocal is kept so that the sweeps multiply: the forward sweep's chain from link to link is
-            // then a multiply-add, not a division (some 15 cycles of latency each, 500 in a row for a chain).
-            let inv_s = if s.abs() <= (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE) {
-                0.0
-            } else {
-                1.0 / s
-            };
-            let link = &mut links[i];
-            link.scalar = ScalarEntries {
-                b: diagonal,
-                c,
-                inv_s,
-                c_prime: c * inv_s,
-                r_prime: link.scalar.r_prime,
-            };
-            link.factored = Some(FactorKey::of(link, 1));
-        }
-        let link = &links[i];
-        let active = link.rows.count == 1 && link.active[0];
-        let lambda = link.active_lambda()[0];
-        let (diagonal, c) = (link.scalar.b, link.scalar.c);
-        let prev = i.checked_sub(1).and_then(|p| links.get(p));
-        let mut r = if active {
-            let row = &link.rows.rows[0];
-            let residual = load(i).map_or(0.0, |(a, b)| link.row_residual(row, a, b));
-            let softness = row.target.softness;
-            if split {
-                residual
-            } else {
-                let mut rhs = Real::from(softness.mass_scale) * residual;
-                if softness.impulse_scale > 0.0 {
-                    let mut k_lambda = diagonal * lambda;
-                    if let Some(next) = links.get(i + 1) {
-                        k_lambda += c * next.active_lambda()[0];
-                    }
-                    if let Some(prev) = prev {
-                        k_lambda += prev.scalar.c * lambda_prev;
-                    }
-                    rhs += Real::from(softness.impulse_scale) * k_lambda;
-                }
-                rhs
-            }
-        } else {
-            0.0
-        };
-        if let Some(prev) = prev {
-            r -= prev.scalar.c * prev.scalar.r_prime;
-        }
-        links[i].scalar.r_prime = r * link.scalar.inv_s;
-        lambda_prev = lambda;
-    }
-    // Back substitution.
-    let mut next = 0.0;
-    let mut released = false;
-    for i in (0..links.len()).rev() {
-        let x = links[i].scalar.r_prime - links[i].scalar.c_prime * next;
-        out[i] = links[i].finish([x, 0.0, 0.0, 0.0, 0.0], uniform);
-        released |= links[i].would_deactivate(&out[i]);
-        next = x;
-    }
-    released
+    // Link i − 1 holds cᵢ₋₁, c'ᵢ₋₁ and r'ᵢ₋₁ (`scalar`). The sweep starts at link `start` (see [`Resume`]).
+    let Some(m) = meet.filter(|&m| m < links.len()) else {
+        scalar_side::<false, L>(links, (0, start), None, sweep);
+        return scalar_back::<false>(links, out, 0.0, sweep.uniform);
+    };
+    let (before, rest) = links.split_at_mut(m);
+    let Some((link, after)) = rest.split_first_mut() else {
+        return false;
+    };
+    let middle = &*link;
+    par::join(
+        || scalar_side::<false, L>(before, (0, start), Some(middle), sweep),
+        || scalar_side::<true, L>(after, (m + 1, 0), Some(middle), sweep),
+    );
+    let keep = sweep.stale.keeps_meet();
+    let x = scalar_meet(link, (before.last(), after.first()), (m, sweep), keep);
+    let (out_before, out_rest) = out.split_at_mut(m);
+    let Some((out_middle, out_after)) = out_rest.split_first_mut() else {
+        return false;
+    };
+    *out_middle = link.finish([x, 0.0, 0.0, 0.0, 0.0], sweep.uniform);
+    let released = link.would_deactivate(out_middle);
+    let uniform = sweep.uniform;
+    let (a, b) = par::join(
+        || scalar_back::<false>(before, out_before, x, uniform),
+        || scalar_back::<true>(after, out_after, x, uniform),
+    );
+    released | a | b
 }

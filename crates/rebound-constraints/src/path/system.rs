@@ -97,6 +97,7 @@ impl Link {
     /// The solution `y` of this link's rows from the solution `x` of `K·x = r` when every row of the path
     /// has the softness `uniform`: `y = mass_scale·x + impulse_scale·λ`, in f32 as the per-row soft step
     /// computes it (so that `λ − y` is bit for bit its `λ + Δλ`). Without a uniform softness `x` is `y`.
+    #[inline(always)]
     pub(super) fn finish(
         &self,
         mut x: [Real; MAX_ROWS],
@@ -154,8 +155,9 @@ impl Link {
     }
 
     /// Makes the diagonal block `B` of this link (`J·M⁻¹·Jᵀ` of its rows over both bodies, each diagonal
-    /// entry regularised) and its coupling block `C` with `next` through their shared body, over the first
-    /// `N` rows, in `b_block` and `c_block`. A row not in the system — inactive, or past the link's row count
+    /// entry regularised) and its coupling block `C` with `next` through their shared body (`next`'s second
+    /// element: this link's side on it, then `next`'s; `true` = body B) — the next link, or, `before`, the
+    /// previous one in a path's side solved backward — over the first `N` rows, in `b_block` and `c_block`. A row not in the system — inactive, or past the link's row count
     /// — has a zero row and column in both, which the factorisation ([`ldl_factor`]) solves to 0.
     ///
     /// `B` is symmetric: its upper triangle is computed and mirrored. Each row's `I⁻¹·J_angular`, turned once
@@ -163,7 +165,11 @@ impl Link {
     /// `i` on the shared body and `sⱼ` the next link's, `Cᵢⱼ = sⱼ·M⁻¹·sᵢᵀ = m⁻¹·(sⱼ.linear·sᵢ.linear) +
     /// sⱼ.angular·(I⁻¹·sᵢ.angular)`, so the next link's rows are not turned again here. The entries are
     /// summed in f32 (the precision of the rows), four lanes at a time, and the blocks kept in f64.
-    pub(super) fn fill_blocks<const N: usize>(&mut self, next: Option<&Link>) {
+    pub(super) fn fill_blocks<const N: usize>(
+        &mut self,
+        next: Option<(&Link, (bool, bool))>,
+        before: bool,
+    ) {
         let live = self.live_rows();
         let rows = &self.rows.rows;
         // Each row's Jacobian `[J_a,linear, J_a,angular, J_b,linear, J_b,angular]` and `M⁻¹·Jᵀ` in the same
@@ -207,7 +213,7 @@ impl Link {
         // Cᵢⱼ = sⱼ·(M⁻¹·sᵢᵀ) through the shared body (`s` = `[linear, angular]` of a row's side on it); 0
         // without a next link.
         let c = &mut self.c_block;
-        let Some((next, (this_b, next_b))) = next.zip(self.shared_with_next) else {
+        let Some((next, (this_b, next_b))) = next else {
             for row in c.iter_mut().take(N) {
                 row[..N].fill(0.0);
             }
@@ -215,6 +221,36 @@ impl Link {
         };
         let shared = if this_b { 2 } else { 0 };
         let next_live = next.live_rows();
+        if before {
+            // Toward the link before, in a path's side solved backward: `C` of that link transposed, each
+            // entry its lane products (which commute) summed as that link sums them — its `M⁻¹·sⱼᵀ`, turned
+            // when its rows were built, dotted with this link's side — so the same bits.
+            let next_rows = &next.rows;
+            let next_impulses: [[Vec4; 2]; MAX_ROWS] =
+                core::array::from_fn(|j| match next_rows.rows.get(j) {
+                    Some(row) if j < N && next_live[j] => {
+                        let [ta, tb] = next_rows.turned(j);
+                        if next_b {
+                            [row.b.linear * next_rows.mass_b.mass, tb].map(lanes)
+                        } else {
+                            [row.a.linear * next_rows.mass_a.mass, ta].map(lanes)
+                        }
+                    }
+                    _ => [Vec4::ZERO; 2],
+                });
+            for i in 0..N {
+                let (sl, sa) = (jacobian[i][shared], jacobian[i][shared + 1]);
+                for j in 0..N {
+                    c[i][j] = if live[i] && next_live[j] {
+                        let [wl, wa] = next_impulses[j];
+                        Real::from((sl * wl + sa * wa).element_sum())
+                    } else {
+                        0.0
+                    };
+                }
+            }
+            return;
+        }
         let next_sides: [[Vec4; 2]; MAX_ROWS] =
             core::array::from_fn(|j| match next.rows.rows.get(j) {
                 Some(row) if j < N && next_live[j] => {

@@ -11,6 +11,7 @@ use crate::path::{
 };
 use crate::stage::Stage;
 use rebound_dynamics::SolverBody;
+use rebound_math::par;
 
 /// How many times a direct path solve may drop rows that would push, add rows it would violate, and solve
 /// again.
@@ -57,15 +58,17 @@ impl JointSolver {
             return;
         };
         let carry_angle = if graph.is_some() { 0.0 } else { carry_angle };
-        for (link, &index) in links.iter_mut().zip(members) {
-            let j = &mut joints[index];
-            // The bodies in place serve the rows and the activation.
-            match j.pair.bodies_mut(solver_bodies) {
-                Some([a, b]) => {
-                    link_rows(j, Some((&*a, &*b)), stage, link, carry_angle);
-                    link.activate(a, b);
+        if !rows_on_pool(joints, members, links, solver_bodies, (stage, carry_angle)) {
+            for (link, &index) in links.iter_mut().zip(members) {
+                let j = &mut joints[index];
+                // The bodies in place serve the rows and the activation.
+                match j.pair.bodies_mut(solver_bodies) {
+                    Some([a, b]) => {
+                        link_rows(j, Some((&*a, &*b)), stage, link, carry_angle);
+                        link.activate(a, b);
+                    }
+                    None => link_rows(j, None, stage, link, carry_angle),
                 }
-                None => link_rows(j, None, stage, link, carry_angle),
             }
         }
         solve_links(joints, members, links, solution, solver_bodies, graph);
@@ -104,6 +107,54 @@ impl JointSolver {
             })
             .count()
     }
+}
+
+/// Paths of at least this many links build their rows over the pool ([`rows_on_pool`]).
+const ROWS_ON_POOL_MIN_LINKS: usize = 64;
+
+/// The first step of a direct pass over a long path on the pool: every link's rows at its bodies' pose
+/// ([`link_rows`]) at once, then each link's activation in path order. A link's rows read only its bodies'
+/// pose (displacements and rotations) and write the link and its joint; the activation reads and changes
+/// only velocities: so the rows may be built all before the activations, and the pass computes the bits of
+/// the joint-by-joint loop. Taken when the pool has more than one thread, the path is at least
+/// [`ROWS_ON_POOL_MIN_LINKS`] long and its joints are consecutive prepared joints in path order (as a chain
+/// or a deck built link after link is); returns whether it ran.
+fn rows_on_pool(
+    joints: &mut [PreparedJoint],
+    members: &[usize],
+    links: &mut [Link],
+    solver_bodies: &mut [SolverBody],
+    (stage, carry_angle): (&Stage, f32),
+) -> bool {
+    if !par::is_parallel() || links.len() < ROWS_ON_POOL_MIN_LINKS {
+        return false;
+    }
+    let Some(&first) = members.first() else {
+        return false;
+    };
+    let consecutive = members.iter().zip(first..).all(|(&m, k)| m == k);
+    let Some(path_joints) = joints.get_mut(first..first + members.len()) else {
+        return false;
+    };
+    if !consecutive || path_joints.len() != links.len() {
+        return false;
+    }
+    let bodies: &[SolverBody] = solver_bodies;
+    // Two tasks: a rope's rows cost less than handing out more.
+    let half = links.len().div_ceil(2);
+    par::for_each_zip_both_mut(links, path_joints, half, |link, j| {
+        // As `bodies_mut` in the loop: no rows for a joint whose two bodies are one.
+        let pair = (j.pair.index_a != j.pair.index_b)
+            .then(|| j.pair.bodies(bodies))
+            .flatten();
+        link_rows(j, pair, stage, link, carry_angle);
+    });
+    for (link, &index) in links.iter_mut().zip(members) {
+        if let Some([a, b]) = joints[index].pair.bodies_mut(solver_bodies) {
+            link.activate(a, b);
+        }
+    }
+    true
 }
 
 /// The rows of joint `j` for a direct pass at its bodies' current pose, written into `rows` (after a reset
