@@ -6,7 +6,7 @@ use crate::error::ConstraintError;
 use crate::orientation_motor::{OrientationMotor, PreparedMotor};
 use crate::pair::BodyPair;
 use crate::part::{PointPart, block_target};
-use crate::path::{JointRows, MAX_ROWS, TargetRule};
+use crate::path::{JointRows, MAX_ROWS, TargetRule, equality_violation};
 use crate::stage::Stage;
 use crate::state::JointState;
 use crate::swing_twist::{LimitRows, PreparedLimits, SwingTwistLimits};
@@ -183,7 +183,9 @@ impl PreparedBall {
             let frames = pair.frames(a, b);
             motor.solve(pair, frames, &mut state.angular_impulse, a, b, stage);
         }
-        if let Some(limits) = &mut self.limits {
+        if let Some(limits) = &mut self.limits
+            && !(on_path && limits.is_direct())
+        {
             // Each limit row acts about the pivot (`crate::part::PivotAnglePart`), so the point rows after
             // it, here or on a path, leave it be.
             let anchors = pair.anchors(a, b);
@@ -193,6 +195,73 @@ impl PreparedBall {
         if !on_path {
             solve(pair, state, a, b, stage);
         }
+    }
+
+    /// Whether a Gauss–Seidel pass visits the joint when it is on a directly solved path or graph: for its
+    /// motor or soft limits (rigid limits are solved with its point rows there).
+    pub(crate) fn is_iterated_on_path(&self) -> bool {
+        self.motor.is_some() || self.limits.is_some_and(|l| !l.is_direct())
+    }
+
+    /// The rows for the direct solve of a path or graph ([`crate::path`]) at the current pose: the point
+    /// rows ([`direct_rows`]) and, for rigid limits, the swing and twist rows
+    /// ([`PreparedLimits::push_direct_rows`]).
+    pub(crate) fn direct_rows(
+        &mut self,
+        pair: &BodyPair,
+        a: &SolverBody,
+        b: &SolverBody,
+        stage: &Stage,
+        out: &mut JointRows,
+    ) {
+        let anchors = pair.anchors(a, b);
+        PointPart::push_rows(anchors.r_a, anchors.r_b, anchors.d, stage, out);
+        if let Some(limits) = self.limits.as_mut().filter(|l| l.is_direct()) {
+            let point = PointPart::new(pair, anchors.r_a, anchors.r_b);
+            limits.push_direct_rows(pair, &point, anchors.d, pair.frames(a, b), stage, out);
+        }
+    }
+
+    /// The accumulated impulses of [`PreparedBall::direct_rows`]' rows, in row order: the point block's,
+    /// then the limit rows'.
+    #[inline]
+    pub(crate) fn direct_impulses(&self, state: &JointState) -> [f32; MAX_ROWS] {
+        let mut out = direct_impulses(state);
+        if let Some(limits) = self.limits.as_ref().filter(|l| l.is_direct()) {
+            let (lambda, count) = limits.direct_impulses(state);
+            out[3..3 + count].copy_from_slice(&lambda[..count]);
+        }
+        out
+    }
+
+    /// Writes the impulses a direct solve gave [`PreparedBall::direct_rows`]' rows back into `state`.
+    #[inline]
+    pub(crate) fn store_direct_impulses(
+        &mut self,
+        state: &mut JointState,
+        lambda: [f32; MAX_ROWS],
+    ) {
+        store_direct_impulses(state, lambda);
+        if let Some(limits) = self.limits.as_mut().filter(|l| l.is_direct()) {
+            limits.store_direct_impulses(state, &lambda[3..]);
+        }
+    }
+
+    /// The worst position error of [`PreparedBall::direct_rows`]' rows at the pose `a`, `b` (m or rad), from
+    /// the errors alone: the point rows' (as [`equality_violation`] measures them for `stage`) and the angle
+    /// past the limits.
+    pub(crate) fn direct_violation(
+        &self,
+        pair: &BodyPair,
+        a: &SolverBody,
+        b: &SolverBody,
+        stage: &Stage,
+    ) -> f32 {
+        let point = equality_violation(&direct_errors(pair, a, b), stage);
+        self.limits
+            .as_ref()
+            .filter(|l| l.is_direct())
+            .map_or(point, |l| point.max(l.excess(pair.frames(a, b))))
     }
 
     /// Stage *restitution* of the limits.

@@ -16,6 +16,7 @@ use crate::error::{ConstraintError, check_in_range};
 use crate::limits::Limits;
 use crate::pair::BodyPair;
 use crate::part::{AnglePart, PivotAnglePart, PointPart, Row, RowTarget, SwingTwist};
+use crate::path::{JointRows, TargetRule};
 use crate::soft_spring::SoftSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
@@ -214,6 +215,7 @@ impl SwingTwistLimits {
             swing_rate: rate(rows.swing.map(|(_, axis)| axis)),
             twist_rate: rate(rows.twist_axis),
             acted: [false; 3],
+            direct: DirectLimitRows::default(),
         }
     }
 }
@@ -287,12 +289,127 @@ pub(crate) struct PreparedLimits {
     twist_rate: f32,
     /// Whether the swing, lower twist and upper twist rows pushed in any pass of the step (for restitution).
     acted: [bool; 3],
+    /// The limit rows the last build of the direct rows pushed after the point rows
+    /// ([`PreparedLimits::push_direct_rows`]).
+    direct: DirectLimitRows,
+}
+
+/// Which limit rows a build of a ball joint's direct rows pushed after its point rows, in that order: the
+/// swing row, and the twist row of the bound nearer the twist angle (a lower bound pushed as an upper one,
+/// its row and error negated).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+struct DirectLimitRows {
+    swing: bool,
+    twist: Option<Side>,
 }
 
 impl PreparedLimits {
     /// The limits' description.
     pub(crate) fn limits(&self) -> &SwingTwistLimits {
         &self.limits
+    }
+
+    /// Whether the limits are solved with the point rows when the joint is on a directly solved path or
+    /// graph ([`PreparedLimits::push_direct_rows`]): rigid ones are; soft ones, whose rows are springs
+    /// outside the limits and absent inside, stay with [`PreparedLimits::solve`].
+    pub(crate) fn is_direct(&self) -> bool {
+        self.limits.softness.is_none()
+    }
+
+    /// The limit rows for the direct solve of the joint's rows ([`crate::path`]), pushed into `out` after
+    /// the point rows at the frames `frames` (world), about the pivot of `point` (built with its effective
+    /// mass) with the anchors' separation `d` (m): the swing row and the twist row of the nearer bound, each
+    /// one-sided (`λ ≤ 0`) on its pivot row ([`PivotAnglePart::direct_row`]) with the error of that row,
+    /// `C + P·d`. In the system while the limit is reached or about to be within the substep
+    /// (speculative inside, as [`PreparedLimits::solve`]'s rows), released by the active set where it
+    /// would pull.
+    pub(crate) fn push_direct_rows(
+        &mut self,
+        pair: &BodyPair,
+        point: &PointPart,
+        d: Vec3,
+        frames: (Quat, Quat),
+        stage: &Stage,
+        out: &mut JointRows,
+    ) {
+        let rows = LimitRows::new(&self.limits, frames);
+        let mut pushed = DirectLimitRows::default();
+        let mut push = |axis: Vec3, c: f32| {
+            let part = PivotAnglePart::new(pair, point, axis);
+            let c = c + part.point_impulse().dot(d);
+            let rule = TargetRule::UpperLimit;
+            let row = part
+                .direct_row(axis, rule.target(c, stage))
+                .clamped(f32::NEG_INFINITY, 0.0);
+            out.push(row, c, rule);
+        };
+        if let Some((c, axis)) = rows.swing {
+            push(axis, c);
+            pushed.swing = true;
+        }
+        if let (Some(range), Some(axis)) = (self.limits.twist, rows.twist_axis) {
+            let (c_lower, c_upper) = (rows.twist - range.lower(), rows.twist - range.upper());
+            if c_lower < -c_upper {
+                push(-axis, -c_lower);
+                pushed.twist = Some(Side::Lower);
+            } else {
+                push(axis, c_upper);
+                pushed.twist = Some(Side::Upper);
+            }
+        }
+        self.direct = pushed;
+    }
+
+    /// The accumulated impulses of the limit rows [`PreparedLimits::push_direct_rows`] pushed last, in row
+    /// order (a lower twist bound's negated, as its row is), and how many there are.
+    pub(crate) fn direct_impulses(&self, state: &JointState) -> ([f32; 2], usize) {
+        let mut out = [0.0; 2];
+        let mut count = 0;
+        if self.direct.swing {
+            out[0] = state.axial_impulse;
+            count = 1;
+        }
+        if let Some(side) = self.direct.twist {
+            out[count] = match side {
+                Side::Lower => -state.lower_impulse,
+                Side::Upper => state.upper_impulse,
+            };
+            count += 1;
+        }
+        (out, count)
+    }
+
+    /// Writes the impulses `lambda` a direct solve gave the limit rows [`PreparedLimits::push_direct_rows`]
+    /// pushed last (in row order) back into `state`; the twist bound not pushed holds none.
+    pub(crate) fn store_direct_impulses(&mut self, state: &mut JointState, lambda: &[f32]) {
+        let mut rows = lambda.iter().copied();
+        if self.direct.swing {
+            state.axial_impulse = rows.next().unwrap_or(0.0);
+            self.acted[0] |= state.axial_impulse != 0.0;
+        }
+        if let Some(side) = self.direct.twist {
+            let impulse = rows.next().unwrap_or(0.0);
+            (state.lower_impulse, state.upper_impulse) = match side {
+                Side::Lower => (-impulse, 0.0),
+                Side::Upper => (0.0, impulse),
+            };
+            self.acted[1] |= state.lower_impulse != 0.0;
+            self.acted[2] |= state.upper_impulse != 0.0;
+        }
+    }
+
+    /// The largest angle (rad) by which frames `frames` (world) are past the limits: the swing row's error
+    /// past the cone, the twist past its range; 0 within them.
+    pub(crate) fn excess(&self, frames: (Quat, Quat)) -> f32 {
+        let rows = LimitRows::new(&self.limits, frames);
+        let swing = rows.swing.map_or(0.0, |(c, _)| c.max(0.0));
+        let twist = match (self.limits.twist, rows.twist_axis) {
+            (Some(range), Some(_)) => (range.lower() - rows.twist)
+                .max(rows.twist - range.upper())
+                .max(0.0),
+            _ => 0.0,
+        };
+        swing.max(twist)
     }
 
     /// Stages *solve* and *relax*: the twist rows, then the swing row, at the frames `frames` (world), each

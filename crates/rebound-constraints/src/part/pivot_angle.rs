@@ -19,8 +19,9 @@
 //! For a rod of length `L` hung at its end, `K = 1/I_pivot` instead of `1/I_centre`: stopping it at a limit
 //! stops it, where the plain angular row left 3/4 of the rotation for the point rows to turn back.
 
-use super::{AnglePart, PointPart, Row, inverse_or_zero};
+use super::{AnglePart, PointPart, Row, RowTarget, inverse_or_zero};
 use crate::pair::BodyPair;
+use crate::path::{Row as DirectRow, Side};
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
 
@@ -61,6 +62,34 @@ impl PivotAnglePart {
     #[must_use]
     pub fn point_impulse(&self) -> Vec3 {
         self.point_impulse
+    }
+
+    /// The row about the unit world `axis` (the one given to [`PivotAnglePart::new`]) for the direct solve
+    /// of a joint's rows together with its point rows ([`crate::path`]): `J = J_angle + Pᵀ·J_point`, the
+    /// angle row with the point rows weighted by the point impulse `P` per unit impulse,
+    ///
+    /// ```text
+    /// J = [ −Pᵀ   −(n + r_a × P)ᵀ   Pᵀ   (n + r_b × P)ᵀ ]
+    /// ```
+    ///
+    /// so that its impulse `Jᵀ·λ` is the one [`Row::apply_impulse`] applies, and an accumulated impulse
+    /// means the same to a warm start whichever solve made it. Where the point rows hold (`Ċ_point = 0`) it
+    /// measures `Ċ = n·(ω_b − ω_a)`; its `K` entry is the row's effective mass's inverse and its coupling
+    /// with the point rows is `u + K_p·P = 0`.
+    #[inline]
+    pub(crate) fn direct_row(&self, axis: Vec3, target: RowTarget) -> DirectRow {
+        let p = self.point_impulse;
+        let sides = [
+            Side {
+                linear: -p,
+                angular: -(axis + self.r_a.cross(p)),
+            },
+            Side {
+                linear: p,
+                angular: axis + self.r_b.cross(p),
+            },
+        ];
+        DirectRow::new(sides, target)
     }
 }
 

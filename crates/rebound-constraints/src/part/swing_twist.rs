@@ -11,17 +11,22 @@
 //!        φ̇ = (F_a·(0, u))·(ω_b − ω_a)                              exact
 //! cone   φ_max(u) = 1/√((u_y/θ_y)² + (u_z/θ_z)²)                   θ_y, θ_z the half-angles about Y and Z
 //!        n = ∇ of (s_y/θ_y)² + (s_z/θ_z)² at s = φ_max·u, normalised: (u_y/θ_y², u_z/θ_z²)/|·|
-//!        C = (φ − φ_max(u))·(n·u) ≤ 0,   Ċ ≈ (F_a·(0, n))·(ω_b − ω_a)
+//!        C = (φ − φ_max(u))·(n·u) ≤ 0,   Ċ = j_s·(ω_b − ω_a)
+//!        j_s = F_a·(c·(0, u) + (−r'·c + (φ − r)·c')·(cot φ·(0, w) − x̂))    r = φ_max(u), c = n·u,
+//!              w = (u_z, −u_y), r' and c' their rates as u turns towards w (see docs/physics.md)
 //! ```
 //!
-//! For a circular cone `n = u` and the swing row is exact; for an elliptical one the row's direction is the
-//! cone's normal and its rate leaves out the turning of `u`, a first-order approximation that the position
-//! error `C`, measured exactly every pass, corrects.
+//! For a circular cone `n = u` and `j_s = F_a·(0, u)`. For an elliptical one `C` changes as `u` turns too,
+//! also under a twist of B about A's X axis, which carries B's axis round the cone; `j_s` is `C`'s exact
+//! rate, so that a Newton step of the position projection on the row converges as Newton does.
 
 use rebound_math::{Quat, Vec2, Vec3, real};
 
 /// Below this `|(y_s, z_s)|` (the sine of half the swing) the swing direction is taken as A's Y axis.
 const MIN_SWING_SINE: f32 = 1e-7;
+
+/// The smallest `sin φ` the swing row's rate divides by (see [`SwingTwist::cone_error`]).
+const MIN_SWING_SINE_FOR_RATE: f32 = 1e-3;
 
 /// Below this `1 + x_a·x_b` (the X axes nearly opposite, a swing near π) the twist has no defined rate and
 /// its row is left out.
@@ -79,17 +84,41 @@ impl SwingTwist {
         (denominator > MIN_TWIST_DENOMINATOR).then(|| (x_a + x_b) / denominator)
     }
 
-    /// The swing limit's error `C` (rad, ≤ 0 inside the cone) and its row's unit axis (world) for the cone of
-    /// half-angles `half_angles` = (θ_y, θ_z) (rad, each in `(0, π]`) in A's frame `frame_a`.
+    /// The swing limit's error `C` (rad, ≤ 0 inside the cone) and its row's axis `j_s` (world, `Ċ = j_s·(ω_b −
+    /// ω_a)`; unit for a circular cone) for the cone of half-angles `half_angles` = (θ_y, θ_z) (rad, each in
+    /// `(0, π]`) in A's frame `frame_a`. See the module docs for `j_s`.
     #[inline]
     #[must_use]
     pub fn cone_error(&self, frame_a: Quat, half_angles: Vec2) -> (f32, Vec3) {
         let u = self.swing_direction;
+        let phi = self.swing;
         let scaled = u / half_angles;
-        let max_swing = scaled.length().recip();
-        let normal = (scaled / half_angles).normalize_or(u);
-        let c = (self.swing - max_swing) * normal.dot(u);
-        (c, frame_a * Vec3::new(0.0, normal.x, normal.y))
+        let inv_r2 = scaled.length_squared();
+        let max_swing = inv_r2.sqrt().recip();
+        let m = scaled / half_angles;
+        let m_len = m.length();
+        let normal = (m / m_len).normalize_or(u);
+        let cosine = normal.dot(u);
+        let c = (phi - max_swing) * cosine;
+        // The swing direction's angle β (u turning towards w = (u_z, −u_y)): C's rate along it.
+        let inv2 = half_angles.recip() * half_angles.recip();
+        let (d2, d4) = (inv2.x - inv2.y, inv2.x * inv2.x - inv2.y * inv2.y);
+        let p = u.x * u.y;
+        let dr = -max_swing * max_swing * max_swing * p * d2;
+        let dc = if m_len > 0.0 {
+            p * (2.0 * d2 * m_len * m_len - inv_r2 * d4) / (m_len * m_len * m_len)
+        } else {
+            0.0
+        };
+        let along_beta = -dr * cosine + (phi - max_swing) * dc;
+        // cot φ, held where φ is far inside the cone or near a half turn (the direction, and C's rate along
+        // it, are then undefined; such a row is far from acting).
+        let phi_held = phi.max(0.5 * max_swing);
+        let (sine, cosine_held) = real::sin_cos(phi_held);
+        let cot = cosine_held / sine.max(MIN_SWING_SINE_FOR_RATE);
+        let w = Vec3::new(0.0, u.y, -u.x);
+        let axis = Vec3::new(0.0, u.x, u.y) * cosine + (w * cot - Vec3::X) * along_beta;
+        (c, frame_a * axis)
     }
 }
 
@@ -145,6 +174,38 @@ mod tests {
                 "{swing_rate} vs {}",
                 j_s.dot(delta)
             );
+        }
+    }
+
+    #[test]
+    fn an_elliptical_cones_swing_rate_is_its_jacobian_inside_on_and_past_the_cone() {
+        // Central differences of C against j_s·δ, for small rotations of B about every axis (about A's X
+        // too, which turns the swing direction), at swings inside and far past cones of aspect 1:3 (not
+        // deeper inside than half the cone, where the row holds its rate, see `cone_error`).
+        let fa = Quat::from_rotation_y(-0.4);
+        let eps = 1e-3;
+        for half in [Vec2::new(0.436, 1.31), Vec2::new(1.2, 0.4)] {
+            for (direction, swing, twist) in [
+                (Vec3::new(0.0, 1.0, 1.0), 0.7f32, 0.3f32),
+                (Vec3::new(0.0, 1.0, 3.0), 1.6, -0.5),
+                (Vec3::new(0.0, -3.0, 1.0), 0.9, 1.1),
+                (Vec3::new(0.0, 0.2, -1.0), 0.9, 0.0),
+            ] {
+                let fb = fa
+                    * Quat::from_axis_angle(direction.normalize(), swing)
+                    * Quat::from_rotation_x(twist);
+                let (_, j_s) = SwingTwist::new(fa, fb).cone_error(fa, half);
+                for delta in [Vec3::X, Vec3::Y, Vec3::Z, fa * Vec3::X] {
+                    let (plus, minus) = (turned(fb, delta * eps), turned(fb, -delta * eps));
+                    let (p, m) = (SwingTwist::new(fa, plus), SwingTwist::new(fa, minus));
+                    let rate = (p.cone_error(fa, half).0 - m.cone_error(fa, half).0) / (2.0 * eps);
+                    assert!(
+                        (rate - j_s.dot(delta)).abs() < 5e-3 * (1.0 + rate.abs()),
+                        "half {half}, swing {swing} about {direction}: {rate} vs {}",
+                        j_s.dot(delta)
+                    );
+                }
+            }
         }
     }
 

@@ -68,12 +68,12 @@ impl FactoredRows {
         self.count == link.rows.count && self.live == link.live_rows()
     }
 
-    /// Whether `link` has the rows in the system these were, with the same compliance, each within
-    /// [`GRAPH_KEEP_TOLERANCE`] of them.
-    fn holds_for(&self, link: &Link) -> bool {
+    /// Whether `link` has rows with the same compliance as these, each within [`GRAPH_KEEP_TOLERANCE`] of
+    /// them.
+    fn moved_within_tolerance(&self, link: &Link) -> bool {
         // The same bits, not merely close values: the compliance enters `K` as it is.
         let bits = |c: &[Real; MAX_ROWS]| c.map(Real::to_bits);
-        if !self.has_pattern_of(link) || bits(&self.compliance) != bits(&compliance(link)) {
+        if bits(&self.compliance) != bits(&compliance(link)) {
             return false;
         }
         let tolerance = GRAPH_KEEP_TOLERANCE * GRAPH_KEEP_TOLERANCE;
@@ -92,6 +92,18 @@ impl FactoredRows {
             })
     }
 }
+
+/// Whether row `k` of `link` is a one-sided row a joint appends to its equality rows (a ball joint's
+/// limits, after its point rows): such rows enter and leave the system as the limits are reached, and a
+/// pass whose only change from the rows the factorisation was made with is a few of them keeps it
+/// ([`DirectGraph::solve_changed`]). A rope's row (a link's first) is not one.
+fn is_appended(link: &Link, k: usize) -> bool {
+    k > 0 && k < link.rows.count && link.rows.rows[k].is_bounded_at_zero()
+}
+
+/// The most appended rows ([`is_appended`]) a pass may have in or out of the system against the rows the
+/// factorisation was made with, for it to keep that factorisation.
+const MAX_CHANGED_ROWS: usize = 4;
 
 /// The compliance each row of `link` adds to its diagonal of `K` ([`DirectGraph::assemble`]).
 fn compliance(link: &Link) -> [Real; MAX_ROWS] {
@@ -136,6 +148,15 @@ pub(crate) struct DirectGraph {
     lambda: Vec<Real>,
     k_lambda: Vec<Real>,
     deltas: Vec<[Vec3; 2]>,
+    /// Scratch of a solve whose appended rows differ from the factorisation's
+    /// ([`DirectGraph::solve_changed`]): each changed row's (slot, row, index in `K`, whether it is in the
+    /// system now), their columns over the factorised rows (dense, `n` each), those solved with the factors,
+    /// their bordered Schur complement (row-major) and its right-hand side.
+    changed: Vec<(usize, usize, usize, bool)>,
+    changed_columns: Vec<Real>,
+    solved_columns: Vec<Real>,
+    schur: Vec<Real>,
+    schur_rhs: Vec<Real>,
     /// Whether `matrix` and `ldl` hold a factorisation of this step, and per member the rows it was made
     /// for.
     factored: bool,
@@ -215,15 +236,30 @@ impl DirectGraph {
         fill
     }
 
-    /// Whether the factorisation made last serves a pass over `links`: the same rows in the system with the
-    /// same compliance, each moved by less than [`GRAPH_KEEP_TOLERANCE`].
+    /// Whether the factorisation made last serves a pass over `links`: the same rows in the system but at
+    /// most [`MAX_CHANGED_ROWS`] appended ones ([`is_appended`], taken in or out by
+    /// [`DirectGraph::solve_changed`]), with the same compliance, each moved by less than
+    /// [`GRAPH_KEEP_TOLERANCE`].
     fn keeps_factorisation(&self, links: &[Link]) -> bool {
-        self.factored
-            && self.kept.len() == links.len()
-            && links
-                .iter()
-                .zip(&self.kept)
-                .all(|(link, kept)| kept.holds_for(link))
+        if !self.factored || self.kept.len() != links.len() {
+            return false;
+        }
+        let mut changed = 0;
+        for (link, kept) in links.iter().zip(&self.kept) {
+            let live = link.live_rows();
+            for k in 0..MAX_ROWS {
+                if live[k] != kept.live[k] {
+                    if !is_appended(link, k) {
+                        return false;
+                    }
+                    changed += 1;
+                }
+            }
+            if kept.count != link.rows.count || !kept.moved_within_tolerance(link) {
+                return false;
+            }
+        }
+        changed <= MAX_CHANGED_ROWS
     }
 
     /// One solve of the graph's system (as [`super::solve_path`] of a path): the residuals from the bodies'
@@ -270,6 +306,7 @@ impl DirectGraph {
                 self.rhs[at + k] = r;
             }
         }
+        self.couple_changed(links);
         if shape.uniform.is_none() {
             // The soft step of every row at once: rhs = mass_scale∘r + impulse_scale∘(K·λ).
             self.lambda.clear();
@@ -281,6 +318,7 @@ impl DirectGraph {
             }
             self.k_lambda.resize(n, 0.0);
             self.matrix.multiply(&self.lambda, &mut self.k_lambda);
+            self.multiply_changed();
             for (slot, link) in links.iter().enumerate() {
                 let (at, count) = (self.offset[slot], link.rows.count);
                 let mut r = [0.0; MAX_ROWS];
@@ -291,7 +329,11 @@ impl DirectGraph {
                 self.rhs[at..at + count].copy_from_slice(&soft[..count]);
             }
         }
-        self.ldl.solve(&mut self.rhs);
+        if self.changed.is_empty() {
+            self.ldl.solve(&mut self.rhs);
+        } else {
+            self.solve_changed();
+        }
         let mut released = false;
         for ((slot, link), out) in links.iter().enumerate().zip(out.iter_mut()) {
             let (at, count) = (self.offset[slot], link.rows.count);
@@ -382,6 +424,141 @@ impl DirectGraph {
         }
     }
 
+    /// The appended rows whose place in the system differs from the factorisation's (added, or left out)
+    /// and, for an added one, its column of `K` at the pass's rows over the factorised rows still in the
+    /// system (dense, in `changed_columns`) and its entries with the other added rows (`schur`, before the
+    /// complement is taken), each diagonal entry regularised as in [`DirectGraph::assemble`].
+    fn couple_changed(&mut self, links: &[Link]) {
+        self.changed.clear();
+        for (slot, (link, kept)) in links.iter().zip(&self.kept).enumerate() {
+            let live = link.live_rows();
+            for k in (0..link.rows.count).filter(|&k| live[k] != kept.live[k]) {
+                self.changed.push((slot, k, self.offset[slot] + k, live[k]));
+            }
+        }
+        let (n, s) = (self.matrix.order(), self.changed.len());
+        self.changed_columns.clear();
+        self.changed_columns.resize(n * s, 0.0);
+        self.schur.clear();
+        self.schur.resize(s * s, 0.0);
+        let own = [Some((false, false)), Some((true, true))];
+        let kept = &self.kept;
+        for (e, &(q, k, at, added)) in self.changed.iter().enumerate() {
+            let column = &mut self.changed_columns[e * n..(e + 1) * n];
+            if !added {
+                // Left out: its unknown is held at 0 by a multiplier on the unit column.
+                column[at] = 1.0;
+                continue;
+            }
+            let inverse = inverse_jacobians(&links[q])[k];
+            let mut add = |slot: usize, sides: [Option<(bool, bool)>; 2]| {
+                let link = &links[slot];
+                let live = link.live_rows();
+                for (i, row) in link.rows.rows().iter().enumerate() {
+                    if live[i] && kept[slot].live[i] {
+                        column[self.offset[slot] + i] = coupling(row, &inverse, sides);
+                    }
+                }
+            };
+            add(q, own);
+            for c in &self.couplings[q] {
+                add(c.other, c.sides);
+            }
+            for (f, &(slot, l, _, other_added)) in self.changed.iter().enumerate() {
+                if !other_added {
+                    continue;
+                }
+                let row = &links[slot].rows.rows[l];
+                let sides = if slot == q {
+                    Some(own)
+                } else {
+                    self.couplings[q]
+                        .iter()
+                        .find(|c| c.other == slot)
+                        .map(|c| c.sides)
+                };
+                let mut value = sides.map_or(0.0, |sides| coupling(row, &inverse, sides));
+                if f == e {
+                    value *= 1.0 + GRAPH_REGULARIZATION;
+                    if links[q].mode == Mode::Position {
+                        value += links[q].compliance[k];
+                    }
+                }
+                self.schur[e * s + f] = value;
+            }
+        }
+    }
+
+    /// Makes `k_lambda` (`A·λ` of the factorised matrix `A`) the pass's `K·λ`: the added rows' couplings
+    /// (their entries of `A·λ` are `λ` itself, `A` having a 1 on their diagonals). A row left out has
+    /// `λ = 0` and an entry no one reads.
+    fn multiply_changed(&mut self) {
+        let (n, s) = (self.matrix.order(), self.changed.len());
+        for (e, &(_, _, at, added)) in self.changed.iter().enumerate() {
+            if !added {
+                continue;
+            }
+            let column = &self.changed_columns[e * n..(e + 1) * n];
+            let lambda = self.lambda[at];
+            let mut own = 0.0;
+            for (i, &value) in column.iter().enumerate() {
+                self.k_lambda[i] += value * lambda;
+                own += value * self.lambda[i];
+            }
+            for (f, &(_, _, other, _)) in self.changed.iter().enumerate() {
+                own += self.schur[e * s + f] * self.lambda[other];
+            }
+            self.k_lambda[at] = own;
+        }
+    }
+
+    /// `K·x = rhs` (in `rhs`) with the factorisation of `A`, made with other appended rows in the system:
+    /// with `G` the changed rows' columns (an added row's coupling with the rows of `A` still in the
+    /// system, a left-out row's unit column, whose multiplier holds its unknown at 0) and `E` the added
+    /// rows' block (0 for the left-out ones), the bordered system's Schur complement
+    ///
+    /// ```text
+    /// z = A⁻¹·r_A,   Y = A⁻¹·G,   S = E − Gᵀ·Y,   u = S⁻¹·(r_E − Gᵀ·z),   x = z − Y·u
+    /// ```
+    ///
+    /// (`r_E` the added rows' right-hand sides, 0 for the others) — `s + 1` solves with the kept factors
+    /// and a dense `s × s` elimination, `s ≤` [`MAX_CHANGED_ROWS`]. An added row takes its `u`, a left-out
+    /// row 0.
+    fn solve_changed(&mut self) {
+        let (n, s) = (self.matrix.order(), self.changed.len());
+        self.schur_rhs.clear();
+        for &(_, _, at, added) in &self.changed {
+            self.schur_rhs.push(if added { self.rhs[at] } else { 0.0 });
+            self.rhs[at] = 0.0;
+        }
+        self.ldl.solve(&mut self.rhs);
+        self.solved_columns.clear();
+        self.solved_columns.extend_from_slice(&self.changed_columns);
+        for f in 0..s {
+            self.ldl.solve(&mut self.solved_columns[f * n..(f + 1) * n]);
+        }
+        for e in 0..s {
+            let column = &self.changed_columns[e * n..(e + 1) * n];
+            self.schur_rhs[e] -= dot(column, &self.rhs);
+            for f in 0..s {
+                self.schur[e * s + f] -= dot(column, &self.solved_columns[f * n..(f + 1) * n]);
+            }
+        }
+        eliminate(&mut self.schur, &mut self.schur_rhs, s);
+        for (f, &u) in self.schur_rhs.iter().enumerate() {
+            for (r, &y) in self
+                .rhs
+                .iter_mut()
+                .zip(&self.solved_columns[f * n..(f + 1) * n])
+            {
+                *r -= y * u;
+            }
+        }
+        for (&(_, _, at, added), &u) in self.changed.iter().zip(&self.schur_rhs) {
+            self.rhs[at] = if added { u } else { 0.0 };
+        }
+    }
+
     /// Activates every row bounded at 0 left out of the system that the solution `out` of the others would
     /// violate (see [`super::activate_violations`]): its `Ċ + bias` (or `C` in a projection) with the
     /// bodies' changes from every link's update. `load(i)` gives member `i`'s bodies. Returns whether any
@@ -443,6 +620,58 @@ impl DirectGraph {
             }
         }
         any
+    }
+}
+
+/// `a·b` over the common length.
+fn dot(a: &[Real], b: &[Real]) -> Real {
+    a.iter().zip(b).map(|(a, b)| a * b).sum()
+}
+
+/// Solves `S·u = b` in place (`u` in `b`) for the `s × s` matrix `S` (row-major, destroyed) by Gaussian
+/// elimination with partial pivoting (`S` of [`DirectGraph::solve_changed`] is symmetric but indefinite); a
+/// pivot at or below 10⁻¹² of the largest entry counts as zero and its unknown is 0.
+fn eliminate(a: &mut [Real], b: &mut [Real], s: usize) {
+    let tiny = 1e-12 * a.iter().fold(0.0, |m: Real, v| m.max(v.abs()));
+    // `s ≤ MAX_CHANGED_ROWS`: a pass with more changed rows factorises again.
+    let mut zero = [false; MAX_CHANGED_ROWS];
+    for j in 0..s {
+        let Some(pivot) = (j..s).max_by(|&p, &q| a[p * s + j].abs().total_cmp(&a[q * s + j].abs()))
+        else {
+            continue;
+        };
+        if a[pivot * s + j].abs() <= tiny {
+            if let Some(zero) = zero.get_mut(j) {
+                *zero = true;
+            }
+            continue;
+        }
+        if pivot != j {
+            for c in 0..s {
+                a.swap(j * s + c, pivot * s + c);
+            }
+            b.swap(j, pivot);
+        }
+        for i in j + 1..s {
+            let factor = a[i * s + j] / a[j * s + j];
+            if factor != 0.0 {
+                for c in j..s {
+                    a[i * s + c] -= factor * a[j * s + c];
+                }
+                b[i] -= factor * b[j];
+            }
+        }
+    }
+    for j in (0..s).rev() {
+        if zero.get(j).copied().unwrap_or(true) {
+            b[j] = 0.0;
+            continue;
+        }
+        let mut value = b[j];
+        for c in j + 1..s {
+            value -= a[j * s + c] * b[c];
+        }
+        b[j] = value / a[j * s + j];
     }
 }
 

@@ -180,7 +180,7 @@ impl Prepared {
     pub(super) fn is_iterated(&self, on_path: bool) -> bool {
         match self {
             Self::Hinge(hinge) => !on_path || !hinge.has_no_coordinate_rows(),
-            Self::LimitedBall(_) => true,
+            Self::LimitedBall(ball) => !on_path || ball.is_iterated_on_path(),
             _ => !on_path,
         }
     }
@@ -224,7 +224,8 @@ impl Prepared {
         match self {
             Self::Rope(p) => p.direct_row(pair, (a, b), stage, rows),
             Self::Rod(p) => p.direct_row(pair, (a, b), stage, rows),
-            Self::Ball | Self::LimitedBall(_) => ball::direct_rows(pair, a, b, stage, rows),
+            Self::Ball => ball::direct_rows(pair, a, b, stage, rows),
+            Self::LimitedBall(p) => p.direct_rows(pair, a, b, stage, rows),
             Self::Hinge(_) => PreparedHinge::direct_rows(pair, a, b, stage, rows),
             _ => return false,
         }
@@ -249,7 +250,8 @@ impl Prepared {
         match self {
             Self::Rope(p) => p.store_direct_impulses(state, lambda),
             Self::Rod(_) => PreparedRod::store_direct_impulses(state, lambda),
-            Self::Ball | Self::LimitedBall(_) => ball::store_direct_impulses(state, lambda),
+            Self::Ball => ball::store_direct_impulses(state, lambda),
+            Self::LimitedBall(p) => p.store_direct_impulses(state, lambda),
             Self::Hinge(_) => PreparedHinge::store_direct_impulses(state, lambda),
             _ => {}
         }
@@ -266,9 +268,8 @@ impl Prepared {
         stage: &Stage,
     ) -> Option<f32> {
         match self {
-            Self::Ball | Self::LimitedBall(_) => {
-                Some(equality_violation(&ball::direct_errors(pair, a, b), stage))
-            }
+            Self::Ball => Some(equality_violation(&ball::direct_errors(pair, a, b), stage)),
+            Self::LimitedBall(p) => Some(p.direct_violation(pair, a, b, stage)),
             Self::Hinge(_) => Some(equality_violation(
                 &PreparedHinge::direct_errors(pair, a, b),
                 stage,
@@ -468,7 +469,8 @@ pub(super) fn state_lambda(j: &PreparedJoint) -> [f32; MAX_ROWS] {
     match &j.kind {
         Prepared::Rope(_) => PreparedRope::direct_impulses(s),
         Prepared::Rod(_) => PreparedRod::direct_impulses(s),
-        Prepared::Ball | Prepared::LimitedBall(_) => ball::direct_impulses(s),
+        Prepared::Ball => ball::direct_impulses(s),
+        Prepared::LimitedBall(p) => p.direct_impulses(s),
         Prepared::Hinge(_) => PreparedHinge::direct_impulses(s),
         _ => [0.0; MAX_ROWS],
     }
