@@ -309,6 +309,7 @@ impl MassProperties {
     /// Inverse inertia tensor in the body frame (1/(kg·m²)). A diagonal tensor inverts per axis with a zero
     /// moment giving a zero inverse (a locked axis); a full tensor inverts as a matrix, or gives zero where
     /// singular.
+    #[inline]
     #[must_use]
     pub fn local_inv_inertia(&self) -> Mat3 {
         let m = self.local_inertia;
