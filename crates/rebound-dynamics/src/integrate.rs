@@ -62,11 +62,10 @@ pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ct
         }
         state.linear_velocity = v + h * linear_acceleration;
 
-        let mut omega = state.angular_velocity;
         if p.gyroscopic {
             let rotation = state.delta_rotation * p.rotation;
-            omega = gyroscopic_iterations_with_norm(
-                omega,
+            state.angular_velocity = gyroscopic_iterations_with_norm(
+                state.angular_velocity,
                 rotation,
                 (&p.local_inertia, &p.local_inv_inertia),
                 p.inv_inertia_norm,
@@ -75,14 +74,15 @@ pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ct
                 true,
             );
         }
+        let mut omega = state.angular_velocity;
         if p.angular_damping != 0.0 {
             omega /= 1.0 + h * p.angular_damping;
         }
         state.angular_velocity = omega
-            + if p.torque == Vec3::ZERO {
-                Vec3::ZERO
-            } else {
+            + if p.has_torque {
                 h * (p.inv_inertia_world * p.torque)
+            } else {
+                Vec3::ZERO
             };
         state.linear_velocity = flush_tiny(state.linear_velocity);
         state.angular_velocity = flush_tiny(state.angular_velocity);

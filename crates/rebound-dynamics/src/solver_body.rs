@@ -104,6 +104,8 @@ pub struct BodyParams {
     pub force: Vec3,
     /// Applied torque (N·m).
     pub torque: Vec3,
+    /// Whether `torque` is not zero: integration skips the product with a zero torque.
+    pub has_torque: bool,
     /// Gravity scale.
     pub gravity_scale: f32,
     /// Linear damping (1/s).
@@ -158,6 +160,7 @@ impl BodyParams {
         local_center_of_mass: Vec3::ZERO,
         force: Vec3::ZERO,
         torque: Vec3::ZERO,
+        has_torque: false,
         gravity_scale: 0.0,
         linear_damping: 0.0,
         angular_damping: 0.0,
@@ -205,6 +208,7 @@ impl BodyParams {
             local_center_of_mass: mass.local_center_of_mass(),
             force: body.force(),
             torque: body.torque(),
+            has_torque: body.torque() != Vec3::ZERO,
             gravity_scale: body.gravity_scale(),
             linear_damping: body.linear_damping(),
             angular_damping: body.angular_damping(),
