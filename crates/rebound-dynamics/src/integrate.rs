@@ -35,6 +35,7 @@
 //! Without it, ω stays fixed in world space while the inertia turns, so `L` is not conserved (the `rotation`
 //! test shows it).
 
+use crate::solver_body::inverse_inertia_norm;
 use crate::{BodyParams, LockedAxes, Motion, SolverBody, StepContext};
 use rebound_math::glam::{Mat3A, Vec3A};
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
@@ -61,19 +62,27 @@ pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ct
         }
         state.linear_velocity = v + h * linear_acceleration;
 
-        let mut omega = state.angular_velocity;
         if p.gyroscopic {
             let rotation = state.delta_rotation * p.rotation;
-            omega = solve_gyroscopic(omega, rotation, &p.local_inertia, &p.local_inv_inertia, h);
+            state.angular_velocity = gyroscopic_iterations_with_norm(
+                state.angular_velocity,
+                rotation,
+                (&p.local_inertia, &p.local_inv_inertia),
+                p.inv_inertia_norm,
+                h,
+                GYROSCOPIC_ITERATIONS,
+                true,
+            );
         }
+        let mut omega = state.angular_velocity;
         if p.angular_damping != 0.0 {
             omega /= 1.0 + h * p.angular_damping;
         }
         state.angular_velocity = omega
-            + if p.torque == Vec3::ZERO {
-                Vec3::ZERO
-            } else {
+            + if p.has_torque {
                 h * (p.inv_inertia_world * p.torque)
+            } else {
+                Vec3::ZERO
             };
         state.linear_velocity = flush_tiny(state.linear_velocity);
         state.angular_velocity = flush_tiny(state.angular_velocity);
@@ -156,7 +165,30 @@ pub fn solve_gyroscopic(
 fn gyroscopic_iterations(
     angular_velocity: Vec3,
     rotation: Quat,
+    tensors: (&Mat3, &Mat3),
+    h: f32,
+    iterations: usize,
+    stop_early: bool,
+) -> Vec3 {
+    gyroscopic_iterations_with_norm(
+        angular_velocity,
+        rotation,
+        tensors,
+        inverse_inertia_norm(tensors.1),
+        h,
+        iterations,
+        stop_early,
+    )
+}
+
+/// [`gyroscopic_iterations`] given the inverse inertia's norm ([`inverse_inertia_norm`]: a cheap upper
+/// bound on its largest eigenvalue).
+#[inline]
+fn gyroscopic_iterations_with_norm(
+    angular_velocity: Vec3,
+    rotation: Quat,
     (local_inertia, local_inv_inertia): (&Mat3, &Mat3),
+    inv_inertia_norm: f32,
     h: f32,
     iterations: usize,
     stop_early: bool,
@@ -174,7 +206,7 @@ fn gyroscopic_iterations(
     // The fixed-point map's derivative is about `½·h·|I⁻¹|·|L|` (`h·|ω|` times the inertia's anisotropy):
     // where that is small, plain iterations converge fast; elsewhere (a fast spin, or a thin rod turning
     // about a skew axis) they stop contracting or diverge, and Newton's method takes over.
-    let stiffness = half_h * momentum.length() * frobenius(&inv_inertia);
+    let stiffness = half_h * momentum.length() * inv_inertia_norm;
     if stiffness < NEWTON_FROM_STIFFNESS {
         for iteration in 0..iterations {
             let FixedPointIterate { next, x } =
@@ -233,12 +265,6 @@ fn gyroscopic_iterations(
 /// Estimated derivative of the fixed-point map (dimensionless) from which the gyroscopic solve uses Newton's
 /// method: below it two fixed-point iterations leave an error under 0.1² of the first change.
 const NEWTON_FROM_STIFFNESS: f32 = 0.1;
-
-/// Frobenius norm of `m`: a cheap upper bound on its largest eigenvalue.
-#[inline]
-fn frobenius(m: &Mat3A) -> f32 {
-    (m.x_axis.length_squared() + m.y_axis.length_squared() + m.z_axis.length_squared()).sqrt()
-}
 
 /// Most Newton iterations of the gyroscopic solve; it stops once a step moves ω by under 3e-7·|ω|
 /// (a few f32 ulps; each step squares the relative error).

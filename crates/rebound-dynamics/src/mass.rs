@@ -7,6 +7,7 @@
 //! their mass properties for reference, but the solver sees inverse mass 0 and inverse inertia 0.
 
 use crate::DynamicsError;
+use rebound_math::glam::Vec3A;
 use rebound_math::validity::{check_finite_vec3, check_positive};
 use rebound_math::{Mat3, Pose, Vec3, inertia};
 
@@ -308,17 +309,22 @@ impl MassProperties {
     /// Inverse inertia tensor in the body frame (1/(kg·m²)). A diagonal tensor inverts per axis with a zero
     /// moment giving a zero inverse (a locked axis); a full tensor inverts as a matrix, or gives zero where
     /// singular.
+    #[inline]
     #[must_use]
     pub fn local_inv_inertia(&self) -> Mat3 {
         let m = self.local_inertia;
-        let diagonal = Vec3::new(m.x_axis.x, m.y_axis.y, m.z_axis.z);
-        if Mat3::from_diagonal(diagonal) == m {
-            let invert = |v: f32| if v > 0.0 { 1.0 / v } else { 0.0 };
-            return Mat3::from_diagonal(Vec3::new(
-                invert(diagonal.x),
-                invert(diagonal.y),
-                invert(diagonal.z),
-            ));
+        let diagonal = Vec3A::new(m.x_axis.x, m.y_axis.y, m.z_axis.z);
+        // Diagonal: the six off-diagonal entries zero (and the moments numbers). The three inverses side by
+        // side (each lane the same division as alone), a zero moment giving zero.
+        let off_diagonal = Vec3A::new(m.x_axis.y, m.x_axis.z, m.y_axis.z).abs()
+            + Vec3A::new(m.y_axis.x, m.z_axis.x, m.z_axis.y).abs();
+        if off_diagonal.cmpeq(Vec3A::ZERO).all() && diagonal.cmpeq(diagonal).all() {
+            let inverse = Vec3A::select(
+                diagonal.cmpgt(Vec3A::ZERO),
+                Vec3A::ONE / diagonal,
+                Vec3A::ZERO,
+            );
+            return Mat3::from_diagonal(inverse.into());
         }
         let det = m.determinant();
         if det > 0.0 && det.is_finite() {

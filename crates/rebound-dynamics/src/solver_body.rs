@@ -8,6 +8,7 @@
 //! coordinates (Box2D v3's `b2BodyState`).
 
 use crate::{BodyType, Integrator, LockedAxes, RigidBody};
+use rebound_math::glam::Mat3A;
 use rebound_math::{Mat3, Pose, Quat, Vec3, inertia, rotate};
 
 /// The hot state of one body in the solver: 64 bytes, one cache line (`Quat` is 16-byte aligned; the three
@@ -103,6 +104,8 @@ pub struct BodyParams {
     pub force: Vec3,
     /// Applied torque (N·m).
     pub torque: Vec3,
+    /// Whether `torque` is not zero: integration skips the product with a zero torque.
+    pub has_torque: bool,
     /// Gravity scale.
     pub gravity_scale: f32,
     /// Linear damping (1/s).
@@ -113,8 +116,21 @@ pub struct BodyParams {
     pub motion: Motion,
     /// Whether the gyroscopic term is integrated.
     pub gyroscopic: bool,
+    /// The Frobenius norm of `local_inv_inertia` (1/(kg·m²)), read by the gyroscopic solve to choose its
+    /// method; computed only for a body with `gyroscopic` set, 0 otherwise.
+    pub inv_inertia_norm: f32,
     /// The world axes the body may not move along or turn about ([`LockedAxes`]).
     pub locks: LockedAxes,
+}
+
+/// The Frobenius norm of a body-frame inverse inertia (1/(kg·m²)), in 16-byte columns: a cheap upper bound
+/// on its largest eigenvalue, which the gyroscopic solve (`crate::integrate`) reads to choose its method.
+/// [`BodyParams::inv_inertia_norm`] is this, computed once per step.
+#[inline]
+#[must_use]
+pub(crate) fn inverse_inertia_norm(local_inv_inertia: &Mat3) -> f32 {
+    let m = Mat3A::from(*local_inv_inertia);
+    (m.x_axis.length_squared() + m.y_axis.length_squared() + m.z_axis.length_squared()).sqrt()
 }
 
 /// The world inverse inertia of a dynamic `body` that may not turn about `locks`' rotation axes: the inverse
@@ -144,11 +160,13 @@ impl BodyParams {
         local_center_of_mass: Vec3::ZERO,
         force: Vec3::ZERO,
         torque: Vec3::ZERO,
+        has_torque: false,
         gravity_scale: 0.0,
         linear_damping: 0.0,
         angular_damping: 0.0,
         motion: Motion::Fixed,
         gyroscopic: false,
+        inv_inertia_norm: 0.0,
         locks: LockedAxes::NONE,
     };
 
@@ -165,13 +183,21 @@ impl BodyParams {
         // Inverted once (it is not stored): `RigidBody::inv_inertia_world` would invert it again.
         let local_inv_inertia = body.local_inv_inertia();
         let locks = body.locked_axes();
-        // An isotropic tensor (a ball, a cube) comes back as it is (`rotate_inertia`).
-        let mut inv_inertia_world = inertia::rotate_inertia(body.rotation(), local_inv_inertia);
+        // An isotropic tensor (a ball, a cube) has an isotropic inverse, the same in every frame: what
+        // `rotate_inertia` gives back unchanged, without its test.
+        let isotropic = mass.is_isotropic();
+        let mut inv_inertia_world = if isotropic {
+            local_inv_inertia
+        } else {
+            inertia::rotate_inertia(body.rotation(), local_inv_inertia)
+        };
         if locks.is_any()
             && let Some(locked) = locked_inv_inertia(body, locks)
         {
             inv_inertia_world = locked;
         }
+        // ω × I·ω vanishes for an isotropic tensor (balls, cubes): skip the solve, not just the result.
+        let gyroscopic = body.gyroscopic() && !isotropic;
         Self {
             inv_mass: body.inv_mass(),
             inv_inertia_world,
@@ -182,12 +208,17 @@ impl BodyParams {
             local_center_of_mass: mass.local_center_of_mass(),
             force: body.force(),
             torque: body.torque(),
+            has_torque: body.torque() != Vec3::ZERO,
             gravity_scale: body.gravity_scale(),
             linear_damping: body.linear_damping(),
             angular_damping: body.angular_damping(),
             motion,
-            // ω × I·ω vanishes for an isotropic tensor (balls, cubes): skip the solve, not just the result.
-            gyroscopic: body.gyroscopic() && !mass.is_isotropic(),
+            gyroscopic,
+            inv_inertia_norm: if gyroscopic {
+                inverse_inertia_norm(&local_inv_inertia)
+            } else {
+                0.0
+            },
             locks,
         }
     }

@@ -66,6 +66,9 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
     s.states.clear();
     s.params.clear();
     s.locked.clear();
+    // On one thread each body's solver state and parameters are built as it is met; with a pool, after
+    // the walk, over the pool.
+    let serial = !par::is_parallel();
     for (index, entry) in bodies.arena.iter() {
         let body = &entry.body;
         if body.is_sleeping() || body.body_type() == BodyType::Fixed || entry.quarantined {
@@ -76,6 +79,13 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
         }
         s.solver_index[index.index as usize] = s.solver_handles.len() as u32;
         s.solver_handles.push(Some(BodyHandle(index)));
+        if serial {
+            s.states.push(SolverBody::from_body(body));
+            s.params.push(BodyParams::from_body(body));
+        }
+    }
+    if serial {
+        return;
     }
     // Each body's solver state and parameters read that body alone: over the pool, kept in index order.
     let body = |handle: &Option<BodyHandle>| handle.and_then(|h| bodies.get(h));

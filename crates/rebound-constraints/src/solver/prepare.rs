@@ -157,7 +157,8 @@ impl JointSolver {
             topology,
             ..
         } = self;
-        if !settings.direct_chains {
+        // No joint, no path: nothing to search (a world of contacts alone walks no per-body array).
+        if !settings.direct_chains || joints.is_empty() {
             topology.clear();
             return;
         }
@@ -214,6 +215,11 @@ impl JointSolver {
             topology,
             ..
         } = self;
+        // No path, nothing closed: the count of joints per body is not needed.
+        if topology.paths.is_empty() {
+            topology.closed.clear();
+            return;
+        }
         topology.find_closed(
             body_count,
             joints.len(),
@@ -239,7 +245,8 @@ impl JointSolver {
     /// The joint graph and its tethers (see [`crate::path::tether`]).
     pub(super) fn analyse_graph(&mut self, params: &[BodyParams]) {
         self.tethers.clear();
-        if !self.settings.tethers {
+        // No joint, no tether: the search would walk every body for nothing.
+        if !self.settings.tethers || self.joints.is_empty() {
             return;
         }
         // Every joint on one directly solved path (a rope chain, a bridge): each body's way to a fixed body

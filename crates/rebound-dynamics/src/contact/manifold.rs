@@ -139,6 +139,7 @@ impl Contact {
     }
 
     /// The points in use.
+    #[inline]
     #[must_use]
     pub fn points(&self) -> &[ContactPoint] {
         &self.points[..self.point_count.min(MAX_CONTACT_POINTS)]
