@@ -104,6 +104,32 @@ where
     }
 }
 
+/// Calls `f(index, item, with)` for every pair of `items` and `with`, both changed in place (zipped: the
+/// shorter sets the length), each once, on as many threads as the pool has: one section where two stages
+/// over the same items would open two.
+#[inline]
+pub fn for_each_indexed_zip_both_mut<T, U, F>(items: &mut [T], with: &mut [U], min_len: usize, f: F)
+where
+    T: Send,
+    U: Send,
+    F: Fn(usize, &mut T, &mut U) + Sync + Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() && items.len() > min_len {
+        items
+            .par_iter_mut()
+            .zip(with)
+            .with_min_len(min_len.max(1))
+            .enumerate()
+            .for_each(|(i, (item, w))| f(i, item, w));
+        return;
+    }
+    let _ = min_len;
+    for (i, (item, w)) in items.iter_mut().zip(with).enumerate() {
+        f(i, item, w);
+    }
+}
+
 /// `out` becomes `[f(0, &items[0]), f(1, &items[1]), …]`, in index order whichever thread computed each
 /// (`out`'s allocation is reused).
 #[inline]
@@ -170,6 +196,10 @@ mod tests {
             *w += *x;
             *x = 0;
         });
+        for_each_indexed_zip_both_mut(&mut items, &mut with, 8, |i, x, w| {
+            *x = *w - i as u32;
+        });
+        assert!(items.iter().all(|&x| x == 1));
         assert!(items.iter().all(|&x| x == 0));
         assert!(with.iter().enumerate().all(|(i, &w)| w == i as u32 + 1));
     }
