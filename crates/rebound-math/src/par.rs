@@ -228,12 +228,12 @@ mod tests {
             *w += *x;
             *x = 0;
         });
+        assert!(items.iter().all(|&x| x == 0));
+        assert!(with.iter().enumerate().all(|(i, &w)| w == i as u32 + 1));
         for_each_indexed_zip_both_mut(&mut items, &mut with, 8, |i, x, w| {
             *x = *w - i as u32;
         });
         assert!(items.iter().all(|&x| x == 1));
-        assert!(items.iter().all(|&x| x == 0));
-        assert!(with.iter().enumerate().all(|(i, &w)| w == i as u32 + 1));
     }
 
     #[test]
