@@ -102,24 +102,24 @@ pub(crate) fn collide<B: CollisionBackend>(
     let mut counts = Dropped::default();
     let (mut points, max_points) = (0, state.settings.limits.max_contact_points as usize);
     // On a pool of several threads the walk's work on each manifold runs over the pool first
-    // (`pool::judge_on_pool`), and the walk below only keeps, caps and moves.
+    // (`pool::judge_on_pool`), and `pool::keep_judged` only keeps, caps and moves.
     let judged = par::is_parallel() && pool::judge_on_pool(state, &mut manifolds, &mut c.verdicts);
-    for index in 0..manifolds.len() {
-        let (body_a, body_b) = (manifolds[index].body_a, manifolds[index].body_b);
-        if judged {
-            match c.verdicts[index].kind {
-                pool::Kind::Kept => {}
-                pool::Kind::Quarantined => {
-                    counts.quarantined += 1;
-                    continue;
-                }
-                pool::Kind::Rejected => continue,
-            }
-        }
-        let (Some(entry_a), Some(entry_b)) = (bodies.entry(body_a), bodies.entry(body_b)) else {
-            continue;
+    if judged {
+        let mut lists = pool::Kept {
+            speeds: &mut speeds,
+            pushed: &mut pushed,
+            carried,
+            counts: &mut counts,
         };
-        if !judged {
+        kept = pool::keep_judged(state, &mut manifolds, &c.verdicts, &mut lists);
+    } else {
+        // One pass over the manifolds on one thread.
+        for index in 0..manifolds.len() {
+            let (body_a, body_b) = (manifolds[index].body_a, manifolds[index].body_b);
+            let (Some(entry_a), Some(entry_b)) = (bodies.entry(body_a), bodies.entry(body_b))
+            else {
+                continue;
+            };
             // A quarantined body is in no step (a backend may not know it); not a fault of the backend.
             if entry_a.quarantined || entry_b.quarantined {
                 counts.quarantined += 1;
@@ -128,25 +128,19 @@ pub(crate) fn collide<B: CollisionBackend>(
             if !is_usable(&manifolds[index]) {
                 continue;
             }
-        }
-        // The cap on contact points: whole manifolds, in order, until the next would exceed it.
-        let point_count = manifolds[index].point_count;
-        if counts.capped > 0 || points + point_count > max_points {
-            counts.capped += 1;
-            continue;
-        }
-        points += point_count;
-        let (body_a, body_b) = (&entry_a.body, &entry_b.body);
-        if kept != index {
-            manifolds.swap(kept, index);
-        }
-        let manifold = &mut manifolds[kept];
-        kept += 1;
-        // Judged on the pool: warm-started where it lay, its approach speed found.
-        let old = if judged {
-            speeds.push(c.verdicts[index].speed);
-            None
-        } else {
+            // The cap on contact points: whole manifolds, in order, until the next would exceed it.
+            let point_count = manifolds[index].point_count;
+            if counts.capped > 0 || points + point_count > max_points {
+                counts.capped += 1;
+                continue;
+            }
+            points += point_count;
+            let (body_a, body_b) = (&entry_a.body, &entry_b.body);
+            if kept != index {
+                manifolds.swap(kept, index);
+            }
+            let manifold = &mut manifolds[kept];
+            kept += 1;
             let key = manifold.order_key();
             let old = walk_to(&mut previous, &key, ContactManifold::order_key);
             let may_begin = old.is_none_or(|o| !o.is_touching());
@@ -156,26 +150,22 @@ pub(crate) fn collide<B: CollisionBackend>(
             } else {
                 0.0
             });
-            old
-        };
-        if carried {
-            pushed.push(
-                !moves(body_a)
-                    && !moves(body_b)
-                    && state
-                        .touching
-                        .binary_search(&ordered(manifold.body_a, manifold.body_b))
-                        .is_ok(),
-            );
+            if carried {
+                pushed.push(
+                    !moves(body_a)
+                        && !moves(body_b)
+                        && state
+                            .touching
+                            .binary_search(&ordered(manifold.body_a, manifold.body_b))
+                            .is_ok(),
+                );
+            }
+            let rotations = [
+                rotation_of(manifold.body_a, body_a),
+                rotation_of(manifold.body_b, body_b),
+            ];
+            warm_start_points(manifold, (body_a, body_b), old, &rotations);
         }
-        if judged {
-            continue;
-        }
-        let rotations = [
-            rotation_of(manifold.body_a, body_a),
-            rotation_of(manifold.body_b, body_b),
-        ];
-        warm_start_points(manifold, (body_a, body_b), old, &rotations);
     }
     counts.rejected = manifolds.len() - kept - counts.quarantined - counts.capped;
     manifolds.truncate(kept);

@@ -3,7 +3,7 @@
 //! its key), then warm-started where it lies with its approach speed, each over the pool. The walk of
 //! `collide` then only keeps, caps and moves the manifolds, in order, as on one thread: the same results.
 
-use super::{approach_speed, is_usable, warm_start_points};
+use super::{Dropped, approach_speed, is_usable, moves, ordered, warm_start_points};
 use crate::manifold::ContactManifold;
 use crate::state::WorldState;
 use core::sync::atomic::{AtomicBool, Ordering};
@@ -109,4 +109,62 @@ fn warm_start(state: &WorldState, m: &mut ContactManifold, v: &mut Verdict) {
     }
     let rotations = [Mat3::from_quat(a.rotation()), Mat3::from_quat(b.rotation())];
     warm_start_points(m, (a, b), old, &rotations);
+}
+
+/// What [`keep_judged`] fills: the kept manifolds' approach speeds and, with `carried` manifolds, whether
+/// each counts as pushed before the solver runs; and the dropped manifolds' counts.
+pub(super) struct Kept<'a> {
+    pub(super) speeds: &'a mut Vec<f32>,
+    pub(super) pushed: &'a mut Vec<bool>,
+    pub(super) carried: bool,
+    pub(super) counts: &'a mut Dropped,
+}
+
+/// The one-thread part of the walk after [`judge_on_pool`]: the kept manifolds moved down over the dropped
+/// ones in order, up to the cap on contact points, as the one-thread walk keeps them. Returns how many were
+/// kept.
+pub(super) fn keep_judged(
+    state: &WorldState,
+    manifolds: &mut [ContactManifold],
+    verdicts: &[Verdict],
+    out: &mut Kept<'_>,
+) -> usize {
+    let (mut kept, mut points) = (0, 0);
+    let max_points = state.settings.limits.max_contact_points as usize;
+    for (index, verdict) in verdicts.iter().enumerate().take(manifolds.len()) {
+        match verdict.kind {
+            Kind::Kept => {}
+            Kind::Quarantined => {
+                out.counts.quarantined += 1;
+                continue;
+            }
+            Kind::Rejected => continue,
+        }
+        let point_count = manifolds[index].point_count;
+        if out.counts.capped > 0 || points + point_count > max_points {
+            out.counts.capped += 1;
+            continue;
+        }
+        points += point_count;
+        if kept != index {
+            manifolds.swap(kept, index);
+        }
+        let manifold = &manifolds[kept];
+        kept += 1;
+        out.speeds.push(verdict.speed);
+        if out.carried {
+            let (a, b) = (
+                state.bodies.get(manifold.body_a),
+                state.bodies.get(manifold.body_b),
+            );
+            out.pushed.push(
+                a.zip(b).is_some_and(|(a, b)| !moves(a) && !moves(b))
+                    && state
+                        .touching
+                        .binary_search(&ordered(manifold.body_a, manifold.body_b))
+                        .is_ok(),
+            );
+        }
+    }
+    kept
 }
