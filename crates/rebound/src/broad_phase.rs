@@ -100,7 +100,7 @@ pub(crate) fn aabb_at(collider: &Collider, body_pose: Pose) -> Aabb {
 
 /// One collider at the start of the pair search: its fat box, its [`Candidate`], whether its body is slow
 /// (its new leaf gets some slack), and its body's pose if the body turns far enough to be swept ([`crate::prediction::is_swept`]).
-#[derive(Clone)]
+#[cfg_attr(feature = "parallel", derive(Clone))]
 struct Fattened {
     fat: Aabb,
     candidate: Candidate,

@@ -165,23 +165,46 @@ impl Batches {
         input: &PrepareInput<'_>,
     ) {
         let (first_slot, first_twist) = (self.slots.len(), self.twists.len() as u32);
-        let slots = &mut self.slots;
-        let (batch, patch, info, twist) =
-            build(group, contacts, input, first_slot, first_twist, |slot| {
-                slots.push(slot);
-            });
-        if let Some(twist) = twist {
-            self.twists.push(twist);
-        }
+        build(group, contacts, input, first_slot, first_twist, self);
+    }
+}
+
+/// Where [`build`] puts a batch's parts, in the order it makes them: its point slots one by one, its twist
+/// row if it has one, its patch, its read-back info, the batch.
+pub(crate) trait BatchSink {
+    fn slot(&mut self, slot: PointX4);
+    fn twist(&mut self, row: TwistX4);
+    fn patch(&mut self, patch: PatchX4);
+    fn info(&mut self, info: BatchInfo);
+    fn batch(&mut self, batch: Batch);
+}
+
+/// One thread's preparation: each part pushed onto its array.
+impl BatchSink for Batches {
+    #[inline(always)]
+    fn slot(&mut self, slot: PointX4) {
+        self.slots.push(slot);
+    }
+    #[inline(always)]
+    fn twist(&mut self, row: TwistX4) {
+        self.twists.push(row);
+    }
+    #[inline(always)]
+    fn patch(&mut self, patch: PatchX4) {
         self.patches.push(patch);
+    }
+    #[inline(always)]
+    fn info(&mut self, info: BatchInfo) {
         self.infos.push(info);
+    }
+    #[inline(always)]
+    fn batch(&mut self, batch: Batch) {
         self.batches.push(batch);
     }
 }
 
 /// The batch of the manifolds `group` (one to four indices into `contacts`) whose point slots start at
-/// `first_slot` and whose twist row, if it has one, is `first_twist`: the batch, its patch, its read-back
-/// info and its twist row, each point slot handed to `push_slot` in order ([`Batches::push`]).
+/// `first_slot` and whose twist row, if it has one, is `first_twist`, into `sink` ([`Batches::push`]).
 #[inline(always)]
 pub(crate) fn build(
     group: &[usize],
@@ -189,8 +212,8 @@ pub(crate) fn build(
     input: &PrepareInput<'_>,
     first_slot: usize,
     first_twist: u32,
-    mut push_slot: impl FnMut(PointX4),
-) -> (Batch, PatchX4, BatchInfo, Option<TwistX4>) {
+    sink: &mut impl BatchSink,
+) {
     let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
     let lanes = [lane(0), lane(1), lane(2), lane(3)];
     let headers = lanes.map(|c| c.copied().unwrap_or(EMPTY_LANE));
@@ -278,7 +301,7 @@ pub(crate) fn build(
             rho.dot(&rho)
         };
         spread += rho2;
-        push_slot(PointX4 {
+        sink.slot(PointX4 {
             anchor_a,
             anchor_b,
             separation,
@@ -312,10 +335,10 @@ pub(crate) fn build(
         patch.tangent_impulse = [warm_linear.dot(&tangents[0]), warm_linear.dot(&tangents[1])];
     }
     // A batch of one-point manifolds has no twist row (no lever to resist twist with).
-    let twist_row = twist.then(|| {
+    if twist {
         let twist_a = inertia_a.mul(&normal);
         let twist_b = inertia_b.mul(&normal);
-        TwistX4 {
+        sink.twist(TwistX4 {
             impulse: if input.ctx.warm_starting {
                 warm_twist
             } else {
@@ -324,17 +347,18 @@ pub(crate) fn build(
             mass: invert(normal.dot(&twist_a) + normal.dot(&twist_b), present),
             twist_a,
             twist_b,
-        }
-    });
+        });
+    }
+    sink.patch(patch);
     let index = |i: usize| group.get(i).map_or(0, |&index| index as u32);
-    let info = BatchInfo {
+    sink.info(BatchInfo {
         contacts: [0, 1, 2, 3].map(index),
         sources: headers.map(|c| c.source as u32),
         point_counts: headers.map(|c| c.point_count as u32),
         center_a,
         spread,
-    };
-    let batch = Batch {
+    });
+    sink.batch(Batch {
         normal,
         tangents,
         friction: gather1(&headers, |c| c.friction),
@@ -358,8 +382,7 @@ pub(crate) fn build(
         slots: slot_count as u16,
         lanes: group.len() as u8,
         twist,
-    };
-    (batch, patch, info, twist_row)
+    });
 }
 
 /// How many point slots the batch of the manifolds `group` has (as many as its largest manifold has

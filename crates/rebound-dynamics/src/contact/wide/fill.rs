@@ -3,7 +3,7 @@
 //! the one-thread preparation gives them (a running sum of the batches' slot counts and twist rows), so
 //! every batch is prepared alone, into its own places, with the same bits.
 
-use super::batch::{Batch, BatchInfo, Batches, PatchX4, PointX4, TwistX4, build, shape};
+use super::batch::{Batch, BatchInfo, BatchSink, Batches, PatchX4, PointX4, TwistX4, build, shape};
 use crate::contact::prepared::{PrepareInput, PreparedContact};
 use rebound_math::par;
 
@@ -82,7 +82,7 @@ impl<'a> Out<'a> {
 
 /// Prepares the batches of `groups` into `out`, halving the run over the pool down to [`BATCHES_PER_TASK`].
 fn fill(
-    out: Out<'_>,
+    mut out: Out<'_>,
     groups: &[(u32, u32)],
     places: &[(u32, u32)],
     members: &[usize],
@@ -108,18 +108,39 @@ fn fill(
     }
     for (k, (&(start, end), &(slot, twist))) in groups.iter().zip(places).enumerate() {
         let group = &members[start as usize..end as usize];
-        let mut at = (slot - first_slot) as usize;
-        let slots = &mut *out.slots;
-        let (batch, patch, info, row) =
-            build(group, contacts, input, slot as usize, twist, |point| {
-                slots[at] = point;
-                at += 1;
-            });
-        if let Some(row) = row {
-            out.twists[(twist - first_twist) as usize] = row;
-        }
-        out.batches[k] = batch;
-        out.patches[k] = patch;
-        out.infos[k] = info;
+        let mut sink = Places {
+            out: &mut out,
+            batch: k,
+            slot: (slot - first_slot) as usize,
+            twist: (twist - first_twist) as usize,
+        };
+        build(group, contacts, input, slot as usize, twist, &mut sink);
+    }
+}
+
+/// A batch's places in a run's arrays: its entry `batch`, its next slot and its twist row.
+struct Places<'o, 'a> {
+    out: &'o mut Out<'a>,
+    batch: usize,
+    slot: usize,
+    twist: usize,
+}
+
+impl BatchSink for Places<'_, '_> {
+    fn slot(&mut self, slot: PointX4) {
+        self.out.slots[self.slot] = slot;
+        self.slot += 1;
+    }
+    fn twist(&mut self, row: TwistX4) {
+        self.out.twists[self.twist] = row;
+    }
+    fn patch(&mut self, patch: PatchX4) {
+        self.out.patches[self.batch] = patch;
+    }
+    fn info(&mut self, info: BatchInfo) {
+        self.out.infos[self.batch] = info;
+    }
+    fn batch(&mut self, batch: Batch) {
+        self.out.batches[self.batch] = batch;
     }
 }
