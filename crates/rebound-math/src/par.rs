@@ -104,6 +104,32 @@ where
     }
 }
 
+/// Calls `f(index, item, with)` for every pair of `items` and `with`, both changed in place (zipped: the
+/// shorter sets the length), each once, on as many threads as the pool has: one section where two stages
+/// over the same items would open two.
+#[inline]
+pub fn for_each_indexed_zip_both_mut<T, U, F>(items: &mut [T], with: &mut [U], min_len: usize, f: F)
+where
+    T: Send,
+    U: Send,
+    F: Fn(usize, &mut T, &mut U) + Sync + Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() && items.len() > min_len {
+        items
+            .par_iter_mut()
+            .zip(with)
+            .with_min_len(min_len.max(1))
+            .enumerate()
+            .for_each(|(i, (item, w))| f(i, item, w));
+        return;
+    }
+    let _ = min_len;
+    for (i, (item, w)) in items.iter_mut().zip(with).enumerate() {
+        f(i, item, w);
+    }
+}
+
 /// `out` becomes `[f(0, &items[0]), f(1, &items[1]), …]`, in index order whichever thread computed each
 /// (`out`'s allocation is reused).
 #[inline]
@@ -126,6 +152,38 @@ where
     let _ = min_len;
     out.clear();
     out.extend(items.iter().enumerate().map(|(i, item)| f(i, item)));
+}
+
+/// Appends `part(0)`, `part(1)`, … `part(starts.len() − 1)` to `out`, in that order, copied over the pool:
+/// part `r` starts `starts[r]` items into what is appended (`starts` ascending from 0), and `total` items
+/// are appended in all. Each item is copied alone to its place, so the list is the same for any number of
+/// threads; only `out`'s own storage grows (and only while it is short).
+#[inline]
+pub fn extend_concatenated<'a, T, P>(out: &mut Vec<T>, starts: &[usize], total: usize, part: P)
+where
+    T: Copy + Send + Sync + 'a,
+    P: Fn(usize) -> &'a [T] + Sync + Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() && total > MIN_ITEMS_PER_TASK {
+        out.par_extend(
+            (0..total)
+                .into_par_iter()
+                .with_min_len(MIN_ITEMS_PER_TASK)
+                .map(|at| {
+                    let r = starts
+                        .partition_point(|&start| start <= at)
+                        .saturating_sub(1);
+                    let start = starts.get(r).copied().unwrap_or(0);
+                    part(r)[at - start]
+                }),
+        );
+        return;
+    }
+    let _ = total;
+    for r in 0..starts.len() {
+        out.extend_from_slice(part(r));
+    }
 }
 
 /// Runs `a` and `b`, on two threads if the pool has them, and returns both results.
@@ -172,6 +230,20 @@ mod tests {
         });
         assert!(items.iter().all(|&x| x == 0));
         assert!(with.iter().enumerate().all(|(i, &w)| w == i as u32 + 1));
+        for_each_indexed_zip_both_mut(&mut items, &mut with, 8, |i, x, w| {
+            *x = *w - i as u32;
+        });
+        assert!(items.iter().all(|&x| x == 1));
+    }
+
+    #[test]
+    fn extend_concatenated_keeps_part_order() {
+        let parts: [&[u32]; 4] = [&[0, 1, 2], &[], &[3], &(4..200).collect::<Vec<_>>()];
+        let starts = [0, 3, 3, 4];
+        let mut out = vec![u32::MAX];
+        extend_concatenated(&mut out, &starts, 200, |r| parts[r]);
+        assert_eq!(out.len(), 201);
+        assert!(out[1..].iter().enumerate().all(|(i, &x)| x == i as u32));
     }
 
     #[test]

@@ -177,6 +177,32 @@ impl<T> Arena<T> {
         });
     }
 
+    /// `out[slot]` becomes `Some(f(index, value))` for every stored value and `None` for every free slot,
+    /// over the thread pool, in slot order whichever thread computed each ([`par::map_collect_in_order`];
+    /// `out`'s allocation is reused).
+    pub fn map_in_slot_order<'a, U: Send>(
+        &'a self,
+        out: &mut Vec<Option<U>>,
+        f: impl Fn(Index, &'a T) -> U + Sync + Send,
+    ) where
+        T: Sync,
+    {
+        let slots = &self.slots;
+        // Each slot read through `slots` (not the closure's argument), so that `f` sees it for `'a`.
+        par::map_collect_in_order(slots, out, par::MIN_ITEMS_PER_TASK, |i, _| {
+            match &slots[i] {
+                Slot::Occupied { generation, value } => Some(f(
+                    Index {
+                        index: i as u32,
+                        generation: *generation,
+                    },
+                    value,
+                )),
+                Slot::Free { .. } => None,
+            }
+        });
+    }
+
     /// The index and value stored in slot `slot`, if it is occupied.
     #[must_use]
     pub fn get_slot(&self, slot: u32) -> Option<(Index, &T)> {

@@ -3,13 +3,15 @@
 //! for warm starting (impulses and lever arms, point by point by feature id), with the approach speed the
 //! events and the waking test need and the solver contact it gives.
 
+mod pool;
+
 use crate::body_set::BodySet;
 use crate::handles::BodyHandle;
 use crate::manifold::{CollisionBackend, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint};
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
 use rebound_dynamics::{BodyType, RigidBody};
-use rebound_math::par::{self, MIN_ITEMS_PER_TASK};
+use rebound_math::par;
 use rebound_math::{Mat3, Vec3};
 
 /// This step's manifolds and what the stages after *collide* learn about each, reused from step to step.
@@ -29,6 +31,8 @@ pub(crate) struct Collision {
     rotations: Vec<(u64, Mat3)>,
     /// How many collide stages ran (so that a matrix of an earlier one is never read as current).
     collide_calls: u64,
+    /// For each manifold of the backend, what the pool found of it (on a pool of several threads only).
+    verdicts: Vec<pool::Verdict>,
 }
 
 /// The backend's manifolds for the current poses into `c.manifolds`, sorted, validated and warm-started
@@ -93,81 +97,75 @@ pub(crate) fn collide<B: CollisionBackend>(
         }
         entry.1
     };
-    // On a pool of several threads the walk leaves each kept manifold's approach speed and lever arms to a
-    // pass over the pool after it (`warm_start_on_pool`), noting here what that pass needs; the rotation
-    // matrices are still computed here, once per body.
-    let on_pool = par::is_parallel();
-    let mut deferred: Vec<Deferred<'_>> = Vec::new();
     let mut previous = state.manifolds.iter().peekable();
     let mut kept = 0;
     let mut counts = Dropped::default();
     let (mut points, max_points) = (0, state.settings.limits.max_contact_points as usize);
-    for index in 0..manifolds.len() {
-        let (body_a, body_b) = (manifolds[index].body_a, manifolds[index].body_b);
-        let (Some(entry_a), Some(entry_b)) = (bodies.entry(body_a), bodies.entry(body_b)) else {
-            continue;
+    // On a pool of several threads the walk's work on each manifold runs over the pool first
+    // (`pool::judge_on_pool`), and `pool::keep_judged` only keeps, caps and moves.
+    let judged = par::is_parallel() && pool::judge_on_pool(state, &mut manifolds, &mut c.verdicts);
+    if judged {
+        let mut lists = pool::Kept {
+            speeds: &mut speeds,
+            pushed: &mut pushed,
+            carried,
+            counts: &mut counts,
         };
-        // A quarantined body is in no step (a backend may not know it); not a fault of the backend.
-        if entry_a.quarantined || entry_b.quarantined {
-            counts.quarantined += 1;
-            continue;
-        }
-        if !is_usable(&manifolds[index]) {
-            continue;
-        }
-        // The cap on contact points: whole manifolds, in order, until the next would exceed it.
-        let point_count = manifolds[index].point_count;
-        if counts.capped > 0 || points + point_count > max_points {
-            counts.capped += 1;
-            continue;
-        }
-        points += point_count;
-        let (body_a, body_b) = (&entry_a.body, &entry_b.body);
-        if kept != index {
-            manifolds.swap(kept, index);
-        }
-        let manifold = &mut manifolds[kept];
-        kept += 1;
-        let key = manifold.order_key();
-        let old = walk_to(&mut previous, &key, ContactManifold::order_key);
-        let may_begin = old.is_none_or(|o| !o.is_touching());
-        let needs_speed = may_begin || body_a.is_sleeping() || body_b.is_sleeping();
-        if on_pool {
-            speeds.push(0.0);
-        } else {
+        kept = pool::keep_judged(state, &mut manifolds, &c.verdicts, &mut lists);
+    } else {
+        // One pass over the manifolds on one thread.
+        for index in 0..manifolds.len() {
+            let (body_a, body_b) = (manifolds[index].body_a, manifolds[index].body_b);
+            let (Some(entry_a), Some(entry_b)) = (bodies.entry(body_a), bodies.entry(body_b))
+            else {
+                continue;
+            };
+            // A quarantined body is in no step (a backend may not know it); not a fault of the backend.
+            if entry_a.quarantined || entry_b.quarantined {
+                counts.quarantined += 1;
+                continue;
+            }
+            if !is_usable(&manifolds[index]) {
+                continue;
+            }
+            // The cap on contact points: whole manifolds, in order, until the next would exceed it.
+            let point_count = manifolds[index].point_count;
+            if counts.capped > 0 || points + point_count > max_points {
+                counts.capped += 1;
+                continue;
+            }
+            points += point_count;
+            let (body_a, body_b) = (&entry_a.body, &entry_b.body);
+            if kept != index {
+                manifolds.swap(kept, index);
+            }
+            let manifold = &mut manifolds[kept];
+            kept += 1;
+            let key = manifold.order_key();
+            let old = walk_to(&mut previous, &key, ContactManifold::order_key);
+            let may_begin = old.is_none_or(|o| !o.is_touching());
+            let needs_speed = may_begin || body_a.is_sleeping() || body_b.is_sleeping();
             speeds.push(if needs_speed {
                 approach_speed(manifold, body_a, body_b)
             } else {
                 0.0
             });
-        }
-        if carried {
-            pushed.push(
-                !moves(body_a)
-                    && !moves(body_b)
-                    && state
-                        .touching
-                        .binary_search(&ordered(manifold.body_a, manifold.body_b))
-                        .is_ok(),
-            );
-        }
-        let rotations = [
-            rotation_of(manifold.body_a, body_a),
-            rotation_of(manifold.body_b, body_b),
-        ];
-        if on_pool {
-            deferred.push(Deferred {
-                bodies: (body_a, body_b),
-                old,
-                rotations,
-                speed: needs_speed.then_some(0.0),
-            });
-        } else {
+            if carried {
+                pushed.push(
+                    !moves(body_a)
+                        && !moves(body_b)
+                        && state
+                            .touching
+                            .binary_search(&ordered(manifold.body_a, manifold.body_b))
+                            .is_ok(),
+                );
+            }
+            let rotations = [
+                rotation_of(manifold.body_a, body_a),
+                rotation_of(manifold.body_b, body_b),
+            ];
             warm_start_points(manifold, (body_a, body_b), old, &rotations);
         }
-    }
-    if on_pool {
-        warm_start_on_pool(&mut manifolds[..kept], &mut deferred, &mut speeds);
     }
     counts.rejected = manifolds.len() - kept - counts.quarantined - counts.capped;
     manifolds.truncate(kept);
@@ -176,15 +174,6 @@ pub(crate) fn collide<B: CollisionBackend>(
     c.pushed = pushed;
     c.manifolds = manifolds;
     counts
-}
-
-/// What the pass over the pool needs of a kept manifold: its bodies, last step's manifold of its key, its
-/// bodies' rotation matrices, and its approach speed if one is needed (computed by the pass).
-struct Deferred<'a> {
-    bodies: (&'a RigidBody, &'a RigidBody),
-    old: Option<&'a ContactManifold>,
-    rotations: [Mat3; 2],
-    speed: Option<f32>,
 }
 
 /// Each point's lever arms, kept from last step's manifold `old` where its point persists (with its
@@ -210,26 +199,6 @@ fn warm_start_points(
         if let Some(previous) = point.refresh_lever_arms(fresh, old_points) {
             point.normal_impulse = previous.normal_impulse;
             point.tangent_impulse = previous.tangent_impulse;
-        }
-    }
-}
-
-/// The approach speeds and lever arms the walk left to the pool: each manifold's alone, computed as the walk
-/// would have, then the speeds written in manifold order.
-fn warm_start_on_pool(
-    manifolds: &mut [ContactManifold],
-    deferred: &mut [Deferred<'_>],
-    speeds: &mut [f32],
-) {
-    par::for_each_zip_both_mut(manifolds, deferred, MIN_ITEMS_PER_TASK, |manifold, d| {
-        if let Some(speed) = &mut d.speed {
-            *speed = approach_speed(manifold, d.bodies.0, d.bodies.1);
-        }
-        warm_start_points(manifold, d.bodies, d.old, &d.rotations);
-    });
-    for (speed, d) in speeds.iter_mut().zip(deferred.iter()) {
-        if let Some(computed) = d.speed {
-            *speed = computed;
         }
     }
 }

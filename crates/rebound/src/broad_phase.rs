@@ -100,6 +100,7 @@ pub(crate) fn aabb_at(collider: &Collider, body_pose: Pose) -> Aabb {
 
 /// One collider at the start of the pair search: its fat box, its [`Candidate`], whether its body is slow
 /// (its new leaf gets some slack), and its body's pose if the body turns far enough to be swept ([`crate::prediction::is_swept`]).
+#[cfg_attr(feature = "parallel", derive(Clone))]
 struct Fattened {
     fat: Aabb,
     candidate: Candidate,
@@ -178,6 +179,12 @@ pub(crate) struct BroadPhase {
     sort_scratch: Vec<(ColliderHandle, ColliderHandle)>,
     /// Candidate pairs the last pair search left out because of its cap.
     capped: usize,
+    /// Per collider slot, what the pool computed for the pair search's boxes and for the refresh (scratch of
+    /// `pool::on_pool`, reused: no allocation per step).
+    #[cfg(feature = "parallel")]
+    pool_fattened: Vec<Option<Option<(Fattened, bool)>>>,
+    #[cfg(feature = "parallel")]
+    pool_tightened: Vec<Option<Option<(Aabb, bool)>>>,
 }
 
 impl core::fmt::Debug for BroadPhase {
@@ -292,9 +299,11 @@ impl BroadPhase {
         let mut changed = 0;
         #[cfg(feature = "parallel")]
         if rebound_math::par::is_parallel() {
+            let mut computed = core::mem::take(&mut self.pool_fattened);
             on_pool(
                 self,
                 colliders,
+                &mut computed,
                 |bp, handle, collider| {
                     let body = bodies.get(collider.body)?;
                     let f = Fattened::of(handle, collider, body, speculative_margin, dt);
@@ -310,6 +319,7 @@ impl BroadPhase {
                     };
                 },
             );
+            self.pool_fattened = computed;
             return changed;
         }
         for (handle, collider) in colliders.iter() {
@@ -397,9 +407,11 @@ impl BroadPhase {
         let mut changed = 0;
         #[cfg(feature = "parallel")]
         if rebound_math::par::is_parallel() {
+            let mut computed = core::mem::take(&mut self.pool_tightened);
             on_pool(
                 self,
                 colliders,
+                &mut computed,
                 |bp, handle, collider| {
                     let aabb = world_aabb(collider, bodies.get(collider.body)?);
                     Some((aabb, holds(&bp.bvh, handle, &aabb)))
@@ -413,6 +425,7 @@ impl BroadPhase {
                     None => changed += bp.remove_gone(handle),
                 },
             );
+            self.pool_tightened = computed;
             return changed;
         }
         for (handle, collider) in colliders.iter() {

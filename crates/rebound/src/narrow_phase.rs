@@ -100,6 +100,9 @@ pub(crate) struct NarrowPhase {
     pub(crate) force_pairs: Vec<(u64, ColliderHandle, ColliderHandle)>,
     /// The runs of the parallel collide stage and their manifolds (empty between steps, capacity kept).
     runs: Vec<(PairRun, Vec<ContactManifold>)>,
+    /// Where each run's manifolds start in the stage's list (scratch of the parallel collide stage).
+    #[cfg(feature = "parallel")]
+    run_starts: Vec<usize>,
     /// Whether some collider has a force event threshold, with the [`ColliderSet::revision`] it was read
     /// at: a stage without hooks and without such a collider runs the pair loop that watches nothing.
     thresholds: Option<(u64, bool)>,
@@ -239,8 +242,27 @@ impl NarrowPhase {
         });
         drop(tasks);
         self.previous.clear();
+        // The runs' manifolds copied over the pool, each to its place in pair order.
+        #[cfg(feature = "parallel")]
+        {
+            self.run_starts.clear();
+            let mut total = 0;
+            for (_, manifolds) in &self.runs[..count] {
+                self.run_starts.push(total);
+                total += manifolds.len();
+            }
+            let runs = &self.runs;
+            par::extend_concatenated(out, &self.run_starts, total, |r| {
+                runs.get(r)
+                    .map_or(&[][..], |(_, manifolds)| manifolds.as_slice())
+            });
+        }
+        #[cfg(not(feature = "parallel"))]
+        for (_, manifolds) in &self.runs[..count] {
+            out.extend_from_slice(manifolds);
+        }
         for (run, manifolds) in &mut self.runs[..count] {
-            out.append(manifolds);
+            manifolds.clear();
             self.pairs.append(&mut run.pairs);
             self.force_pairs.append(&mut run.force_pairs);
         }

@@ -10,8 +10,48 @@ use crate::path::resize_links;
 use crate::path::tether::Edge;
 use crate::path::topology::Topology;
 use crate::state::JointState;
+use core::sync::atomic::{AtomicBool, Ordering};
 use rebound_dynamics::{BodyParams, SolverBody, StepContext};
-use rebound_math::{Mat3, Vec3};
+use rebound_math::{Mat3, Vec3, par};
+
+/// Joints per task of the preparation over the pool (a joint prepares in about a microsecond).
+const JOINTS_PER_PREPARE_TASK: usize = 16;
+
+/// One joint's preparation into its slot `j`: its bodies' pair, its state (warm start) and its kind's
+/// anchors, frames, masses and softness.
+#[inline(always)]
+fn prepare_joint(
+    j: &mut PreparedJoint,
+    source: usize,
+    joint: &Joint,
+    state: &JointState,
+    jb: JointBodies,
+    solver_bodies: &[SolverBody],
+    params: &[BodyParams],
+    ctx: &StepContext,
+) {
+    // Each field written in its slot: the pair and the kind are made where they are kept.
+    j.source = source;
+    j.pair.reset(
+        jb.a,
+        jb.b,
+        (&params[jb.a], &params[jb.b]),
+        (joint.local_anchor_a(), joint.local_anchor_b()),
+        (joint.local_basis_a(), joint.local_basis_b()),
+    );
+    j.state = if ctx.warm_starting {
+        JointState {
+            broken: false,
+            ..*state
+        }
+    } else {
+        JointState::default()
+    };
+    let bodies = (&solver_bodies[jb.a], &solver_bodies[jb.b]);
+    j.kind
+        .prepare(joint.kind(), &j.pair, bodies, ctx, &mut j.state);
+    j.path = None;
+}
 
 impl JointSolver {
     /// Stage *prepare*: reads `joints[i]`, its state `states[i]` and its bodies `bodies[i]` (indices into
@@ -39,7 +79,7 @@ impl JointSolver {
     pub fn prepare_from<'j>(
         &mut self,
         count: usize,
-        joint: impl Fn(usize) -> Option<(&'j Joint, &'j JointState, JointBodies)>,
+        joint: impl Fn(usize) -> Option<(&'j Joint, &'j JointState, JointBodies)> + Sync,
         solver_bodies: &[SolverBody],
         params: &[BodyParams],
         ctx: &StepContext,
@@ -51,50 +91,40 @@ impl JointSolver {
         let body_count = solver_bodies.len().min(params.len());
         let (mut coordinate_springs, mut restitution) = (false, false);
         let mut skipped = 0;
-        for source in 0..count {
-            let Some((joint, state, jb)) = joint(source) else {
-                skipped += 1;
-                continue;
-            };
-            if state.broken || jb.a >= body_count || jb.b >= body_count || jb.a == jb.b {
-                skipped += 1;
-                continue;
-            }
-            let prepared = self.records.len();
-            if prepared == self.joints.len() {
-                self.joints.push(PreparedJoint::unprepared());
-            }
-            let Some(j) = self.joints.get_mut(prepared) else {
-                continue;
-            };
-            // Each field written in its slot: the pair and the kind are made where they are kept.
-            j.source = source;
-            j.pair.reset(
-                jb.a,
-                jb.b,
-                (&params[jb.a], &params[jb.b]),
-                (joint.local_anchor_a(), joint.local_anchor_b()),
-                (joint.local_basis_a(), joint.local_basis_b()),
-            );
-            j.state = if ctx.warm_starting {
-                JointState {
-                    broken: false,
-                    ..*state
+        // On a pool, every joint alone over the pool while none is skipped (each then has its own slot).
+        let pooled = if par::is_parallel() && count >= 2 * JOINTS_PER_PREPARE_TASK {
+            self.prepare_on_pool(count, &joint, solver_bodies, params, ctx)
+        } else {
+            None
+        };
+        if let Some(flags) = pooled {
+            (coordinate_springs, restitution) = flags;
+        } else {
+            for source in 0..count {
+                let Some((joint, state, jb)) = joint(source) else {
+                    skipped += 1;
+                    continue;
+                };
+                if state.broken || jb.a >= body_count || jb.b >= body_count || jb.a == jb.b {
+                    skipped += 1;
+                    continue;
                 }
-            } else {
-                JointState::default()
-            };
-            let bodies = (&solver_bodies[jb.a], &solver_bodies[jb.b]);
-            j.kind
-                .prepare(joint.kind(), &j.pair, bodies, ctx, &mut j.state);
-            j.path = None;
-            coordinate_springs |= j.kind.has_coordinate_spring();
-            restitution |= j.kind.has_restitution();
-            self.records.push(JointRecord {
-                break_force: joint.break_force(),
-                break_torque: joint.break_torque(),
-                tether: None,
-            });
+                let prepared = self.records.len();
+                if prepared == self.joints.len() {
+                    self.joints.push(PreparedJoint::unprepared());
+                }
+                let Some(j) = self.joints.get_mut(prepared) else {
+                    continue;
+                };
+                prepare_joint(j, source, joint, state, jb, solver_bodies, params, ctx);
+                coordinate_springs |= j.kind.has_coordinate_spring();
+                restitution |= j.kind.has_restitution();
+                self.records.push(JointRecord {
+                    break_force: joint.break_force(),
+                    break_torque: joint.break_torque(),
+                    tether: None,
+                });
+            }
         }
         self.joints.truncate(self.records.len());
         self.coordinate_springs = coordinate_springs;
@@ -282,5 +312,57 @@ impl JointSolver {
                 t.impulse = 0.0;
             }
         }
+    }
+}
+
+impl JointSolver {
+    /// The joint loop of [`JointSolver::prepare_from`] over the pool: joint `i` into slot `i`, which is
+    /// where the one-thread loop puts it when no joint is skipped. Returns whether some joint has a
+    /// coordinate spring and whether some has restitution; `None` when some joint is skipped (the one-thread
+    /// loop then prepares them all again, into the slots it chooses).
+    fn prepare_on_pool<'j>(
+        &mut self,
+        count: usize,
+        joint: &(impl Fn(usize) -> Option<(&'j Joint, &'j JointState, JointBodies)> + Sync),
+        solver_bodies: &[SolverBody],
+        params: &[BodyParams],
+        ctx: &StepContext,
+    ) -> Option<(bool, bool)> {
+        let body_count = solver_bodies.len().min(params.len());
+        self.joints.resize(count, PreparedJoint::unprepared());
+        let whole = AtomicBool::new(true);
+        par::for_each_mut(
+            &mut self.joints,
+            JOINTS_PER_PREPARE_TASK,
+            |source, j| match joint(source) {
+                Some((joint, state, jb))
+                    if !(state.broken
+                        || jb.a >= body_count
+                        || jb.b >= body_count
+                        || jb.a == jb.b) =>
+                {
+                    prepare_joint(j, source, joint, state, jb, solver_bodies, params, ctx);
+                }
+                _ => whole.store(false, Ordering::Relaxed),
+            },
+        );
+        if !whole.into_inner() {
+            return None;
+        }
+        let (mut coordinate_springs, mut restitution) = (false, false);
+        for j in &self.joints {
+            coordinate_springs |= j.kind.has_coordinate_spring();
+            restitution |= j.kind.has_restitution();
+        }
+        for source in 0..count {
+            if let Some((joint, _, _)) = joint(source) {
+                self.records.push(JointRecord {
+                    break_force: joint.break_force(),
+                    break_torque: joint.break_torque(),
+                    tether: None,
+                });
+            }
+        }
+        Some((coordinate_springs, restitution))
     }
 }

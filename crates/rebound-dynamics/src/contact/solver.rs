@@ -9,7 +9,9 @@ use super::prepared::{PrepareInput, PreparedContact};
 use super::scalar::{self, PreparedPoint, Rolling};
 use super::wide::{self, Batches, Coloring, LaneVelocities};
 use crate::{BodyParams, SolverBody, StepContext};
+use core::sync::atomic::{AtomicBool, Ordering};
 use rebound_math::Vec3;
+use rebound_math::par::{self, MIN_ITEMS_PER_TASK};
 
 /// The contact solver: holds the prepared constraints between stages and reuses its buffer from step to
 /// step (no allocation once it has grown to the scene's contact count).
@@ -69,23 +71,28 @@ impl ContactSolver {
         self.contacts.reserve(contacts.len());
         let body_count = bodies.len().min(params.len());
         let mut skipped = 0;
-        for (source, contact) in contacts.iter().enumerate() {
-            if contact.body_a >= body_count
-                || contact.body_b >= body_count
-                || contact.body_a == contact.body_b
-                || !contact.normal.is_finite()
-            {
-                skipped += 1;
-                continue;
+        let on_pool = par::is_parallel()
+            && prepare_on_pool(contacts, params, body_count, ctx, &mut self.contacts);
+        // One after the other where the pool did not prepare them.
+        if !on_pool {
+            for (source, contact) in contacts.iter().enumerate() {
+                if contact.body_a >= body_count
+                    || contact.body_b >= body_count
+                    || contact.body_a == contact.body_b
+                    || !contact.normal.is_finite()
+                {
+                    skipped += 1;
+                    continue;
+                }
+                let (pa, pb) = (&params[contact.body_a], &params[contact.body_b]);
+                let rolling = (contact.rolling_friction > 0.0).then(|| {
+                    self.rolling
+                        .push(Rolling::new(contact.rolling_friction, pa, pb));
+                    self.rolling.len() - 1
+                });
+                self.contacts
+                    .push(PreparedContact::new(source, contact, pa, pb, rolling, ctx));
             }
-            let (pa, pb) = (&params[contact.body_a], &params[contact.body_b]);
-            let rolling = (contact.rolling_friction > 0.0).then(|| {
-                self.rolling
-                    .push(Rolling::new(contact.rolling_friction, pa, pb));
-                self.rolling.len() - 1
-            });
-            self.contacts
-                .push(PreparedContact::new(source, contact, pa, pb, rolling, ctx));
         }
         // Wide manifolds get their points straight into their batch's lanes; the scalar ones here.
         let input = PrepareInput {
@@ -227,4 +234,41 @@ impl ContactSolver {
         }
         self.batches.for_each_point_result(f);
     }
+}
+
+/// Every contact's [`PreparedContact`] into `out`, in order, over the pool, when none is malformed and none
+/// has rolling resistance (whose rows are numbered in contact order): what the one-thread loop of
+/// [`ContactSolver::prepare`] gives then. Returns `false`, with `out` empty, otherwise.
+fn prepare_on_pool(
+    contacts: &[Contact],
+    params: &[BodyParams],
+    body_count: usize,
+    ctx: &StepContext,
+    out: &mut Vec<PreparedContact>,
+) -> bool {
+    let plain = AtomicBool::new(true);
+    par::map_collect_in_order(contacts, out, MIN_ITEMS_PER_TASK, |source, contact| {
+        let (a, b) = (contact.body_a, contact.body_b);
+        let (Some(pa), Some(pb)) = (params[..body_count].get(a), params[..body_count].get(b))
+        else {
+            plain.store(false, Ordering::Relaxed);
+            return PreparedContact::new(
+                source,
+                contact,
+                &BodyParams::WORLD,
+                &BodyParams::WORLD,
+                None,
+                ctx,
+            );
+        };
+        if a == b || !contact.normal.is_finite() || contact.rolling_friction > 0.0 {
+            plain.store(false, Ordering::Relaxed);
+        }
+        PreparedContact::new(source, contact, pa, pb, None, ctx)
+    });
+    if plain.into_inner() {
+        return true;
+    }
+    out.clear();
+    false
 }

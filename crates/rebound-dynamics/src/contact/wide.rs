@@ -16,11 +16,12 @@
 //! the empty lanes of a colour's last batch, carry zero masses and so apply zero impulses.
 //!
 //! Files: `coloring.rs` (which manifolds go into which batch), `batch.rs` (a batch: its preparation, warm
-//! start and passes), `results.rs` (its impulses read back per manifold), `groups.rs` (a colour's batches on
+//! start and passes), `fill.rs` (the batches prepared over the thread pool), `results.rs` (its impulses read back per manifold), `groups.rs` (a colour's batches on
 //! several threads), `lanes.rs` (the lane arithmetic and transposes).
 
 mod batch;
 mod coloring;
+mod fill;
 mod groups;
 mod lanes;
 mod results;

@@ -34,23 +34,27 @@ pub(super) fn search_on_pool(
 
 /// For every collider, in collider order: `apply(broad_phase, handle, collider, compute(broad_phase, handle,
 /// collider))`, every `compute` (which only reads) over the pool first, then every `apply` (which changes
-/// the tree) one after the other: the calls the one-thread loops make, on the same values.
+/// the tree) one after the other: the calls the one-thread loops make, on the same values. `computed` is
+/// scratch (per collider slot, its computed value), kept from step to step.
 pub(super) fn on_pool<'c, S: Sync, T: Send>(
     broad_phase: &mut S,
     colliders: &'c ColliderSet,
+    computed: &mut Vec<Option<T>>,
     compute: impl Fn(&S, ColliderHandle, &'c Collider) -> T + Sync + Send,
     mut apply: impl FnMut(&mut S, ColliderHandle, &'c Collider, T),
 ) {
-    let list: Vec<(ColliderHandle, &Collider)> = colliders.iter().collect();
-    let mut computed = Vec::new();
     let shared = &*broad_phase;
-    rebound_math::par::map_collect_in_order(
-        &list,
-        &mut computed,
-        rebound_math::par::MIN_ITEMS_PER_TASK,
-        |_, &(handle, collider)| compute(shared, handle, collider),
-    );
-    for (&(handle, collider), value) in list.iter().zip(computed) {
-        apply(broad_phase, handle, collider, value);
+    colliders
+        .arena
+        .map_in_slot_order(computed, |index, collider| {
+            compute(shared, ColliderHandle(index), collider)
+        });
+    for (handle, collider) in colliders.iter() {
+        if let Some(value) = computed
+            .get_mut(handle.0.index as usize)
+            .and_then(Option::take)
+        {
+            apply(broad_phase, handle, collider, value);
+        }
     }
 }

@@ -37,7 +37,7 @@ pub(crate) struct PointX4 {
 
 /// A batch's friction patch in each lane: two tangent rows at the centre of the manifold's points (the twist
 /// row is [`TwistX4`]). One per batch, at the batch's index. Seven cache lines.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[repr(C, align(64))]
 pub(crate) struct PatchX4 {
     pub(crate) tangent_impulse: [Vec4; 2],
@@ -62,7 +62,7 @@ impl PatchX4 {
 
 /// A batch's twist row about the normal in each lane: only batches with a manifold of two points or more
 /// have one (a lone point has no lever to resist twist with). Two cache lines.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[repr(C, align(64))]
 pub(crate) struct TwistX4 {
     /// Accumulated twist impulse (N·m·s).
@@ -85,7 +85,7 @@ impl TwistX4 {
 
 /// What the read-back of a batch needs and its passes do not: which manifolds its lanes hold, and its patch's
 /// centre and spread. One per batch, at the batch's index.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct BatchInfo {
     /// Indices of the manifolds (into the solver's prepared contacts); the batch's `lanes` first are used.
     pub(crate) contacts: [u32; LANES],
@@ -102,7 +102,7 @@ pub(crate) struct BatchInfo {
 /// Up to four manifolds without a moving body in common, solved side by side: what the passes read of them.
 /// Five cache lines (`align(64)`): the last holds what only *solve* reads (the bias and the soft row's
 /// scales), the first what every pass reads first (where the bodies and rows are).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[repr(C, align(64))]
 pub(crate) struct Batch {
     pub(crate) body_a: [u32; LANES],
@@ -164,180 +164,234 @@ impl Batches {
         contacts: &[PreparedContact],
         input: &PrepareInput<'_>,
     ) {
-        let slots = &mut self.slots;
-        let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
-        let lanes = [lane(0), lane(1), lane(2), lane(3)];
-        let headers = lanes.map(|c| c.copied().unwrap_or(EMPTY_LANE));
-        let first_slot = slots.len();
-        let slot_count = lanes
-            .iter()
-            .flatten()
-            .map(|c| c.point_count)
-            .max()
-            .unwrap_or(0);
-        let normal = gather3(&headers, |c| c.normal);
-        let tangents = [
-            gather3(&headers, |c| c.tangents[0]),
-            gather3(&headers, |c| c.tangents[1]),
-        ];
-        let inv_mass_a = gather1(&headers, |c| c.inv_mass_a);
-        let inv_mass_b = gather1(&headers, |c| c.inv_mass_b);
-        // Each lane's inverse world inertia, once per batch (every slot of a lane shares its bodies).
-        let inertia = |body: fn(&PreparedContact) -> usize| {
-            let m =
-                lanes.map(|c| c.map_or(Mat3::ZERO, |c| input.params[body(c)].inv_inertia_world));
-            Mat3x4 {
-                x_axis: Vec3x4::from_lanes(m.map(|m| m.x_axis)),
-                y_axis: Vec3x4::from_lanes(m.map(|m| m.y_axis)),
-                z_axis: Vec3x4::from_lanes(m.map(|m| m.z_axis)),
-            }
-        };
-        let (inertia_a, inertia_b) = (inertia(|c| c.body_a), inertia(|c| c.body_b));
-        let mass_sum = inv_mass_a + inv_mass_b;
-        let invert = |k: Vec4, present: Mask4| {
-            Vec4::select(k.cmpgt(Vec4::ZERO) & present, Vec4::ONE / k, Vec4::ZERO)
-        };
-        // The patch centres, and the friction the points carry from the last step, lane by lane; in a batch of
-        // one-point manifolds (a pile of balls), the point itself and its friction — the same bits.
-        let single = slot_count == 1;
-        let loaded = headers.iter().any(|c| c.load_depth > 0.0);
-        // The deepest shift of a loaded point's rest point in each lane (`PreparedContact::load_shift`).
-        let mut load_shift = Vec4::ZERO;
-        let mut sums = (!single).then(|| {
-            let sums = lanes.map(|c| {
-                c.map_or([Vec3::ZERO; 3], |c| {
-                    patch_sums(input.contacts[c.source].points())
-                })
-            });
-            [0, 1, 2].map(|k| gather3(&sums, |s| s[k]))
-        });
-        let present = gather1(&headers, |c| c.point_count as f32).cmpgt(Vec4::ZERO);
-        let (mut spread, mut warm_twist) = (Vec4::ZERO, Vec4::ZERO);
-        for slot in 0..slot_count {
-            let points = lanes.map(|c| c.and_then(|c| input.contacts[c.source].points().get(slot)));
-            let here = Mask4::from_array(points.map(|p| p.is_some()));
-            let PointLanes {
-                anchor_a,
-                anchor_b,
-                mut separation,
-                normal_impulse,
-                friction,
-            } = PointLanes::of(points.map(|p| p.unwrap_or(&NO_POINT)));
-            let [center_a, _, _] = *sums.get_or_insert([anchor_a, anchor_b, friction]);
-            let rn_a = anchor_a.cross(&normal);
-            let rn_b = anchor_b.cross(&normal);
-            let wn_a = inertia_a.mul(&rn_a);
-            let wn_b = inertia_b.mul(&rn_b);
-            let k_normal = mass_sum + rn_a.dot(&wn_a) + rn_b.dot(&wn_b);
-            let normal_mass = invert(k_normal, here);
-            if loaded {
-                let k = k_normal.to_array();
-                let shift = Vec4::select(
-                    here,
-                    Vec4::from_array(core::array::from_fn(|i| {
-                        headers[i].load_shift(k[i], input.ctx)
-                    })),
-                    Vec4::ZERO,
-                );
-                // As the scalar path: the cap follows what the separation lost.
-                let unshifted = separation;
-                separation -= shift;
-                load_shift = load_shift.max(unshifted - separation);
-            }
-            // A lone point is the centre: no lever, no spread.
-            let rho2 = if single {
-                Vec4::ZERO
-            } else {
-                let rho = anchor_a.sub(&center_a).select(here);
-                warm_twist += rho.cross(&friction).dot(&normal);
-                rho.dot(&rho)
-            };
-            spread += rho2;
-            slots.push(PointX4 {
-                anchor_a,
-                anchor_b,
-                separation,
-                normal_impulse: if input.ctx.warm_starting {
-                    normal_impulse
-                } else {
-                    Vec4::ZERO
-                },
-                max_normal_impulse: Vec4::ZERO,
-                normal_mass,
-                twist_radius: rho2.sqrt(),
-                rn_a,
-                rn_b,
-                wn_a,
-                wn_b,
-            });
-        }
-        let [center_a, center_b, warm_linear] = sums.unwrap_or([Vec3x4::ZERO; 3]);
-        let twist = lanes.iter().flatten().any(|c| c.point_count > 1);
-        let mut patch = PatchX4::EMPTY;
-        for (i, t) in tangents.iter().enumerate() {
-            patch.rt_a[i] = center_a.cross(t);
-            patch.rt_b[i] = center_b.cross(t);
-            patch.wt_a[i] = inertia_a.mul(&patch.rt_a[i]);
-            patch.wt_b[i] = inertia_b.mul(&patch.rt_b[i]);
-            patch.tangent_mass[i] = invert(
-                mass_sum + patch.rt_a[i].dot(&patch.wt_a[i]) + patch.rt_b[i].dot(&patch.wt_b[i]),
-                present,
-            );
-        }
-        if input.ctx.warm_starting {
-            patch.tangent_impulse = [warm_linear.dot(&tangents[0]), warm_linear.dot(&tangents[1])];
-        }
-        let first_twist = self.twists.len() as u32;
-        // A batch of one-point manifolds has no twist row (no lever to resist twist with).
-        if twist {
-            let twist_a = inertia_a.mul(&normal);
-            let twist_b = inertia_b.mul(&normal);
-            self.twists.push(TwistX4 {
-                impulse: if input.ctx.warm_starting {
-                    warm_twist
-                } else {
-                    Vec4::ZERO
-                },
-                mass: invert(normal.dot(&twist_a) + normal.dot(&twist_b), present),
-                twist_a,
-                twist_b,
-            });
-        }
+        let (first_slot, first_twist) = (self.slots.len(), self.twists.len() as u32);
+        build(group, contacts, input, first_slot, first_twist, self);
+    }
+}
+
+/// Where [`build`] puts a batch's parts, in the order it makes them: its point slots one by one, its twist
+/// row if it has one, its patch, its read-back info, the batch.
+pub(crate) trait BatchSink {
+    fn slot(&mut self, slot: PointX4);
+    fn twist(&mut self, row: TwistX4);
+    fn patch(&mut self, patch: PatchX4);
+    fn info(&mut self, info: BatchInfo);
+    fn batch(&mut self, batch: Batch);
+}
+
+/// One thread's preparation: each part pushed onto its array.
+impl BatchSink for Batches {
+    #[inline(always)]
+    fn slot(&mut self, slot: PointX4) {
+        self.slots.push(slot);
+    }
+    #[inline(always)]
+    fn twist(&mut self, row: TwistX4) {
+        self.twists.push(row);
+    }
+    #[inline(always)]
+    fn patch(&mut self, patch: PatchX4) {
         self.patches.push(patch);
-        let index = |i: usize| group.get(i).map_or(0, |&index| index as u32);
-        self.infos.push(BatchInfo {
-            contacts: [0, 1, 2, 3].map(index),
-            sources: headers.map(|c| c.source as u32),
-            point_counts: headers.map(|c| c.point_count as u32),
-            center_a,
-            spread,
+    }
+    #[inline(always)]
+    fn info(&mut self, info: BatchInfo) {
+        self.infos.push(info);
+    }
+    #[inline(always)]
+    fn batch(&mut self, batch: Batch) {
+        self.batches.push(batch);
+    }
+}
+
+/// The batch of the manifolds `group` (one to four indices into `contacts`) whose point slots start at
+/// `first_slot` and whose twist row, if it has one, is `first_twist`, into `sink` ([`Batches::push`]).
+#[inline(always)]
+pub(crate) fn build(
+    group: &[usize],
+    contacts: &[PreparedContact],
+    input: &PrepareInput<'_>,
+    first_slot: usize,
+    first_twist: u32,
+    sink: &mut impl BatchSink,
+) {
+    let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
+    let lanes = [lane(0), lane(1), lane(2), lane(3)];
+    let headers = lanes.map(|c| c.copied().unwrap_or(EMPTY_LANE));
+    let slot_count = lanes
+        .iter()
+        .flatten()
+        .map(|c| c.point_count)
+        .max()
+        .unwrap_or(0);
+    let twist = lanes.iter().flatten().any(|c| c.point_count > 1);
+    let normal = gather3(&headers, |c| c.normal);
+    let tangents = [
+        gather3(&headers, |c| c.tangents[0]),
+        gather3(&headers, |c| c.tangents[1]),
+    ];
+    let inv_mass_a = gather1(&headers, |c| c.inv_mass_a);
+    let inv_mass_b = gather1(&headers, |c| c.inv_mass_b);
+    // Each lane's inverse world inertia, once per batch (every slot of a lane shares its bodies).
+    let inertia = |body: fn(&PreparedContact) -> usize| {
+        let m = lanes.map(|c| c.map_or(Mat3::ZERO, |c| input.params[body(c)].inv_inertia_world));
+        Mat3x4 {
+            x_axis: Vec3x4::from_lanes(m.map(|m| m.x_axis)),
+            y_axis: Vec3x4::from_lanes(m.map(|m| m.y_axis)),
+            z_axis: Vec3x4::from_lanes(m.map(|m| m.z_axis)),
+        }
+    };
+    let (inertia_a, inertia_b) = (inertia(|c| c.body_a), inertia(|c| c.body_b));
+    let mass_sum = inv_mass_a + inv_mass_b;
+    let invert = |k: Vec4, present: Mask4| {
+        Vec4::select(k.cmpgt(Vec4::ZERO) & present, Vec4::ONE / k, Vec4::ZERO)
+    };
+    // The patch centres, and the friction the points carry from the last step, lane by lane; in a batch of
+    // one-point manifolds (a pile of balls), the point itself and its friction — the same bits.
+    let single = slot_count == 1;
+    let loaded = headers.iter().any(|c| c.load_depth > 0.0);
+    // The deepest shift of a loaded point's rest point in each lane (`PreparedContact::load_shift`).
+    let mut load_shift = Vec4::ZERO;
+    let mut sums = (!single).then(|| {
+        let sums = lanes.map(|c| {
+            c.map_or([Vec3::ZERO; 3], |c| {
+                patch_sums(input.contacts[c.source].points())
+            })
         });
-        self.batches.push(Batch {
-            normal,
-            tangents,
-            friction: gather1(&headers, |c| c.friction),
-            inv_mass_a,
-            inv_mass_b,
-            bias_rate: gather1(&headers, |c| c.softness.bias_rate),
-            mass_scale: gather1(&headers, |c| c.softness.mass_scale),
-            impulse_scale: gather1(&headers, |c| c.softness.impulse_scale),
-            max_push: if loaded {
-                let shift = load_shift.to_array();
+        [0, 1, 2].map(|k| gather3(&sums, |s| s[k]))
+    });
+    let present = gather1(&headers, |c| c.point_count as f32).cmpgt(Vec4::ZERO);
+    let (mut spread, mut warm_twist) = (Vec4::ZERO, Vec4::ZERO);
+    for slot in 0..slot_count {
+        let points = lanes.map(|c| c.and_then(|c| input.contacts[c.source].points().get(slot)));
+        let here = Mask4::from_array(points.map(|p| p.is_some()));
+        let PointLanes {
+            anchor_a,
+            anchor_b,
+            mut separation,
+            normal_impulse,
+            friction,
+        } = PointLanes::of(points.map(|p| p.unwrap_or(&NO_POINT)));
+        let [center_a, _, _] = *sums.get_or_insert([anchor_a, anchor_b, friction]);
+        let rn_a = anchor_a.cross(&normal);
+        let rn_b = anchor_b.cross(&normal);
+        let wn_a = inertia_a.mul(&rn_a);
+        let wn_b = inertia_b.mul(&rn_b);
+        let k_normal = mass_sum + rn_a.dot(&wn_a) + rn_b.dot(&wn_b);
+        let normal_mass = invert(k_normal, here);
+        if loaded {
+            let k = k_normal.to_array();
+            let shift = Vec4::select(
+                here,
                 Vec4::from_array(core::array::from_fn(|i| {
-                    -headers[i].max_push_with_shift(shift[i])
-                }))
+                    headers[i].load_shift(k[i], input.ctx)
+                })),
+                Vec4::ZERO,
+            );
+            // As the scalar path: the cap follows what the separation lost.
+            let unshifted = separation;
+            separation -= shift;
+            load_shift = load_shift.max(unshifted - separation);
+        }
+        // A lone point is the centre: no lever, no spread.
+        let rho2 = if single {
+            Vec4::ZERO
+        } else {
+            let rho = anchor_a.sub(&center_a).select(here);
+            warm_twist += rho.cross(&friction).dot(&normal);
+            rho.dot(&rho)
+        };
+        spread += rho2;
+        sink.slot(PointX4 {
+            anchor_a,
+            anchor_b,
+            separation,
+            normal_impulse: if input.ctx.warm_starting {
+                normal_impulse
             } else {
-                gather1(&headers, |c| -c.max_push_out_speed)
+                Vec4::ZERO
             },
-            body_a: headers.map(|c| c.body_a as u32),
-            body_b: headers.map(|c| c.body_b as u32),
-            first_slot: first_slot as u32,
-            first_twist,
-            slots: slot_count as u16,
-            lanes: group.len() as u8,
-            twist,
+            max_normal_impulse: Vec4::ZERO,
+            normal_mass,
+            twist_radius: rho2.sqrt(),
+            rn_a,
+            rn_b,
+            wn_a,
+            wn_b,
         });
     }
+    let [center_a, center_b, warm_linear] = sums.unwrap_or([Vec3x4::ZERO; 3]);
+    let mut patch = PatchX4::EMPTY;
+    for (i, t) in tangents.iter().enumerate() {
+        patch.rt_a[i] = center_a.cross(t);
+        patch.rt_b[i] = center_b.cross(t);
+        patch.wt_a[i] = inertia_a.mul(&patch.rt_a[i]);
+        patch.wt_b[i] = inertia_b.mul(&patch.rt_b[i]);
+        patch.tangent_mass[i] = invert(
+            mass_sum + patch.rt_a[i].dot(&patch.wt_a[i]) + patch.rt_b[i].dot(&patch.wt_b[i]),
+            present,
+        );
+    }
+    if input.ctx.warm_starting {
+        patch.tangent_impulse = [warm_linear.dot(&tangents[0]), warm_linear.dot(&tangents[1])];
+    }
+    // A batch of one-point manifolds has no twist row (no lever to resist twist with).
+    if twist {
+        let twist_a = inertia_a.mul(&normal);
+        let twist_b = inertia_b.mul(&normal);
+        sink.twist(TwistX4 {
+            impulse: if input.ctx.warm_starting {
+                warm_twist
+            } else {
+                Vec4::ZERO
+            },
+            mass: invert(normal.dot(&twist_a) + normal.dot(&twist_b), present),
+            twist_a,
+            twist_b,
+        });
+    }
+    sink.patch(patch);
+    let index = |i: usize| group.get(i).map_or(0, |&index| index as u32);
+    sink.info(BatchInfo {
+        contacts: [0, 1, 2, 3].map(index),
+        sources: headers.map(|c| c.source as u32),
+        point_counts: headers.map(|c| c.point_count as u32),
+        center_a,
+        spread,
+    });
+    sink.batch(Batch {
+        normal,
+        tangents,
+        friction: gather1(&headers, |c| c.friction),
+        inv_mass_a,
+        inv_mass_b,
+        bias_rate: gather1(&headers, |c| c.softness.bias_rate),
+        mass_scale: gather1(&headers, |c| c.softness.mass_scale),
+        impulse_scale: gather1(&headers, |c| c.softness.impulse_scale),
+        max_push: if loaded {
+            let shift = load_shift.to_array();
+            Vec4::from_array(core::array::from_fn(|i| {
+                -headers[i].max_push_with_shift(shift[i])
+            }))
+        } else {
+            gather1(&headers, |c| -c.max_push_out_speed)
+        },
+        body_a: headers.map(|c| c.body_a as u32),
+        body_b: headers.map(|c| c.body_b as u32),
+        first_slot: first_slot as u32,
+        first_twist,
+        slots: slot_count as u16,
+        lanes: group.len() as u8,
+        twist,
+    });
+}
+
+/// How many point slots the batch of the manifolds `group` has (as many as its largest manifold has
+/// points), and whether it has a twist row (some manifold has two points or more).
+#[inline(always)]
+pub(crate) fn shape(group: &[usize], contacts: &[PreparedContact]) -> (usize, bool) {
+    let counts = group.iter().map(|&index| contacts[index].point_count);
+    let slot_count = counts.clone().max().unwrap_or(0);
+    (slot_count, counts.into_iter().any(|n| n > 1))
 }
 
 impl Batch {

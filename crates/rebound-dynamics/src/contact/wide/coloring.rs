@@ -3,8 +3,14 @@
 //! by chunk; each colour's manifolds become batches of four. Stage *prepare*.
 
 use super::batch::Batches;
+use super::fill::fill_on_pool;
 use super::lanes::LANES;
 use crate::contact::prepared::{PrepareInput, PreparedContact};
+use rebound_math::par;
+
+/// Manifolds below which the batches are prepared on one thread even on a pool (a fork costs about as much
+/// as preparing a few dozen batches).
+const MIN_CONTACTS_ON_POOL: usize = 256;
 
 /// The number of colours tried before a manifold is left to the scalar path. A body touching more manifolds
 /// than this overflows (Box2D v3 uses 24; a box in a pyramid touches 6, a ball in a pile about 12). At most
@@ -37,6 +43,11 @@ pub(crate) struct Coloring {
     pub(crate) group_ends: Vec<usize>,
     /// Leave every manifold to the scalar path (tests compare the two paths).
     pub(crate) scalar_only: bool,
+    /// On a pool of several threads, the batches named before they are prepared (`super::fill`): each
+    /// batch's range of `pool_members` (its manifolds, in lane order), and scratch.
+    pool_groups: Vec<(u32, u32)>,
+    pool_members: Vec<usize>,
+    pool_places: Vec<(u32, u32)>,
 }
 
 impl Coloring {
@@ -50,7 +61,11 @@ impl Coloring {
         scalar: &mut Vec<usize>,
     ) {
         let params = input.params;
+        // On a pool the batches are named here and prepared over the pool at the end.
+        let on_pool = par::is_parallel() && contacts.len() >= MIN_CONTACTS_ON_POOL;
         batches.clear();
+        self.pool_groups.clear();
+        self.pool_members.clear();
         scalar.clear();
         self.group_ends.clear();
         self.used.clear();
@@ -81,7 +96,17 @@ impl Coloring {
                 }
                 self.members[color].push(index);
             }
-            self.flush(chunk, contacts, input, batches);
+            self.flush(chunk, contacts, input, batches, on_pool);
+        }
+        if on_pool {
+            fill_on_pool(
+                batches,
+                &self.pool_groups,
+                &self.pool_members,
+                &mut self.pool_places,
+                contacts,
+                input,
+            );
         }
     }
 
@@ -93,8 +118,22 @@ impl Coloring {
         contacts: &[PreparedContact],
         input: &PrepareInput<'_>,
         batches: &mut Batches,
+        on_pool: bool,
     ) {
         for members in &mut self.members {
+            if on_pool {
+                for group in members.chunks(LANES) {
+                    let start = self.pool_members.len() as u32;
+                    self.pool_members.extend_from_slice(group);
+                    self.pool_groups
+                        .push((start, self.pool_members.len() as u32));
+                }
+                if !members.is_empty() {
+                    self.group_ends.push(self.pool_groups.len());
+                }
+                members.clear();
+                continue;
+            }
             for group in members.chunks(LANES) {
                 batches.push(group, contacts, input);
             }
