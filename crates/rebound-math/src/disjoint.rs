@@ -77,7 +77,10 @@ impl<'a, T> Disjoint<'a, T> {
     /// No other reference to element `index` (on this thread or another) lives while this one does.
     #[inline(always)]
     #[must_use]
-    #[expect(clippy::mut_from_ref, reason = "the caller keeps the element to itself")]
+    #[expect(
+        clippy::mut_from_ref,
+        reason = "the caller keeps the element to itself"
+    )]
     pub unsafe fn get_mut(&self, index: usize) -> Option<&mut T> {
         // SAFETY: in bounds, and the caller holds the only reference to the element.
         (index < self.len).then(|| unsafe { self.start.add(index).as_mut() })

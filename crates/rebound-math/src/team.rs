@@ -26,6 +26,16 @@ use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 #[cfg(feature = "parallel")]
 const SPINS_BEFORE_YIELD: u32 = 256;
 
+/// The number of threads a team started here would have: the current pool's (1 in the serial build).
+#[must_use]
+pub fn size() -> usize {
+    #[cfg(feature = "parallel")]
+    if crate::par::is_parallel() {
+        return rayon::current_num_threads();
+    }
+    1
+}
+
 /// Runs `work(phase, chunk)` for every chunk of every phase: phase `p` has `ends[p] − ends[p − 1]` chunks
 /// (`ends[0]` for `p = 0`; `ends` does not decrease), numbered from 0 within it. The chunks of one phase run
 /// on the pool's threads at once; each phase after all of the one before it.
@@ -167,7 +177,10 @@ mod tests {
         let mut sorted = log.to_vec();
         sorted.sort_unstable();
         assert_eq!(sorted, expected);
-        assert!(log.windows(2).all(|w| w[0].0 <= w[1].0), "a phase ran early");
+        assert!(
+            log.windows(2).all(|w| w[0].0 <= w[1].0),
+            "a phase ran early"
+        );
     }
 
     #[test]

@@ -20,6 +20,8 @@ mod scratch;
 mod settings;
 mod snapshot_check;
 mod solve;
+#[cfg(feature = "parallel")]
+mod solve_team;
 mod sorted_walk;
 mod state;
 mod step;

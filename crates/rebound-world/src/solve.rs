@@ -5,12 +5,16 @@
 
 use crate::prepare::Solver;
 use rebound_constraints::Substep;
-use rebound_dynamics::StepContext;
 use rebound_dynamics::contact::Bias;
 use rebound_dynamics::integrate::{integrate_positions, integrate_velocities, lock_axes};
+use rebound_dynamics::{BodyParams, MAX_CONTACT_POINTS, SolverBody, StepContext};
 
 /// Stage *substeps*.
 pub(crate) fn solve_substeps(s: &mut Solver, ctx: &StepContext) {
+    #[cfg(feature = "parallel")]
+    if rebound_math::par::is_parallel() && crate::solve_team::solve_substeps(s, ctx) {
+        return;
+    }
     for index in 0..ctx.substep_count {
         let substep = Substep::new(index, ctx.substep_count);
         integrate_velocities(&mut s.states, &s.params, ctx);
@@ -38,20 +42,32 @@ pub(crate) fn solve_substeps(s: &mut Solver, ctx: &StepContext) {
 /// Adds each contact point's accumulated normal impulse after a substep to its sum over the step (what the
 /// substep pushed with, see `ContactSolver::for_each_normal_impulse`), and after the last one the bounces.
 fn sum_step_impulses(s: &mut Solver, last: bool) {
-    let sums = &mut s.step_impulses;
     s.contact_solver
-        .for_each_normal_impulse(|source, k, normal, bounce| {
-            if let Some(sum) = sums.get_mut(source).and_then(|p| p.get_mut(k)) {
-                *sum += if last { normal + bounce } else { normal };
-            }
-        });
+        .for_each_normal_impulse(summing(&mut s.step_impulses, last));
+}
+
+/// What [`sum_step_impulses`] does with each point's impulses: adds them to `sums`.
+pub(crate) fn summing(
+    sums: &mut [[f32; MAX_CONTACT_POINTS]],
+    last: bool,
+) -> impl FnMut(usize, usize, f32, f32) + '_ {
+    move |source, k, normal, bounce| {
+        if let Some(sum) = sums.get_mut(source).and_then(|p| p.get_mut(k)) {
+            *sum += if last { normal + bounce } else { normal };
+        }
+    }
 }
 
 /// Sets the locked velocity components (and displacements) of the bodies with locked axes to zero: after
 /// every constraint pass, so that no pass hands the next a locked axis in motion.
 fn lock_axes_of(s: &mut Solver) {
-    for &i in &s.locked {
-        if let (Some(state), Some(params)) = (s.states.get_mut(i), s.params.get(i)) {
+    lock_axes_in(&mut s.states, &s.params, &s.locked);
+}
+
+/// [`lock_axes_of`] on the solver's arrays: `states` and `params` of the bodies `locked`.
+pub(crate) fn lock_axes_in(states: &mut [SolverBody], params: &[BodyParams], locked: &[usize]) {
+    for &i in locked {
+        if let (Some(state), Some(params)) = (states.get_mut(i), params.get(i)) {
             lock_axes(state, params.locks);
         }
     }

@@ -39,3 +39,4 @@ mod projection_velocity;
 mod tests;
 
 pub use joint_solver::{JointSolver, KeptRows};
+pub use pool::JointTeam;
