@@ -343,7 +343,7 @@ impl Batches {
             slots: slot_count as u16,
             lanes: group.len() as u8,
             twist,
-            moving: if self.moving {
+            moving: if cfg!(feature = "parallel") && self.moving {
                 let dynamic = |body: usize| input.params[body].is_dynamic();
                 lanes.iter().enumerate().fold(0, |mask, (k, c)| {
                     c.map_or(mask, |c| {
@@ -371,11 +371,12 @@ impl Batch {
         ctx: &StepContext,
         bias: Bias,
     ) {
+        let rows = self.rows(patch, slots, twists);
         let lanes = (
             self.states(&self.body_a, bodies),
             self.states(&self.body_b, bodies),
         );
-        let velocities = self.solve_lanes(self.rows(patch, slots, twists), lanes, ctx, bias);
+        let velocities = self.solve_lanes(rows, lanes, ctx, bias);
         self.scatter(bodies, &velocities);
     }
 
