@@ -207,7 +207,7 @@ fn a_pile_with_locks_bounces_and_force_events_keeps_the_bits_of_one_thread() {
             forces += world
                 .events()
                 .iter()
-                .filter(|e| matches!(e, Event::ContactForce(_)))
+                .filter(|e| matches!(e, Event::ContactForce { .. }))
                 .count();
         }
         assert!(contacts >= 256, "only {contacts} contacts");
