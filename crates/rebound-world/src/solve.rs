@@ -4,16 +4,37 @@
 //! (chains, bridges) are projected, and ropes that went taut jerk back.
 
 use crate::prepare::Solver;
+use crate::solve_parts::{lock_axes_in, summing};
 use rebound_constraints::Substep;
+use rebound_dynamics::StepContext;
 use rebound_dynamics::contact::Bias;
-use rebound_dynamics::integrate::{integrate_positions, integrate_velocities, lock_axes};
-use rebound_dynamics::{BodyParams, MAX_CONTACT_POINTS, SolverBody, StepContext};
+use rebound_dynamics::integrate::{integrate_positions, integrate_velocities};
 
 /// Stage *substeps*.
 pub(crate) fn solve_substeps(s: &mut Solver, ctx: &StepContext) {
     #[cfg(feature = "parallel")]
-    if rebound_math::par::is_parallel() && crate::solve_team::solve_substeps(s, ctx) {
-        return;
+    if rebound_math::par::is_parallel() {
+        let Solver {
+            states,
+            params,
+            contact_solver,
+            joint_solver,
+            step_impulses,
+            locked,
+            plan,
+            ..
+        } = s;
+        let arrays = crate::solve_team::Arrays {
+            states,
+            params,
+            contact_solver,
+            joint_solver,
+            step_impulses,
+            locked,
+        };
+        if crate::solve_team::solve_substeps(plan, arrays, ctx) {
+            return;
+        }
     }
     for index in 0..ctx.substep_count {
         let substep = Substep::new(index, ctx.substep_count);
@@ -46,31 +67,10 @@ fn sum_step_impulses(s: &mut Solver, last: bool) {
         .for_each_normal_impulse(summing(&mut s.step_impulses, last));
 }
 
-/// What [`sum_step_impulses`] does with each point's impulses: adds them to `sums`.
-pub(crate) fn summing(
-    sums: &mut [[f32; MAX_CONTACT_POINTS]],
-    last: bool,
-) -> impl FnMut(usize, usize, f32, f32) + '_ {
-    move |source, k, normal, bounce| {
-        if let Some(sum) = sums.get_mut(source).and_then(|p| p.get_mut(k)) {
-            *sum += if last { normal + bounce } else { normal };
-        }
-    }
-}
-
 /// Sets the locked velocity components (and displacements) of the bodies with locked axes to zero: after
 /// every constraint pass, so that no pass hands the next a locked axis in motion.
 fn lock_axes_of(s: &mut Solver) {
     lock_axes_in(&mut s.states, &s.params, &s.locked);
-}
-
-/// [`lock_axes_of`] on the solver's arrays: `states` and `params` of the bodies `locked`.
-pub(crate) fn lock_axes_in(states: &mut [SolverBody], params: &[BodyParams], locked: &[usize]) {
-    for &i in locked {
-        if let (Some(state), Some(params)) = (states.get_mut(i), params.get(i)) {
-            lock_axes(state, params.locks);
-        }
-    }
 }
 
 /// Stage *project*: the positions of each directly solved joint path.

@@ -15,12 +15,13 @@
     reason = "the solver's arrays shared by the chunks of a team (rebound_math::Disjoint)"
 )]
 
-use crate::prepare::Solver;
-use crate::solve::{lock_axes_in, summing};
-use rebound_constraints::{JointTeam, Substep};
+use crate::solve_parts::{lock_axes_in, summing};
+use rebound_constraints::{JointSolver, JointTeam, Substep};
 use rebound_dynamics::contact::Bias;
 use rebound_dynamics::integrate::{integrate_position, integrate_velocity};
-use rebound_dynamics::{BodyParams, ContactTeam, SolverBody, StepContext};
+use rebound_dynamics::{
+    BodyParams, ContactSolver, ContactTeam, MAX_CONTACT_POINTS, SolverBody, StepContext,
+};
 use rebound_math::{Disjoint, par, team};
 
 /// The substeps' phases, rebuilt every step (the buffers kept).
@@ -79,22 +80,30 @@ struct Shared<'a> {
     contacts: ContactTeam<'a>,
     joints: JointTeam<'a>,
     locked: &'a [usize],
-    step_impulses: Disjoint<'a, Vec<[f32; rebound_dynamics::MAX_CONTACT_POINTS]>>,
+    step_impulses: Disjoint<'a, Vec<[f32; MAX_CONTACT_POINTS]>>,
     ctx: &'a StepContext,
 }
 
+/// The solver's arrays the substeps read and write (the world's `prepare::Solver`, split).
+pub(crate) struct Arrays<'a> {
+    pub(crate) states: &'a mut [SolverBody],
+    pub(crate) params: &'a [BodyParams],
+    pub(crate) contact_solver: &'a mut ContactSolver,
+    pub(crate) joint_solver: &'a mut JointSolver,
+    pub(crate) step_impulses: &'a mut Vec<[f32; MAX_CONTACT_POINTS]>,
+    pub(crate) locked: &'a [usize],
+}
+
 /// Stage *substeps* on the team; `false` (nothing done) if the contact solver was not prepared for it.
-pub(crate) fn solve_substeps(s: &mut Solver, ctx: &StepContext) -> bool {
-    let Solver {
+pub(crate) fn solve_substeps(plan: &mut Plan, arrays: Arrays<'_>, ctx: &StepContext) -> bool {
+    let Arrays {
         states,
         params,
         contact_solver,
         joint_solver,
         step_impulses,
         locked,
-        plan,
-        ..
-    } = s;
+    } = arrays;
     let Some(contacts) = contact_solver.team() else {
         return false;
     };
