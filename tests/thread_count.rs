@@ -164,3 +164,58 @@ fn a_kinematic_body_shared_by_batches_on_threads_keeps_the_bits_of_one_thread() 
         assert_eq!(run(threads), one, "{threads} threads");
     }
 }
+
+/// 256 balls over the ground as [`ball_pile`], with every pass of the substeps' team in play: every seventh
+/// ball's rotations locked (the axis locks after each pass), every fifth bouncing (restitution: the scalar
+/// path after the colour groups) and every third reporting contact forces (the impulse sums after each
+/// substep).
+fn ball_pile_of_every_pass() -> PhysicsWorld {
+    let mut world = PhysicsWorld::new(WorldSettings::default()).expect("default settings");
+    let ground = world.insert_body(BodyDesc::fixed()).expect("a fixed body");
+    world
+        .insert_collider(ColliderDesc::cuboid(Vec3::new(50.0, 0.5, 50.0)), ground)
+        .expect("a box");
+    for i in 0..256_u16 {
+        let (x, z, y) = (f32::from(i % 8), f32::from((i / 8) % 8), f32::from(i / 64));
+        let mut body = BodyDesc::dynamic().with_position(Vec3::new(x, 1.0 + y * 1.01, z + 0.1 * y));
+        if i % 7 == 0 {
+            body = body.with_locked_axes(LockedAxes::ALL_ROTATION);
+        }
+        let ball = world.insert_body(body).expect("a ball");
+        let mut collider = ColliderDesc::ball(0.5);
+        if i % 5 == 0 {
+            collider = collider.with_restitution(0.3);
+        }
+        if i % 3 == 0 {
+            collider = collider.with_force_event_threshold(1.0);
+        }
+        world
+            .insert_collider(collider, ball)
+            .expect("a ball collider");
+    }
+    world
+}
+
+#[test]
+fn a_pile_with_locks_bounces_and_force_events_keeps_the_bits_of_one_thread() {
+    let run = |threads: usize| {
+        let mut world = ball_pile_of_every_pass();
+        world.set_thread_pool(Some(Arc::new(pool(threads))));
+        let (mut contacts, mut forces) = (0, 0);
+        for _ in 0..STEPS {
+            contacts = world.step(scenes::DT).contact_count;
+            forces += world
+                .events()
+                .iter()
+                .filter(|e| matches!(e, Event::ContactForce { .. }))
+                .count();
+        }
+        assert!(contacts >= 256, "only {contacts} contacts");
+        assert!(forces > 0, "no contact force event");
+        world.state_digest()
+    };
+    let one = run(1);
+    for threads in [2, 3, 8] {
+        assert_eq!(run(threads), one, "{threads} threads");
+    }
+}

@@ -51,7 +51,7 @@ pub use rope::Rope;
 pub use settings::{JointSettings, MAX_JOINT_ITERATIONS};
 pub use six_dof::{Axis, AxisDrive, AxisMotion, AxisSettings, SixDofJoint};
 pub use soft_spring::{JointSpring, OscillatorStep, SoftSpring};
-pub use solver::{JointSolver, KeptRows};
+pub use solver::{JointSolver, JointTeam, KeptRows};
 pub use spring::{Spring, SpringModel};
 pub use stage::Substep;
 pub use state::{JointState, JointStates};

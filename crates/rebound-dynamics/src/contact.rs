@@ -49,6 +49,7 @@
 //! - `stack_loads.rs`: [`StackLoads`], the weight each resting manifold carries, handed down the contact
 //!   graph, which moves the rest point of its soft rows at preparation.
 //! - `wide.rs` and `wide/`: four manifolds at a time in `Vec4` lanes — colouring, batches, lane arithmetic.
+//! - `team.rs`: the passes as a team of threads runs them, a colour group's batches split among it.
 
 mod bias;
 mod manifold;
@@ -57,9 +58,11 @@ mod prepared;
 mod scalar;
 mod solver;
 mod stack_loads;
+mod team;
 mod wide;
 
 pub use bias::Bias;
 pub use manifold::{Contact, ContactPoint, MAX_CONTACT_POINTS};
 pub use solver::ContactSolver;
 pub use stack_loads::StackLoads;
+pub use team::ContactTeam;

@@ -46,47 +46,53 @@ use rebound_math::{Mat3, Quat, Vec3, par};
 /// the update.
 pub fn integrate_velocities(bodies: &mut [SolverBody], params: &[BodyParams], ctx: &StepContext) {
     debug_assert_eq!(bodies.len(), params.len());
-    let h = ctx.h;
     par::for_each_zip_mut(bodies, params, par::MIN_ITEMS_PER_TASK, |state, p| {
-        match p.motion {
-            Motion::Fixed | Motion::Kinematic => return,
-            Motion::DynamicExplicit => advance_position(state, h),
-            Motion::Dynamic => {}
-        }
-        // Undamped bodies and bodies under no torque skip the division by 1 and the product with zero: the
-        // same bits (`v/1 = v`; `h·(I⁻¹·0)` is +0, which is what the addition of `Vec3::ZERO` adds).
-        let linear_acceleration = p.force * p.inv_mass + ctx.gravity * p.gravity_scale;
-        let mut v = state.linear_velocity;
-        if p.linear_damping != 0.0 {
-            v /= 1.0 + h * p.linear_damping;
-        }
-        state.linear_velocity = v + h * linear_acceleration;
-
-        if p.gyroscopic {
-            let rotation = state.delta_rotation * p.rotation;
-            state.angular_velocity = gyroscopic_iterations_with_norm(
-                state.angular_velocity,
-                rotation,
-                (&p.local_inertia, &p.local_inv_inertia),
-                p.inv_inertia_norm,
-                h,
-                GYROSCOPIC_ITERATIONS,
-                true,
-            );
-        }
-        let mut omega = state.angular_velocity;
-        if p.angular_damping != 0.0 {
-            omega /= 1.0 + h * p.angular_damping;
-        }
-        state.angular_velocity = omega
-            + if p.has_torque {
-                h * (p.inv_inertia_world * p.torque)
-            } else {
-                Vec3::ZERO
-            };
-        state.linear_velocity = flush_tiny(state.linear_velocity);
-        state.angular_velocity = flush_tiny(state.angular_velocity);
+        integrate_velocity(state, p, ctx);
     });
+}
+
+/// [`integrate_velocities`] of one body (`state`, with its `p`), for a caller that splits the bodies itself.
+#[inline(always)]
+pub fn integrate_velocity(state: &mut SolverBody, p: &BodyParams, ctx: &StepContext) {
+    let h = ctx.h;
+    match p.motion {
+        Motion::Fixed | Motion::Kinematic => return,
+        Motion::DynamicExplicit => advance_position(state, h),
+        Motion::Dynamic => {}
+    }
+    // Undamped bodies and bodies under no torque skip the division by 1 and the product with zero: the
+    // same bits (`v/1 = v`; `h·(I⁻¹·0)` is +0, which is what the addition of `Vec3::ZERO` adds).
+    let linear_acceleration = p.force * p.inv_mass + ctx.gravity * p.gravity_scale;
+    let mut v = state.linear_velocity;
+    if p.linear_damping != 0.0 {
+        v /= 1.0 + h * p.linear_damping;
+    }
+    state.linear_velocity = v + h * linear_acceleration;
+
+    if p.gyroscopic {
+        let rotation = state.delta_rotation * p.rotation;
+        state.angular_velocity = gyroscopic_iterations_with_norm(
+            state.angular_velocity,
+            rotation,
+            (&p.local_inertia, &p.local_inv_inertia),
+            p.inv_inertia_norm,
+            h,
+            GYROSCOPIC_ITERATIONS,
+            true,
+        );
+    }
+    let mut omega = state.angular_velocity;
+    if p.angular_damping != 0.0 {
+        omega /= 1.0 + h * p.angular_damping;
+    }
+    state.angular_velocity = omega
+        + if p.has_torque {
+            h * (p.inv_inertia_world * p.torque)
+        } else {
+            Vec3::ZERO
+        };
+    state.linear_velocity = flush_tiny(state.linear_velocity);
+    state.angular_velocity = flush_tiny(state.angular_velocity);
 }
 
 /// Sets the velocity components and the displacement along `locks`' axes to zero (the caller does it after
@@ -118,10 +124,16 @@ fn flush_tiny(v: Vec3) -> Vec3 {
 pub fn integrate_positions(bodies: &mut [SolverBody], params: &[BodyParams], ctx: &StepContext) {
     debug_assert_eq!(bodies.len(), params.len());
     par::for_each_zip_mut(bodies, params, par::MIN_ITEMS_PER_TASK, |state, p| {
-        if matches!(p.motion, Motion::Dynamic | Motion::Kinematic) {
-            advance_position(state, ctx.h);
-        }
+        integrate_position(state, p, ctx);
     });
+}
+
+/// [`integrate_positions`] of one body (`state`, with its `p`), for a caller that splits the bodies itself.
+#[inline(always)]
+pub fn integrate_position(state: &mut SolverBody, p: &BodyParams, ctx: &StepContext) {
+    if matches!(p.motion, Motion::Dynamic | Motion::Kinematic) {
+        advance_position(state, ctx.h);
+    }
 }
 
 #[inline]

@@ -21,7 +21,9 @@ mod step_context;
 pub use rebound_math as math;
 
 pub use body::{BodyDesc, BodyType, Integrator, RigidBody};
-pub use contact::{Bias, Contact, ContactPoint, ContactSolver, MAX_CONTACT_POINTS, StackLoads};
+pub use contact::{
+    Bias, Contact, ContactPoint, ContactSolver, ContactTeam, MAX_CONTACT_POINTS, StackLoads,
+};
 pub use error::DynamicsError;
 pub use locks::LockedAxes;
 pub use mass::MassProperties;

@@ -3,6 +3,7 @@
 // `enhanced-determinism`); clippy.toml lists them.
 #![warn(clippy::disallowed_methods)]
 
+pub mod disjoint;
 pub mod euler;
 pub mod inertia;
 pub mod par;
@@ -10,6 +11,7 @@ pub mod pose;
 pub mod quat;
 pub mod real;
 pub mod rotation2d;
+pub mod team;
 pub mod transform;
 pub mod validity;
 
@@ -21,6 +23,7 @@ mod error;
 pub use glam;
 pub use glam::{Affine3A, EulerRot, Mat2, Mat3, Mat4, Quat, Vec2, Vec3, Vec4};
 
+pub use disjoint::Disjoint;
 pub use error::MathError;
 pub use euler::EulerAngles;
 pub use pose::Pose;

@@ -20,6 +20,9 @@ mod scratch;
 mod settings;
 mod snapshot_check;
 mod solve;
+mod solve_parts;
+#[cfg(feature = "parallel")]
+mod solve_team;
 mod sorted_walk;
 mod state;
 mod step;

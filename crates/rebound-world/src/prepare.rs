@@ -54,6 +54,9 @@ pub(crate) struct Solver {
     pub(crate) step_impulses: Vec<[f32; MAX_CONTACT_POINTS]>,
     /// Solver indices of the bodies with locked axes (the substeps lock them after every pass).
     pub(crate) locked: Vec<usize>,
+    /// The substeps' phases on a team of threads (`solve_team`).
+    #[cfg(feature = "parallel")]
+    pub(crate) plan: crate::solve_team::Plan,
 }
 
 /// Stage *prepare*, part 1: the dense solver arrays. Awake moving bodies in handle order get indices

@@ -4,13 +4,38 @@
 //! (chains, bridges) are projected, and ropes that went taut jerk back.
 
 use crate::prepare::Solver;
+use crate::solve_parts::{lock_axes_in, summing};
 use rebound_constraints::Substep;
 use rebound_dynamics::StepContext;
 use rebound_dynamics::contact::Bias;
-use rebound_dynamics::integrate::{integrate_positions, integrate_velocities, lock_axes};
+use rebound_dynamics::integrate::{integrate_positions, integrate_velocities};
 
 /// Stage *substeps*.
 pub(crate) fn solve_substeps(s: &mut Solver, ctx: &StepContext) {
+    #[cfg(feature = "parallel")]
+    if rebound_math::par::is_parallel() {
+        let Solver {
+            states,
+            params,
+            contact_solver,
+            joint_solver,
+            step_impulses,
+            locked,
+            plan,
+            ..
+        } = s;
+        let arrays = crate::solve_team::Arrays {
+            states,
+            params,
+            contact_solver,
+            joint_solver,
+            step_impulses,
+            locked,
+        };
+        if crate::solve_team::solve_substeps(plan, arrays, ctx) {
+            return;
+        }
+    }
     for index in 0..ctx.substep_count {
         let substep = Substep::new(index, ctx.substep_count);
         integrate_velocities(&mut s.states, &s.params, ctx);
@@ -38,23 +63,14 @@ pub(crate) fn solve_substeps(s: &mut Solver, ctx: &StepContext) {
 /// Adds each contact point's accumulated normal impulse after a substep to its sum over the step (what the
 /// substep pushed with, see `ContactSolver::for_each_normal_impulse`), and after the last one the bounces.
 fn sum_step_impulses(s: &mut Solver, last: bool) {
-    let sums = &mut s.step_impulses;
     s.contact_solver
-        .for_each_normal_impulse(|source, k, normal, bounce| {
-            if let Some(sum) = sums.get_mut(source).and_then(|p| p.get_mut(k)) {
-                *sum += if last { normal + bounce } else { normal };
-            }
-        });
+        .for_each_normal_impulse(summing(&mut s.step_impulses, last));
 }
 
 /// Sets the locked velocity components (and displacements) of the bodies with locked axes to zero: after
 /// every constraint pass, so that no pass hands the next a locked axis in motion.
 fn lock_axes_of(s: &mut Solver) {
-    for &i in &s.locked {
-        if let (Some(state), Some(params)) = (s.states.get_mut(i), s.params.get(i)) {
-            lock_axes(state, params.locks);
-        }
-    }
+    lock_axes_in(&mut s.states, &s.params, &s.locked);
 }
 
 /// Stage *project*: the positions of each directly solved joint path.

@@ -10,6 +10,8 @@
 //!     integrate velocities                      (rebound-dynamics)
 //!     apply_forces               passes.rs      SpringModel::Force: the explicit Hooke force as a velocity change
 //!                                pool.rs        (joints that share no body: over the thread pool)
+//!                                team.rs        (the same, and every pass, inside the substeps' one
+//!                                               parallel section: JointTeam)
 //!     warm_start                 passes.rs      the impulses of the last substep, again
 //!     solve_substep(Bias::On)    passes.rs      solve_iterations Gauss–Seidel passes with soft position
 //!                                               correction, then each path (path_pass.rs), then the tethers
@@ -35,7 +37,9 @@ mod pool;
 mod prepare;
 mod project;
 mod projection_velocity;
+mod team;
 #[cfg(test)]
 mod tests;
 
 pub use joint_solver::{JointSolver, KeptRows};
+pub use team::JointTeam;

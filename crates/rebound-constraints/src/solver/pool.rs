@@ -5,7 +5,8 @@
 //!
 //! The stage copies each joint's two bodies out (over the pool), runs the joint on its copies (over the
 //! pool), and writes the copies back in joint order. Any other step (joints sharing a body), the serial
-//! build and a pool of one thread take the plain loop of `passes.rs`.
+//! build and a pool of one thread take the plain loop of `passes.rs`; the substeps' team splits the same
+//! joints its own way (`team.rs`).
 
 use super::dispatch::PreparedJoint;
 use rebound_dynamics::SolverBody;

@@ -7,7 +7,7 @@ use super::manifold::Contact;
 use super::patch::{Patch, PatchShare};
 use super::prepared::{PrepareInput, PreparedContact};
 use super::scalar::{self, PreparedPoint, Rolling};
-use super::wide::{self, Batches, Coloring, LaneVelocities};
+use super::wide::{self, Batches, Coloring};
 use crate::{BodyParams, SolverBody, StepContext};
 use core::sync::atomic::{AtomicBool, Ordering};
 use rebound_math::Vec3;
@@ -28,8 +28,6 @@ pub struct ContactSolver {
     /// Indices of the manifolds the scalar path solves, after the batches.
     pub(crate) scalar: Vec<usize>,
     pub(crate) coloring: Coloring,
-    /// The lanes' velocities of a colour group while it is solved on several threads (`wide::groups`).
-    pub(crate) lane_scratch: Vec<LaneVelocities>,
 }
 
 impl ContactSolver {
@@ -125,12 +123,12 @@ impl ContactSolver {
     /// Stage *warm start*: applies the accumulated impulses of the last substep (or the last step) again, so
     /// the iterations start from the previous answer.
     pub fn warm_start(&mut self, bodies: &mut [SolverBody]) {
-        wide::warm_start_batches(
-            &mut self.batches,
-            &self.coloring.group_ends,
-            bodies,
-            &mut self.lane_scratch,
-        );
+        wide::warm_start_batches(&self.batches, bodies);
+        self.warm_start_scalar(bodies);
+    }
+
+    /// Stage *warm start* of the manifolds the scalar path solves.
+    pub(crate) fn warm_start_scalar(&self, bodies: &mut [SolverBody]) {
         for c in self.scalar.iter().map(|&i| &self.contacts[i]) {
             scalar::warm_start(
                 c,
@@ -153,14 +151,17 @@ impl ContactSolver {
     /// Manifolds without restitution or rolling resistance are solved four at a time, in graph-coloured
     /// batches in `Vec4` lanes (`docs/physics.md`, Contacts); the rest one by one after them.
     pub fn solve(&mut self, bodies: &mut [SolverBody], ctx: &StepContext, bias: Bias) {
-        wide::solve_batches(
-            &mut self.batches,
-            &self.coloring.group_ends,
-            bodies,
-            &mut self.lane_scratch,
-            ctx,
-            bias,
-        );
+        wide::solve_batches(&mut self.batches, bodies, ctx, bias);
+        self.solve_scalar(bodies, ctx, bias);
+    }
+
+    /// Stages *solve* and *relax* of the manifolds the scalar path solves.
+    pub(crate) fn solve_scalar(
+        &mut self,
+        bodies: &mut [SolverBody],
+        ctx: &StepContext,
+        bias: Bias,
+    ) {
         for &index in &self.scalar {
             let c = &self.contacts[index];
             scalar::solve(

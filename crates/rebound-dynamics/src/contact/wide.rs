@@ -16,8 +16,9 @@
 //! the empty lanes of a colour's last batch, carry zero masses and so apply zero impulses.
 //!
 //! Files: `coloring.rs` (which manifolds go into which batch), `batch.rs` (a batch: its preparation, warm
-//! start and passes), `fill.rs` (the batches prepared over the thread pool), `results.rs` (its impulses read back per manifold), `groups.rs` (a colour's batches on
-//! several threads), `lanes.rs` (the lane arithmetic and transposes).
+//! start and passes), `fill.rs` (the batches prepared over the thread pool), `results.rs` (its impulses read
+//! back per manifold), `groups.rs` (a pass over the batches, a colour group's on several threads), `lanes.rs`
+//! (the lane arithmetic and transposes).
 
 mod batch;
 mod coloring;
@@ -28,6 +29,6 @@ mod results;
 #[cfg(test)]
 mod tests;
 
-pub(crate) use batch::{Batches, LaneVelocities};
+pub(crate) use batch::Batches;
 pub(crate) use coloring::Coloring;
-pub(crate) use groups::{solve_batches, warm_start_batches};
+pub(crate) use groups::{BATCHES_PER_CHUNK, SharedRows, solve_batches, warm_start_batches};

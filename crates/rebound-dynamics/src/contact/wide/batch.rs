@@ -14,7 +14,7 @@ use crate::contact::manifold::ContactPoint;
 use crate::contact::patch::patch_sums;
 use crate::contact::prepared::{PrepareInput, PreparedContact};
 use crate::{SolverBody, StepContext};
-use rebound_math::{Mat3, Vec3, Vec4};
+use rebound_math::{Disjoint, Mat3, Vec3, Vec4, par};
 
 /// One point slot of a batch: a [`PreparedPoint`]'s solve data in each lane. Six cache lines (`align(64)`),
 /// laid out so that *warm start* reads the first two only.
@@ -117,6 +117,9 @@ pub(crate) struct Batch {
     pub(crate) lanes: u8,
     /// Whether some lane has two points or more (else no twist row).
     pub(crate) twist: bool,
+    /// Bit `k` set when lane `k`'s body A is dynamic, bit `4 + k` when its body B is: the bodies a pass on
+    /// several threads writes back (`super::groups`). Set only when [`Batches::moving`] is.
+    pub(crate) moving: u8,
     pub(crate) friction: Vec4,
     pub(crate) normal: Vec3x4,
     pub(crate) inv_mass_a: Vec4,
@@ -141,6 +144,9 @@ pub(crate) struct Batches {
     pub(crate) infos: Vec<BatchInfo>,
     pub(crate) slots: Vec<PointX4>,
     pub(crate) twists: Vec<TwistX4>,
+    /// Whether the batches' [`Batch::moving`] masks are set: prepared to be solved by a team of threads
+    /// (the serial build and a pool of one thread do not need them).
+    pub(crate) moving: bool,
 }
 
 impl Batches {
@@ -151,6 +157,7 @@ impl Batches {
         self.infos.clear();
         self.slots.clear();
         self.twists.clear();
+        self.moving = par::is_parallel();
     }
 
     /// Adds the batch of the manifolds `group` (one to four indices into `contacts`), with its patch, its
@@ -165,7 +172,15 @@ impl Batches {
         input: &PrepareInput<'_>,
     ) {
         let (first_slot, first_twist) = (self.slots.len(), self.twists.len() as u32);
-        build(group, contacts, input, first_slot, first_twist, self);
+        let moving = self.moving;
+        build(
+            group,
+            contacts,
+            input,
+            (first_slot, first_twist),
+            moving,
+            self,
+        );
     }
 }
 
@@ -204,14 +219,15 @@ impl BatchSink for Batches {
 }
 
 /// The batch of the manifolds `group` (one to four indices into `contacts`) whose point slots start at
-/// `first_slot` and whose twist row, if it has one, is `first_twist`, into `sink` ([`Batches::push`]).
+/// `first_slot` and whose twist row, if it has one, is `first_twist`, into `sink` ([`Batches::push`]);
+/// with its [`Batch::moving`] mask when `moving` ([`Batches::moving`]).
 #[inline(always)]
 pub(crate) fn build(
     group: &[usize],
     contacts: &[PreparedContact],
     input: &PrepareInput<'_>,
-    first_slot: usize,
-    first_twist: u32,
+    (first_slot, first_twist): (usize, u32),
+    moving: bool,
     sink: &mut impl BatchSink,
 ) {
     let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
@@ -382,6 +398,16 @@ pub(crate) fn build(
         slots: slot_count as u16,
         lanes: group.len() as u8,
         twist,
+        moving: if cfg!(feature = "parallel") && moving {
+            let dynamic = |body: usize| input.params[body].is_dynamic();
+            lanes.iter().enumerate().fold(0, |mask, (k, c)| {
+                c.map_or(mask, |c| {
+                    mask | u8::from(dynamic(c.body_a)) << k | u8::from(dynamic(c.body_b)) << (4 + k)
+                })
+            })
+        } else {
+            0
+        },
     });
 }
 
@@ -407,7 +433,12 @@ impl Batch {
         ctx: &StepContext,
         bias: Bias,
     ) {
-        let velocities = self.solve_lanes(self.rows(patch, slots, twists), bodies, ctx, bias);
+        let rows = self.rows(patch, slots, twists);
+        let lanes = (
+            self.states(&self.body_a, bodies),
+            self.states(&self.body_b, bodies),
+        );
+        let velocities = self.solve_lanes(rows, lanes, ctx, bias);
         self.scatter(bodies, &velocities);
     }
 
@@ -431,20 +462,16 @@ impl Batch {
         }
     }
 
-    /// [`Batch::solve`] up to the write-back: the lanes' new velocities, from the batch's rows, with `bodies`
-    /// only read.
+    /// [`Batch::solve`] up to the write-back: the lanes' new velocities, from the batch's rows and its lanes'
+    /// bodies A and B (`sa`, `sb`).
     #[inline(always)]
     pub(crate) fn solve_lanes(
         &self,
         rows: Rows<'_>,
-        bodies: &[SolverBody],
+        (sa, sb): LaneBodies<'_>,
         ctx: &StepContext,
         bias: Bias,
     ) -> LaneVelocities {
-        let (sa, sb) = (
-            self.states(&self.body_a, bodies),
-            self.states(&self.body_b, bodies),
-        );
         let (la, lb) = (LaneStates::of(&sa), LaneStates::of(&sb));
         let (mut va, mut wa, mut vb, mut wb) = (la.v, la.w, lb.v, lb.w);
         let normal = self.normal;
@@ -550,23 +577,25 @@ impl Batch {
             .twist
             .then(|| twists.get(self.first_twist as usize))
             .flatten();
-        let velocities = self.warm_start_lanes(points, patch, twist, bodies);
+        let lanes = (
+            self.states(&self.body_a, bodies),
+            self.states(&self.body_b, bodies),
+        );
+        let velocities = self.warm_start_lanes(points, patch, twist, lanes);
         self.scatter(bodies, &velocities);
     }
 
-    /// [`Batch::warm_start`] up to the write-back: the lanes' new velocities, with `bodies` only read.
+    /// [`Batch::warm_start`] up to the write-back: the lanes' new velocities, from its lanes' bodies A and B.
     #[inline(always)]
     pub(crate) fn warm_start_lanes(
         &self,
         points: &[PointX4],
         p: &PatchX4,
         twist: Option<&TwistX4>,
-        bodies: &[SolverBody],
+        (sa, sb): LaneBodies<'_>,
     ) -> LaneVelocities {
-        let ((mut va, mut wa), (mut vb, mut wb)) = (
-            LaneStates::velocities(&self.states(&self.body_a, bodies)),
-            LaneStates::velocities(&self.states(&self.body_b, bodies)),
-        );
+        let ((mut va, mut wa), (mut vb, mut wb)) =
+            (LaneStates::velocities(&sa), LaneStates::velocities(&sb));
         // All normal impulses act along n: their sum moves the linear velocities once.
         let mut pushed = Vec4::ZERO;
         for p in points {
@@ -610,6 +639,71 @@ impl Batch {
         [lane(0), lane(1), lane(2), lane(3)]
     }
 
+    /// [`Batch::states`] of bodies that other threads may be writing: bodies A and B of every lane.
+    ///
+    /// # Safety
+    /// No other thread writes a body of the batch while the references live: within a colour group each
+    /// dynamic body is in one batch only, and fixed and kinematic bodies are never written by a group.
+    #[inline(always)]
+    #[expect(
+        unsafe_code,
+        reason = "reads the bodies other batches of the group write (Disjoint)"
+    )]
+    pub(crate) unsafe fn shared_states<'a>(
+        &self,
+        bodies: &'a Disjoint<'_, SolverBody>,
+    ) -> LaneBodies<'a> {
+        let lanes = |index: &[u32; LANES]| {
+            let lane = |k: usize| {
+                if k < usize::from(self.lanes) {
+                    // SAFETY: the caller keeps writers off the batch's bodies.
+                    unsafe { bodies.get(index[k] as usize) }.unwrap_or(&SolverBody::STATIC)
+                } else {
+                    &SolverBody::STATIC
+                }
+            };
+            [lane(0), lane(1), lane(2), lane(3)]
+        };
+        (lanes(&self.body_a), lanes(&self.body_b))
+    }
+
+    /// Writes the lanes' velocities back into their dynamic bodies ([`Batch::moving`]), never into a fixed
+    /// or kinematic one: what [`Batch::scatter`] writes, as the velocity a lane computes for a body of zero
+    /// inverse mass and inertia is the one it read (see `super::groups`).
+    ///
+    /// # Safety
+    /// No other reference to a dynamic body of the batch lives: within a colour group each dynamic body is in
+    /// one batch only.
+    #[inline(always)]
+    #[expect(
+        unsafe_code,
+        reason = "writes the batch's own bodies of a shared array (Disjoint)"
+    )]
+    pub(crate) unsafe fn scatter_moving(
+        &self,
+        bodies: &Disjoint<'_, SolverBody>,
+        velocities: &LaneVelocities,
+    ) {
+        let LaneVelocities { va, wa, vb, wb } = velocities;
+        let (va, wa, vb, wb) = (va.lanes(), wa.lanes(), vb.lanes(), wb.lanes());
+        for lane in 0..usize::from(self.lanes) {
+            if self.moving & (1 << lane) != 0 {
+                // SAFETY: the batch's own dynamic body (the caller's contract).
+                if let Some(a) = unsafe { bodies.get_mut(self.body_a[lane] as usize) } {
+                    a.linear_velocity = va[lane];
+                    a.angular_velocity = wa[lane];
+                }
+            }
+            if self.moving & (1 << (4 + lane)) != 0 {
+                // SAFETY: as above.
+                if let Some(b) = unsafe { bodies.get_mut(self.body_b[lane] as usize) } {
+                    b.linear_velocity = vb[lane];
+                    b.angular_velocity = wb[lane];
+                }
+            }
+        }
+    }
+
     /// Writes the lanes' velocities back.
     #[inline(always)]
     pub(crate) fn scatter(&self, bodies: &mut [SolverBody], velocities: &LaneVelocities) {
@@ -625,6 +719,9 @@ impl Batch {
         }
     }
 }
+
+/// The bodies A and B of a batch's four lanes, as the passes read them.
+pub(crate) type LaneBodies<'a> = ([&'a SolverBody; LANES], [&'a SolverBody; LANES]);
 
 /// A pass's rows of one batch: its point slots, its patch and its twist row if it has one.
 pub(crate) struct Rows<'a> {

@@ -114,7 +114,15 @@ fn fill(
             slot: (slot - first_slot) as usize,
             twist: (twist - first_twist) as usize,
         };
-        build(group, contacts, input, slot as usize, twist, &mut sink);
+        // Batches prepared over the pool are solved by a team of threads: they carry their moving masks.
+        build(
+            group,
+            contacts,
+            input,
+            (slot as usize, twist),
+            true,
+            &mut sink,
+        );
     }
 }
 

@@ -1,187 +1,140 @@
-//! A pass of the wide path over the batches, colour group by colour group (stages *warm start*, *solve* and
-//! *relax*). The batches of one colour of one chunk share no moving body, so within such a group no batch
-//! reads a velocity another one writes: on several threads each batch reads the bodies as the group found
-//! them, computes its lanes' new velocities (`Batch::solve_lanes`), and the group writes them back in batch
-//! order once all are done. A dynamic body is written by one batch of the group only, so the result is the
-//! bit pattern of solving the batches one after the other, for any number of threads. Fixed and kinematic
-//! bodies, which several batches of a group may share, get back the velocity they held: a lane adds `0·λ`
-//! to it (their inverse masses are 0), and that velocity holds no −0 component (`SolverBody::from_body`
-//! turns a kinematic body's −0 into +0, the one value `0·λ` could change), so which lane's write is kept
-//! does not matter.
+//! A pass of the wide path over the batches (stages *warm start*, *solve* and *relax*): one after another,
+//! or a colour group's batches split among the threads of a team (`rebound_math::team`).
+//!
+//! The batches of one colour of one chunk share no moving body (`super::coloring`), so within such a group
+//! no batch reads a velocity another one writes. On several threads each batch reads its bodies, computes
+//! its lanes' new velocities and writes them into its own dynamic bodies at once (`Batch::scatter_moving`):
+//! no other batch of the group reads or writes those, so the bits are those of solving the group's batches
+//! one after the other, whichever thread solves which. Fixed and kinematic bodies, which several batches of
+//! a group may share, are only read: a lane adds `0·λ` to their velocities (their inverse masses and
+//! inertias are 0), and those velocities hold no −0 component (`SolverBody::from_body` turns a kinematic
+//! body's −0 into +0, the one value `0·λ` could change), so the plain loop, which writes them back, leaves
+//! them as they were too.
 //!
 //! In the serial build, and in a pool of one thread, a pass is the plain loop over the batches.
 
-use super::batch::{Batch, Batches, LaneVelocities, PatchX4, PointX4, Rows, TwistX4};
+use super::batch::{Batch, Batches, PatchX4, PointX4, Rows, TwistX4};
 use crate::contact::bias::Bias;
 use crate::{SolverBody, StepContext};
-use rebound_math::par;
+use rebound_math::Disjoint;
+use std::ops::Range;
 
-/// Batches per task: below this a group's batches are solved on one thread.
-const BATCHES_PER_TASK: usize = 16;
+/// Batches per chunk of a team: a group of fewer than twice this is solved whole by one thread.
+pub(crate) const BATCHES_PER_CHUNK: usize = 16;
 
-/// Stage *warm start* of the batches.
-pub(crate) fn warm_start_batches(
-    batches: &mut Batches,
-    group_ends: &[usize],
-    bodies: &mut [SolverBody],
-    scratch: &mut Vec<LaneVelocities>,
-) {
-    if !par::is_parallel() {
-        for (batch, patch) in batches.batches.iter().zip(&batches.patches) {
-            batch.warm_start(patch, &batches.slots, &batches.twists, bodies);
-        }
-        return;
+/// Stage *warm start* of the batches, one after another.
+pub(crate) fn warm_start_batches(batches: &Batches, bodies: &mut [SolverBody]) {
+    for (batch, patch) in batches.batches.iter().zip(&batches.patches) {
+        batch.warm_start(patch, &batches.slots, &batches.twists, bodies);
     }
-    by_groups(
-        batches,
-        group_ends,
-        bodies,
-        scratch,
-        &|batch, rows, bodies| {
-            batch.warm_start_lanes(rows.points, rows.patch, rows.twist.as_deref(), bodies)
-        },
-    );
 }
 
-/// Stages *solve* (`Bias::On`) and *relax* (`Bias::Off`) of the batches.
+/// Stages *solve* (`Bias::On`) and *relax* (`Bias::Off`) of the batches, one after another.
 pub(crate) fn solve_batches(
     batches: &mut Batches,
-    group_ends: &[usize],
     bodies: &mut [SolverBody],
-    scratch: &mut Vec<LaneVelocities>,
     ctx: &StepContext,
     bias: Bias,
 ) {
-    if !par::is_parallel() {
-        let Batches {
-            batches,
-            patches,
-            slots,
-            twists,
-            ..
-        } = batches;
-        for (batch, patch) in batches.iter().zip(patches.iter_mut()) {
-            batch.solve(patch, slots, twists, bodies, ctx, bias);
-        }
-        return;
-    }
-    by_groups(
+    let Batches {
         batches,
-        group_ends,
-        bodies,
-        scratch,
-        &|batch, rows, bodies| batch.solve_lanes(rows, bodies, ctx, bias),
-    );
-}
-
-/// What a pass does to one batch: its rows in, its lanes' velocities out, the bodies only read.
-type Lanes<'f> = dyn Fn(&Batch, Rows<'_>, &[SolverBody]) -> LaneVelocities + Sync + 'f;
-
-/// A run of consecutive batches with their rows: `patches[i]` is `batches[i]`'s, and `slots` and `twists`
-/// begin at the first batch's.
-struct Run<'a> {
-    batches: &'a [Batch],
-    patches: &'a mut [PatchX4],
-    slots: &'a mut [PointX4],
-    twists: &'a mut [TwistX4],
-}
-
-impl Run<'_> {
-    /// Batch `i`'s rows.
-    fn rows(&mut self, i: usize) -> Rows<'_> {
-        let (first, batch) = (&self.batches[0], &self.batches[i]);
-        let slot = (batch.first_slot - first.first_slot) as usize;
-        let twist = (batch.first_twist - first.first_twist) as usize;
-        Rows {
-            points: &mut self.slots[slot..][..usize::from(batch.slots)],
-            patch: &mut self.patches[i],
-            twist: if batch.twist {
-                self.twists.get_mut(twist)
-            } else {
-                None
-            },
-        }
+        patches,
+        slots,
+        twists,
+        ..
+    } = batches;
+    for (batch, patch) in batches.iter().zip(patches.iter_mut()) {
+        batch.solve(patch, slots, twists, bodies, ctx, bias);
     }
 }
 
-/// One pass, group after group: each group's batches over the pool, then their velocities written back in
-/// batch order.
-fn by_groups(
-    batches: &mut Batches,
-    group_ends: &[usize],
-    bodies: &mut [SolverBody],
-    scratch: &mut Vec<LaneVelocities>,
-    lanes: &Lanes<'_>,
-) {
-    let mut start = 0;
-    for &end in group_ends {
-        let group = &batches.batches[start..end];
-        let (Some(first), Some(last)) = (group.first(), group.last()) else {
-            start = end;
-            continue;
-        };
-        // A group's slots and twist rows are contiguous: `Batches::push` pushes them batch after batch.
-        let slot_end = (last.first_slot - first.first_slot) as usize + usize::from(last.slots);
-        let twist_end = (last.first_twist - first.first_twist) as usize + usize::from(last.twist);
-        let mut run = Run {
-            batches: group,
-            patches: &mut batches.patches[start..end],
-            slots: &mut batches.slots[first.first_slot as usize..][..slot_end],
-            twists: &mut batches.twists[first.first_twist as usize..][..twist_end],
-        };
-        start = end;
-        if group.len() < 2 * BATCHES_PER_TASK {
-            for (i, batch) in group.iter().enumerate() {
-                let velocities = lanes(batch, run.rows(i), bodies);
-                batch.scatter(bodies, &velocities);
+/// The batches' rows, shared by the chunks of a team: each chunk takes the rows of its own batches.
+pub(crate) struct SharedRows<'a> {
+    pub(crate) batches: &'a [Batch],
+    pub(crate) patches: Disjoint<'a, PatchX4>,
+    pub(crate) slots: Disjoint<'a, PointX4>,
+    pub(crate) twists: Disjoint<'a, TwistX4>,
+}
+
+impl SharedRows<'_> {
+    /// Batch `index`'s rows.
+    ///
+    /// # Safety
+    /// No other reference to the batch's rows lives (a batch's rows are its own: `Batches::push`).
+    #[inline(always)]
+    #[expect(
+        unsafe_code,
+        reason = "a batch's rows out of the arrays all chunks share"
+    )]
+    unsafe fn rows(&self, index: usize, batch: &Batch) -> Option<Rows<'_>> {
+        let first = batch.first_slot as usize;
+        // SAFETY: the batch's own rows (the caller's contract).
+        unsafe {
+            Some(Rows {
+                points: self
+                    .slots
+                    .slice_mut(first..first + usize::from(batch.slots)),
+                patch: self.patches.get_mut(index)?,
+                twist: if batch.twist {
+                    self.twists.get_mut(batch.first_twist as usize)
+                } else {
+                    None
+                },
+            })
+        }
+    }
+
+    /// Stage *warm start* of the batches `range` of one colour group, each written into its own bodies.
+    ///
+    /// # Safety
+    /// The batches are of one colour group, and the only other code running on `bodies` and the rows is
+    /// this function or [`SharedRows::solve`] on other batches of the same group.
+    #[expect(
+        unsafe_code,
+        reason = "the batches of a colour group write their own bodies at once"
+    )]
+    pub(crate) unsafe fn warm_start(&self, range: Range<usize>, bodies: &Disjoint<'_, SolverBody>) {
+        for (offset, batch) in self.batches[range.clone()].iter().enumerate() {
+            // SAFETY: a batch's rows are its own, and within the group its dynamic bodies too; fixed and
+            // kinematic bodies are only read (see the module docs).
+            unsafe {
+                let Some(rows) = self.rows(range.start + offset, batch) else {
+                    continue;
+                };
+                let lanes = batch.shared_states(bodies);
+                let twist = rows.twist.as_deref();
+                let velocities = batch.warm_start_lanes(rows.points, rows.patch, twist, lanes);
+                batch.scatter_moving(bodies, &velocities);
             }
-            continue;
-        }
-        scratch.clear();
-        scratch.resize(group.len(), LaneVelocities::default());
-        split(run, bodies, scratch, lanes);
-        for (batch, velocities) in group.iter().zip(scratch.iter()) {
-            batch.scatter(bodies, velocities);
         }
     }
-}
 
-/// The batches of `run` halved until a half is [`BATCHES_PER_TASK`] long, the halves on two threads;
-/// `out[i]` is batch `i`'s result.
-fn split(mut run: Run<'_>, bodies: &[SolverBody], out: &mut [LaneVelocities], lanes: &Lanes<'_>) {
-    let Some(first) = run.batches.first() else {
-        return;
-    };
-    if run.batches.len() <= BATCHES_PER_TASK {
-        for (i, o) in out.iter_mut().enumerate().take(run.batches.len()) {
-            *o = lanes(&run.batches[i], run.rows(i), bodies);
+    /// Stages *solve* and *relax* of the batches `range` of one colour group, each written into its own
+    /// bodies.
+    ///
+    /// # Safety
+    /// As [`SharedRows::warm_start`].
+    #[expect(
+        unsafe_code,
+        reason = "the batches of a colour group write their own bodies at once"
+    )]
+    pub(crate) unsafe fn solve(
+        &self,
+        range: Range<usize>,
+        bodies: &Disjoint<'_, SolverBody>,
+        ctx: &StepContext,
+        bias: Bias,
+    ) {
+        for (offset, batch) in self.batches[range.clone()].iter().enumerate() {
+            // SAFETY: as in `warm_start`.
+            unsafe {
+                let Some(rows) = self.rows(range.start + offset, batch) else {
+                    continue;
+                };
+                let lanes = batch.shared_states(bodies);
+                let velocities = batch.solve_lanes(rows, lanes, ctx, bias);
+                batch.scatter_moving(bodies, &velocities);
+            }
         }
-        return;
     }
-    let mid = run.batches.len() / 2;
-    let (left, right) = run.batches.split_at(mid);
-    let (patches_left, patches_right) = run.patches.split_at_mut(mid);
-    let (slots_left, slots_right) = run
-        .slots
-        .split_at_mut((right[0].first_slot - first.first_slot) as usize);
-    let (twists_left, twists_right) = run
-        .twists
-        .split_at_mut((right[0].first_twist - first.first_twist) as usize);
-    let (out_left, out_right) = out.split_at_mut(mid);
-    let left = Run {
-        batches: left,
-        patches: patches_left,
-        slots: slots_left,
-        twists: twists_left,
-    };
-    let right = Run {
-        batches: right,
-        patches: patches_right,
-        slots: slots_right,
-        twists: twists_right,
-    };
-    par::join(
-        || split(left, bodies, out_left, lanes),
-        || split(right, bodies, out_right, lanes),
-    );
 }

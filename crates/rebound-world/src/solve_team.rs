@@ -1,0 +1,264 @@
+//! Stage *substeps* in one parallel section (`parallel` feature, a pool of more than one thread): the
+//! substeps' passes as the phases of a team of the pool's threads (`rebound_math::team`), instead of a
+//! fork and a join for every colour group of every pass.
+//!
+//! The plan lists the passes of every substep in the order of the one-thread loop (`solve.rs`), each as a
+//! phase: integration split over the bodies; each colour group of the contacts' wide path split over its
+//! batches (a group too small to split, one chunk); *apply forces* split over the joints when they share no
+//! body; every other joint pass, the contacts' scalar path, the axis locks and the impulse sums one chunk,
+//! consecutive ones merged into one phase. A chunk writes what it computes in place — a contact batch its
+//! dynamic bodies, a joint its two bodies, integration its bodies — and no two chunks of a phase share
+//! anything they write (the colouring, the joints' plan, disjoint ranges), so every value is the one the
+//! loop computes: the same bits for any number of threads.
+#![allow(
+    unsafe_code,
+    reason = "the solver's arrays shared by the chunks of a team (rebound_math::Disjoint)"
+)]
+
+use crate::solve_parts::{lock_axes_in, summing};
+use rebound_constraints::{JointSolver, JointTeam, Substep};
+use rebound_dynamics::contact::Bias;
+use rebound_dynamics::integrate::{integrate_position, integrate_velocity};
+use rebound_dynamics::{
+    BodyParams, ContactSolver, ContactTeam, MAX_CONTACT_POINTS, SolverBody, StepContext,
+};
+use rebound_math::{Disjoint, par, team};
+
+/// The substeps' phases, rebuilt every step (the buffers kept).
+#[derive(Debug, Default)]
+pub(crate) struct Plan {
+    ops: Vec<Op>,
+    phases: Vec<Phase>,
+    /// The team's chunk numbering: the end of each phase's chunks.
+    ends: Vec<u32>,
+}
+
+/// A phase: the ops `start..end`, each run whole (one chunk) or one op split into `chunks`.
+#[derive(Debug, Clone, Copy)]
+struct Phase {
+    start: u32,
+    end: u32,
+    chunks: u32,
+}
+
+/// One pass of a substep, as the one-thread loop runs it.
+#[derive(Debug, Clone, Copy)]
+enum Op {
+    IntegrateVelocities,
+    IntegratePositions,
+    LockAxes,
+    ApplyForces,
+    JointWarmStart,
+    JointPass(Bias, Substep),
+    ContactWarmStart(usize),
+    ContactPass(usize, Bias),
+    ScalarWarmStart,
+    ScalarPass(Bias),
+    SumImpulses(bool),
+}
+
+impl Plan {
+    /// Adds `op` in `chunks` chunks; an op of one chunk joins a phase of one chunk before it.
+    fn push(&mut self, op: Op, chunks: usize) {
+        self.ops.push(op);
+        let end = self.ops.len() as u32;
+        match self.phases.last_mut() {
+            Some(last) if chunks <= 1 && last.chunks == 1 => last.end = end,
+            _ => self.phases.push(Phase {
+                start: end - 1,
+                end,
+                chunks: chunks.max(1) as u32,
+            }),
+        }
+    }
+}
+
+/// What the chunks share.
+struct Shared<'a> {
+    bodies: Disjoint<'a, SolverBody>,
+    params: &'a [BodyParams],
+    contacts: ContactTeam<'a>,
+    joints: JointTeam<'a>,
+    locked: &'a [usize],
+    step_impulses: Disjoint<'a, Vec<[f32; MAX_CONTACT_POINTS]>>,
+    ctx: &'a StepContext,
+}
+
+/// The solver's arrays the substeps read and write (the world's `prepare::Solver`, split).
+pub(crate) struct Arrays<'a> {
+    pub(crate) states: &'a mut [SolverBody],
+    pub(crate) params: &'a [BodyParams],
+    pub(crate) contact_solver: &'a mut ContactSolver,
+    pub(crate) joint_solver: &'a mut JointSolver,
+    pub(crate) step_impulses: &'a mut Vec<[f32; MAX_CONTACT_POINTS]>,
+    pub(crate) locked: &'a [usize],
+}
+
+/// Stage *substeps* on the team; `false` (nothing done) if the contact solver was not prepared for it.
+pub(crate) fn solve_substeps(plan: &mut Plan, arrays: Arrays<'_>, ctx: &StepContext) -> bool {
+    let Arrays {
+        states,
+        params,
+        contact_solver,
+        joint_solver,
+        step_impulses,
+        locked,
+    } = arrays;
+    let Some(contacts) = contact_solver.team() else {
+        return false;
+    };
+    let joints = joint_solver.team();
+    make_plan(
+        plan,
+        &contacts,
+        &joints,
+        states.len(),
+        !locked.is_empty(),
+        !step_impulses.is_empty(),
+        ctx,
+    );
+    let shared = Shared {
+        bodies: Disjoint::new(states),
+        params,
+        contacts,
+        joints,
+        locked,
+        step_impulses: Disjoint::one(step_impulses),
+        ctx,
+    };
+    let plan = &*plan;
+    team::run(&plan.ends, &|phase, chunk| {
+        let Some(&Phase { start, end, chunks }) = plan.phases.get(phase) else {
+            return;
+        };
+        for &op in &plan.ops[start as usize..end as usize] {
+            // SAFETY: the team runs the chunks of one phase at once and the phases one after another; a
+            // phase of several chunks holds one op, whose chunks write disjoint parts (see `run`).
+            unsafe { run(&shared, op, chunk as usize, chunks as usize) };
+        }
+    });
+    true
+}
+
+/// The plan of this step's substeps: the one-thread loop's passes in its order (`solve::solve_substeps`),
+/// those with nothing to do left out.
+fn make_plan(
+    plan: &mut Plan,
+    contacts: &ContactTeam<'_>,
+    joints: &JointTeam<'_>,
+    body_count: usize,
+    locks: bool,
+    sums: bool,
+    ctx: &StepContext,
+) {
+    plan.ops.clear();
+    plan.phases.clear();
+    let threads = team::size();
+    let body_chunks = (body_count / par::MIN_ITEMS_PER_TASK).clamp(1, threads);
+    let groups = contacts.group_count();
+    let scalar = contacts.has_scalar();
+    let joint = !joints.is_idle();
+    let lock = |plan: &mut Plan| {
+        if locks {
+            plan.push(Op::LockAxes, 1);
+        }
+    };
+    let contact_pass = |plan: &mut Plan, bias: Option<Bias>| {
+        for g in 0..groups {
+            let op = bias.map_or(Op::ContactWarmStart(g), |b| Op::ContactPass(g, b));
+            plan.push(op, contacts.chunks_of(g, threads));
+        }
+        if scalar {
+            plan.push(bias.map_or(Op::ScalarWarmStart, Op::ScalarPass), 1);
+        }
+    };
+    for index in 0..ctx.substep_count {
+        let substep = Substep::new(index, ctx.substep_count);
+        plan.push(Op::IntegrateVelocities, body_chunks);
+        lock(plan);
+        if joint {
+            plan.push(Op::ApplyForces, joints.force_chunks(threads));
+            plan.push(Op::JointWarmStart, 1);
+        }
+        contact_pass(plan, None);
+        for bias in [Bias::On, Bias::Off] {
+            if bias == Bias::Off {
+                plan.push(Op::IntegratePositions, body_chunks);
+            }
+            if joint {
+                plan.push(Op::JointPass(bias, substep), 1);
+                lock(plan);
+            }
+            contact_pass(plan, Some(bias));
+            lock(plan);
+        }
+        if sums {
+            plan.push(Op::SumImpulses(substep.is_last()), 1);
+        }
+    }
+    plan.ends.clear();
+    let mut end = 0;
+    for phase in &plan.phases {
+        end += phase.chunks;
+        plan.ends.push(end);
+    }
+}
+
+/// Runs chunk `chunk` of `chunks` of `op`.
+///
+/// # Safety
+/// With one chunk, nothing else runs on `shared` meanwhile; with more, only the other chunks of the same op.
+unsafe fn run(shared: &Shared<'_>, op: Op, chunk: usize, chunks: usize) {
+    let (bodies, ctx) = (&shared.bodies, shared.ctx);
+    let range = || bodies.len() * chunk / chunks..bodies.len() * (chunk + 1) / chunks;
+    // SAFETY: per op: integration chunks take disjoint ranges of bodies; the contact and joint chunks'
+    // contracts are the caller's; an op of one chunk has everything to itself.
+    unsafe {
+        match op {
+            Op::IntegrateVelocities => {
+                let r = range();
+                for (state, p) in bodies
+                    .slice_mut(r.clone())
+                    .iter_mut()
+                    .zip(&shared.params[r])
+                {
+                    integrate_velocity(state, p, ctx);
+                }
+            }
+            Op::IntegratePositions => {
+                let r = range();
+                for (state, p) in bodies
+                    .slice_mut(r.clone())
+                    .iter_mut()
+                    .zip(&shared.params[r])
+                {
+                    integrate_position(state, p, ctx);
+                }
+            }
+            Op::LockAxes => lock_axes_in(bodies.all_mut(), shared.params, shared.locked),
+            Op::ApplyForces => shared
+                .joints
+                .apply_forces_chunk((chunk, chunks), bodies, ctx),
+            Op::JointWarmStart => shared.joints.solver_mut().warm_start(bodies.all_mut()),
+            Op::JointPass(bias, substep) => {
+                shared
+                    .joints
+                    .solver_mut()
+                    .solve_substep(bodies.all_mut(), ctx, bias, substep);
+            }
+            Op::ContactWarmStart(g) => shared.contacts.warm_start_chunk(g, (chunk, chunks), bodies),
+            Op::ContactPass(g, bias) => {
+                shared
+                    .contacts
+                    .solve_chunk(g, (chunk, chunks), bodies, ctx, bias);
+            }
+            Op::ScalarWarmStart => shared.contacts.warm_start_scalar(bodies.all_mut()),
+            Op::ScalarPass(bias) => shared.contacts.solve_scalar(bodies.all_mut(), ctx, bias),
+            Op::SumImpulses(last) => {
+                if let Some(sums) = shared.step_impulses.all_mut().first_mut() {
+                    shared.contacts.for_each_normal_impulse(summing(sums, last));
+                }
+            }
+        }
+    }
+}
