@@ -257,11 +257,11 @@ fn watchdog() -> std::sync::Arc<std::sync::Mutex<Option<(std::time::Instant, Str
     std::thread::spawn(move || {
         loop {
             std::thread::sleep(std::time::Duration::from_secs(1));
-            if let Some((start, ops)) = watched.lock().unwrap().as_ref() {
-                if start.elapsed().as_secs_f32() > STEP_BUDGET {
-                    eprintln!("api fuzz: a case ran past {STEP_BUDGET} s (a hang): {ops}");
-                    std::process::exit(1);
-                }
+            if let Some((start, ops)) = watched.lock().unwrap().as_ref()
+                && start.elapsed().as_secs_f32() > STEP_BUDGET
+            {
+                eprintln!("api fuzz: a case ran past {STEP_BUDGET} s (a hang): {ops}");
+                std::process::exit(1);
             }
         }
     });
