@@ -37,11 +37,13 @@ pub(crate) struct SweepScratch {
 /// The length of the cast's time interval (in the cast's own time unit). Parry's nonlinear cast advances by
 /// at least its time tolerance (`10 · f32::EPSILON` ≈ 1.2·10⁻⁶) per round or stops, and bisects a time
 /// range down to that tolerance, both in absolute time; over `[0, dt]` its rounds are bounded only by
-/// `dt / 1.2·10⁻⁶` (10⁵ rounds, each a GJK query, for one pair in a step of 0.1 s: a degenerate shape
-/// turning fast made one step run for minutes). So the step's motion is cast over `[0, CAST_SPAN]` with
-/// its velocities scaled by `dt / CAST_SPAN`: the same path, at most about 1,000 rounds per pair, and a
-/// time of impact resolved to 0.1 % of the step.
+/// `dt / 1.2·10⁻⁶` (10⁵ rounds, each a GJK query, for one pair in a step of 0.1 s). So the step's motion
+/// is cast over `[0, CAST_SPAN]` with its velocities scaled by `dt / CAST_SPAN`: the same path, at most
+/// about 1,000 rounds per pair, and a time of impact resolved to 0.1 % of the step.
 const CAST_SPAN: f32 = 1.2e-3;
+
+/// The most rounds parry's nonlinear cast may take to look past a touch at the start (see `first_impact`).
+const MAX_TOUCHING_ROUNDS: f32 = 1_000.0;
 
 /// The motion of `collider` on `body` from the body's start pose `start` at its current velocities, with
 /// time scaled by `time_scale` (a velocity of the motion is the body's times `time_scale`).
@@ -126,6 +128,15 @@ fn first_impact(
             continue;
         }
         let swept: Aabb = start_box.merged(&end_box).loosened(reach);
+        // For a pair touching at the start, parry looks for the later impact a turn would bring (a plank
+        // lying on a step, turning its far end into it) by walking the span in rounds of the pair's
+        // thinnest thickness over its speed, or of a quarter turn or more: a flat box (half-thickness
+        // 10⁻²⁰ m) made that walk endless. Where it would take more than `MAX_TOUCHING_ROUNDS` rounds (the
+        // collider's own thickness bounds the pair's from below), a pair touching at the start is left to
+        // the contacts.
+        let rounds = (body.linear_velocity().length() * dt / collider.shape.ccd_thickness())
+            .max(body.angular_velocity().length() * dt / core::f32::consts::FRAC_PI_2);
+        let stop_at_penetration = !(rounds <= MAX_TOUCHING_ROUNDS);
         backend.broad_phase.candidates(
             colliders,
             bodies,
@@ -154,9 +165,6 @@ fn first_impact(
             let other_motion = NonlinearRigidMotion::constant_position(to_parry_pose(
                 other.world_pose(other_body.pose()),
             ));
-            // Stopping at a penetration at the start: a pair already touching is the contacts' to solve
-            // (its hit is dropped below), and parry's search for a later impact of such a pair steps
-            // through the span by the pair's thinnest thickness — without end for a flat box.
             let Ok(Some(hit)) = parry3d::query::cast_shapes_nonlinear(
                 &motion,
                 collider.shape.as_ref(),
@@ -164,7 +172,7 @@ fn first_impact(
                 other.shape.as_ref(),
                 0.0,
                 CAST_SPAN,
-                true,
+                stop_at_penetration,
             ) else {
                 continue;
             };
