@@ -136,7 +136,8 @@ fn first_impact(
         // the contacts.
         let rounds = (body.linear_velocity().length() * dt / collider.shape.ccd_thickness())
             .max(body.angular_velocity().length() * dt / core::f32::consts::FRAC_PI_2);
-        let stop_at_penetration = !(rounds <= MAX_TOUCHING_ROUNDS);
+        // A NaN count (a zero thickness at rest) is no bound either.
+        let stop_at_penetration = rounds.is_nan() || rounds > MAX_TOUCHING_ROUNDS;
         backend.broad_phase.candidates(
             colliders,
             bodies,
