@@ -89,19 +89,7 @@ where
     U: Send,
     F: Fn(&mut T, &mut U) + Sync + Send,
 {
-    #[cfg(feature = "parallel")]
-    if is_parallel() && items.len() > min_len {
-        items
-            .par_iter_mut()
-            .zip(with)
-            .with_min_len(min_len.max(1))
-            .for_each(|(item, w)| f(item, w));
-        return;
-    }
-    let _ = min_len;
-    for (item, w) in items.iter_mut().zip(with) {
-        f(item, w);
-    }
+    for_each_indexed_zip_both_mut(items, with, min_len, |_, item, w| f(item, w));
 }
 
 /// Calls `f(index, item, with)` for every pair of `items` and `with`, both changed in place (zipped: the
