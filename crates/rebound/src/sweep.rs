@@ -136,7 +136,8 @@ fn first_impact(
         // the contacts.
         let rounds = (body.linear_velocity().length() * dt / collider.shape.ccd_thickness())
             .max(body.angular_velocity().length() * dt / core::f32::consts::FRAC_PI_2);
-        // A NaN count (a zero thickness at rest) is no bound either.
+        // A body at rest with a zero thickness gives 0/0 = NaN, which `max` passes over for the turn's count
+        // (parry's walk is then one round); a NaN left over bounds nothing.
         let stop_at_penetration = rounds.is_nan() || rounds > MAX_TOUCHING_ROUNDS;
         backend.broad_phase.candidates(
             colliders,
