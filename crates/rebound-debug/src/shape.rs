@@ -17,15 +17,23 @@ pub const MAX_CIRCLE_SEGMENTS: u32 = 1024;
 
 /// The world-space axis-aligned bounding box `(min, max)` of `shape` placed at `pose`, in closed form per
 /// kind (a ball `c ± r`; a box `c ± |R|·h`; a capsule its segment's box grown by `r`; a cylinder or cone
-/// its rims' boxes, `r·√(1 − a_i²)` about the rim centre on axis `i`; a hull, mesh or height field its
+/// its rims' boxes, `r·√(1 − a_i²)` about the rim centre on axis `i`, for the unit axis `a`; a hull, mesh or height field its
 /// points; a compound the union of its parts). `None` for a shape without points (an empty mesh or
 /// compound).
 #[must_use]
 pub fn shape_aabb(shape: &ColliderShape, pose: Pose) -> Option<(Vec3, Vec3)> {
     let c = pose.position;
     let axis = pose.transform_vector(Vec3::Y);
-    // Half-extent of a disc of radius r perpendicular to `axis`.
-    let disc = |r: f32| (Vec3::ONE - axis * axis).max(Vec3::ZERO).powf(0.5) * r;
+    // Half-extent of a disc of radius r perpendicular to `axis`: r·√(1 − a_i²) on axis i, written
+    // r·√(a_j² + a_k²) for the unit axis, since 1 − a_i² cancels to 0 in f32 when the axis is within
+    // 1e-4 rad of axis i and the disc's 4e-5·r of reach past the rim would be lost.
+    let disc = |r: f32| {
+        Vec3::new(
+            axis.y.hypot(axis.z),
+            axis.x.hypot(axis.z),
+            axis.x.hypot(axis.y),
+        ) * r
+    };
     let points = |ps: &mut dyn Iterator<Item = Vec3>| {
         ps.map(|p| pose.transform_point(p))
             .fold(None, |acc: Option<(Vec3, Vec3)>, p| {
