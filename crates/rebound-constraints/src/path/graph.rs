@@ -34,10 +34,10 @@ pub(crate) const MAX_GRAPH_JOINTS: usize = 256;
 pub(crate) const MAX_GRAPH_FILL: usize = 4 * MAX_GRAPH_JOINTS;
 
 /// Added to each row's own `K` entry as a fraction of it in a graph's system (see
-/// [`DirectGraph::assemble`]): far below the pivot ratio of a dependent row
-/// ([`DEPENDENT_PIVOT`](super::sparse_ldl::DEPENDENT_PIVOT)) even where a linear row depends on a thin
-/// bar's angular rows, whose entries are thousands of times larger.
-pub(crate) const GRAPH_REGULARIZATION: Real = 1e-14;
+/// [`DirectGraph::assemble`]). A dependent row's pivot is the regularisation of the rows it depends on,
+/// which where a linear row depends on a thin bar's angular rows (entries thousands of times larger) puts
+/// its pivot ratio near 10⁻⁵: below [`DEPENDENT_PIVOT`](super::sparse_ldl::DEPENDENT_PIVOT) still.
+pub(crate) const GRAPH_REGULARIZATION: Real = 1e-9;
 
 /// How far the rows of a graph may move from those its factorisation was made with, as a fraction of each
 /// row's Jacobian (`|J − J₀| ≤ ε·|J₀|`), for a pass to keep that factorisation (see [`DirectGraph::solve`]):
