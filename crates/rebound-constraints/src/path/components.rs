@@ -3,10 +3,15 @@
 //! share; a group that is one path stays with the path solver (its block Thomas sweep is the cheaper
 //! factorisation of the same system), any other — a ladder, a tree, a loop — of at most
 //! [`MAX_GRAPH_JOINTS`] joints whose elimination fills at most [`MAX_GRAPH_FILL`] blocks is a graph, and
-//! the rest is left as the paths found in it and Gauss–Seidel — as is a group with more rows than its
-//! bodies have degrees of freedom (redundant rows, which the exact solve does not hold).
+//! the rest is left as the paths found in it and Gauss–Seidel. A path with more rows than its bodies have
+//! degrees of freedom (a door on two hinges on one axis, a grounded four-bar of hinges) is a graph too:
+//! some of its rows are dependent, which the graph's factorisation finds and holds
+//! ([`super::sparse_ldl`]), and a graph's projection holds it ten times closer than a path's. So is any
+//! other group with more rows than degrees of freedom, but one with a loop of dynamic bodies alone (a
+//! floating loop of hinges), which is left to Gauss–Seidel alone.
 
 use super::graph::{DirectGraph, MAX_GRAPH_FILL, MAX_GRAPH_JOINTS};
+use super::row::MAX_ROWS;
 use super::topology::Topology;
 use crate::pair::BodyPair;
 use crate::pair::dynamic_bodies;
@@ -49,8 +54,9 @@ impl Topology {
         rows: impl Fn(usize) -> usize,
     ) {
         self.find_paths(body_count, count, pair, capable);
-        // Every group one path (a chain, a deck): nothing more to find.
-        let graphs = if self.split {
+        // Every group one path (a chain, a deck) with no more rows than degrees of freedom: nothing more to
+        // find.
+        let graphs = if self.split || self.has_over_constrained_path(pair, &rows) {
             self.find_graphs(body_count, count, pair, capable, rows)
         } else {
             self.in_graph.clear();
@@ -73,6 +79,30 @@ impl Topology {
             self.paths.push(first..self.path_joints.len());
             self.graph_of.push(Some(g));
         }
+    }
+
+    /// Whether a path found by [`Topology::find_paths`] has more rows than its dynamic bodies have degrees
+    /// of freedom. An open path of `k` joints moves `k − 1` bodies between its ends and each end that is
+    /// dynamic, so the dynamic sides of its joints number `2·(k − 1)` plus those ends: it moves that many
+    /// sides less `k − 1` bodies.
+    fn has_over_constrained_path<'p>(
+        &self,
+        pair: impl Fn(usize) -> &'p BodyPair,
+        rows: impl Fn(usize) -> usize,
+    ) -> bool {
+        self.paths.iter().any(|range| {
+            let joints = &self.path_joints[range.clone()];
+            // `k` joints have at most `MAX_ROWS·k` rows and move at least `k − 1` bodies.
+            if MAX_ROWS * joints.len() <= 6 * joints.len().saturating_sub(1) {
+                return false;
+            }
+            let (mut row_count, mut sides) = (0, 0);
+            for &index in joints {
+                row_count += rows(index);
+                sides += dynamic_bodies(pair(index)).iter().flatten().count();
+            }
+            row_count > 6 * (sides + 1).saturating_sub(joints.len())
+        })
     }
 
     /// The groups of capable joints that are graphs (see the module doc), after [`Topology::find_paths`]
@@ -104,14 +134,26 @@ impl Topology {
         let parent = &mut self.parent;
         parent.clear();
         parent.extend(0..body_count);
+        let closes_loop = &mut self.closes_loop;
+        closes_loop.clear();
+        closes_loop.resize(body_count, false);
         for index in (0..count).filter(|&i| capable(i)) {
             if let [Some(a), Some(b)] = dynamic_bodies(pair(index))
                 && a < body_count
                 && b < body_count
             {
                 let (ra, rb) = (root(parent, a), root(parent, b));
+                // A joint between two bodies already joined closes a loop of dynamic bodies.
+                closes_loop[a] |= ra == rb;
                 // Union by lower index: the forest, and so the groups, depend on the joints alone.
                 parent[ra.max(rb)] = ra.min(rb);
+            }
+        }
+        // Each loop marked at its group's root.
+        for body in 0..body_count {
+            if closes_loop[body] {
+                let group = root(parent, body);
+                closes_loop[group] = true;
             }
         }
         // (group, joint) for every capable joint with a dynamic body, sorted: each run is one group.
@@ -149,18 +191,24 @@ impl Topology {
             let one_path = first_path != usize::MAX
                 && members.iter().all(|m| self.joint_path[m.1] == first_path)
                 && self.paths[first_path].len() == members.len();
-            if one_path || members.len() < 2 || members.len() > MAX_GRAPH_JOINTS {
+            if members.len() < 2 || members.len() > MAX_GRAPH_JOINTS {
                 continue;
             }
-            // More rows than the bodies have degrees of freedom: some rows are redundant (a loop of hinges
-            // in a plane constrains its out-of-plane motion three times over), and the exact solve of such
-            // a loop does not hold it, see `docs/physics.md`, "Joint graphs": Gauss–Seidel alone does.
             let row_count: usize = members.iter().map(|m| rows(m.1)).sum();
             let moved = Self::dynamic_body_count(
                 &mut self.scratch_bodies,
                 members.iter().map(|m| pair(m.1)),
             );
-            if row_count > 6 * moved {
+            let over_constrained = row_count > 6 * moved;
+            // One path stays a path unless it has more rows than its bodies have degrees of freedom:
+            // dependent rows, which the graph's factorisation finds (see the module doc).
+            if one_path && !over_constrained {
+                continue;
+            }
+            // More rows than degrees of freedom on a loop of dynamic bodies alone — a floating loop of
+            // hinges — is left to Gauss–Seidel alone, see `docs/physics.md`, "Joint graphs": its exact
+            // solve tears it apart.
+            if over_constrained && self.closes_loop[members[0].0] {
                 // Nor as paths: a path's exact solve beside the loop's other joints fights them.
                 for m in members {
                     self.in_graph[m.1] = true;

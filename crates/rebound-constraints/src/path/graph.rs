@@ -34,7 +34,9 @@ pub(crate) const MAX_GRAPH_JOINTS: usize = 256;
 pub(crate) const MAX_GRAPH_FILL: usize = 4 * MAX_GRAPH_JOINTS;
 
 /// Added to each row's own `K` entry as a fraction of it in a graph's system (see
-/// [`DirectGraph::assemble`]).
+/// [`DirectGraph::assemble`]). A dependent row's pivot is the regularisation of the rows it depends on,
+/// which where a linear row depends on a thin bar's angular rows (entries thousands of times larger) puts
+/// its pivot ratio near 10⁻⁵: below [`DEPENDENT_PIVOT`](super::sparse_ldl::DEPENDENT_PIVOT) still.
 pub(crate) const GRAPH_REGULARIZATION: Real = 1e-9;
 
 /// How far the rows of a graph may move from those its factorisation was made with, as a fraction of each
@@ -356,9 +358,8 @@ impl DirectGraph {
     /// The entries are computed in f64 from the rows' f32 Jacobians and the bodies' inverse masses: rows
     /// that are redundant (a loop of hinges constrains its out-of-plane motion more than once) are then
     /// dependent to the rounding of their Jacobians, and their pivots fall to the regularisation, far
-    /// below [`RELATIVE_PIVOT`](super::factor::RELATIVE_PIVOT) of their diagonal. Summed in f32, as a
-    /// path's blocks are, the rounding of thin bars' large inverse inertias left such a pivot above it in
-    /// some poses, and the solve turned it into impulses that tore a four-bar loop apart.
+    /// below [`DEPENDENT_PIVOT`](super::sparse_ldl::DEPENDENT_PIVOT) of their diagonal. Summed in f32, as
+    /// a path's blocks are, the rounding of thin bars' large inverse inertias left such a pivot near it.
     fn assemble(&mut self, links: &[Link]) {
         self.offset.clear();
         self.offset.resize(links.len(), 0);
@@ -376,10 +377,8 @@ impl DirectGraph {
             let live = link.live_rows();
             let inverse = &self.inverse[q];
             let own = [Some((false, false)), Some((true, true))];
-            // The diagonal (regularised, with a stiffening row's compliance in a projection; 1 for a row
-            // not in the system) and the link's largest one, which its rows' pivots are measured against:
-            // a row's own entry would not do, as a redundant row's pivot is the regularisation of the rows
-            // it depends on, which for a thin bar's angular rows is large next to a linear row's entry.
+            // The diagonal: regularised, with a stiffening row's compliance in a projection; 1 for a row
+            // not in the system.
             let diagonals: [Real; MAX_ROWS] =
                 core::array::from_fn(|l| match link.rows.rows().get(l) {
                     Some(row) if live[l] => {
@@ -391,10 +390,6 @@ impl DirectGraph {
                     }
                     _ => 1.0,
                 });
-            let scale = diagonals
-                .iter()
-                .take(link.rows.count)
-                .fold(0.0, |m: Real, &d| m.max(d));
             for l in 0..link.rows.count {
                 if live[l] {
                     for c in &self.couplings[q] {
@@ -419,7 +414,7 @@ impl DirectGraph {
                     }
                 }
                 a.entries.push((column + l, diagonals[l]));
-                a.end_column(scale);
+                a.end_column();
             }
         }
     }

@@ -11,19 +11,33 @@
 //! sparse crates that do this (faer, sprs with sprs-ldl) are large for a system this size, and this one is
 //! a hundred lines that give the same bits for the same calls.
 //!
-//! A pivot at or below [`RELATIVE_PIVOT`] × its column's scale (the caller's: for a joint graph, the
-//! largest diagonal entry of the joint's rows, as a path's block measures its pivots) — a row redundant
-//! with the rows before it (a loop of hinges constrains more than its bodies' degrees of freedom), or a row
-//! of zeros — counts as zero: its unknown solves to 0 and its column of `L` is 0, never a NaN or a huge
-//! impulse.
+//! The factorisation reveals the rank. A row whose pivot `d_k` is at most [`DEPENDENT_PIVOT`] of its own
+//! diagonal entry `A_kk` — what is left of it after the rows before it, measured against the row before
+//! elimination — is *dependent*: it lies within 0.01 rad of the span of those rows (two hinges on one
+//! axis, a loop of hinges in a plane, a row of zeros). Its unknown is 0 and its column of `L` is 0, so the
+//! other rows are solved exactly and it holds as far as they imply it. The ratio `d_k / A_kk` is the
+//! squared sine of the angle between the row and the span of the rows before it (in the metric of `M⁻¹`),
+//! independent of units and of how large the row's bodies' inverse masses are. A near-dependent row kept
+//! in the system would take the part of its residual the others do not explain times `1 / d_k`: a
+//! runaway impulse. The rank is kept from factorisation to factorisation of one pattern (the passes of a
+//! step): a row found dependent stays so until its ratio exceeds [`DEPENDENT_RELEASE`] ×
+//! [`DEPENDENT_PIVOT`], so that a row near the bound does not flip between 0 and a large impulse from
+//! pass to pass.
 
 #![allow(
     clippy::needless_range_loop,
     reason = "sparse triangular algebra reads as the formulas with indices"
 )]
 
-use super::factor::RELATIVE_PIVOT;
 use super::row::Real;
+
+/// A pivot at or below this fraction of its row's diagonal entry (before elimination) marks the row as
+/// dependent on the rows before it (see the module doc).
+pub(crate) const DEPENDENT_PIVOT: Real = 1e-4;
+
+/// How many times [`DEPENDENT_PIVOT`] a dependent row's pivot ratio must reach, in a factorisation of the
+/// same pattern, to count again (see the module doc).
+pub(crate) const DEPENDENT_RELEASE: Real = 3.0;
 
 /// `A = L·D·Lᵀ` of one matrix, and the buffers it is made in (reused from factorisation to factorisation).
 #[derive(Debug, Clone, Default)]
@@ -38,8 +52,10 @@ pub(crate) struct SparseLdl {
     /// The strictly lower part of the unit lower triangular `L`, by column: row indices and values.
     rows: Vec<usize>,
     values: Vec<Real>,
-    /// `D⁻¹`, 0 for a vanishing pivot.
+    /// `D⁻¹`, 0 for a dependent row.
     inv_pivot: Vec<Real>,
+    /// Which rows the last factorisation found dependent (kept for one of the same pattern).
+    dependent: Vec<bool>,
     /// Scratch: the row being solved for, which column last marked a node, and the pattern of a row.
     work: Vec<Real>,
     flag: Vec<usize>,
@@ -51,13 +67,11 @@ pub(crate) struct SparseLdl {
 }
 
 /// A symmetric matrix by the upper triangle of its columns: column `j`'s entries (row `i ≤ j`, value) are
-/// `entries[start[j]..start[j + 1]]`, in any order, each `(i, j)` at most once; `scale[j]` is what column
-/// `j`'s pivot is measured against ([`RELATIVE_PIVOT`]).
+/// `entries[start[j]..start[j + 1]]`, in any order, each `(i, j)` at most once.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct UpperColumns {
     pub start: Vec<usize>,
     pub entries: Vec<(usize, Real)>,
-    pub scale: Vec<Real>,
 }
 
 impl UpperColumns {
@@ -66,14 +80,11 @@ impl UpperColumns {
         self.start.clear();
         self.start.push(0);
         self.entries.clear();
-        self.scale.clear();
     }
 
-    /// Ends the current column: the entries pushed since the last call are its own, and its pivot counts as
-    /// zero at or below [`RELATIVE_PIVOT`] × `scale`.
-    pub fn end_column(&mut self, scale: Real) {
+    /// Ends the current column: the entries pushed since the last call are its own.
+    pub fn end_column(&mut self) {
         self.start.push(self.entries.len());
-        self.scale.push(scale);
     }
 
     /// The order of the matrix (the number of columns ended).
@@ -108,8 +119,9 @@ impl UpperColumns {
 impl SparseLdl {
     /// Factorises `a` (symmetric positive semi-definite): the elimination tree, column counts and each row's
     /// pattern — kept from the last factorisation if `same_pattern` (the caller's word that `a` has the
-    /// pattern of the matrix factorised last) — then the rows of `L` and `D` one after another. Returns the
-    /// number of entries of `L`.
+    /// pattern of the matrix factorised last), as is which rows are dependent, with the hysteresis of
+    /// [`DEPENDENT_RELEASE`] — then the rows of `L` and `D` one after another. Returns the number of entries
+    /// of `L`.
     pub fn factor(&mut self, a: &UpperColumns, same_pattern: bool) -> usize {
         let n = a.order();
         let same_pattern = same_pattern && self.n == n && self.pattern_start.len() == n + 1;
@@ -124,11 +136,16 @@ impl SparseLdl {
             rows,
             values,
             inv_pivot,
+            dependent,
             work,
             patterns,
             pattern_start,
             ..
         } = self;
+        if !same_pattern || dependent.len() != n {
+            dependent.clear();
+            dependent.resize(n, false);
+        }
         inv_pivot.clear();
         inv_pivot.resize(n, 0.0);
         work.clear();
@@ -140,7 +157,8 @@ impl SparseLdl {
                 work[i] += value;
             }
             // Row k of L: a sparse triangular solve with the rows before it; D_k what remains of A_kk.
-            let mut d = work[k];
+            let diagonal = work[k];
+            let mut d = diagonal;
             work[k] = 0.0;
             for &i in &patterns[pattern_start[k]..pattern_start[k + 1]] {
                 let y = work[i];
@@ -156,12 +174,13 @@ impl SparseLdl {
                 values[slot] = l;
                 count[i] += 1;
             }
-            let scale = a.scale.get(k).copied().unwrap_or(0.0);
-            inv_pivot[k] = if d > RELATIVE_PIVOT * scale && d > 0.0 {
-                1.0 / d
+            let bound = if dependent[k] {
+                DEPENDENT_RELEASE * DEPENDENT_PIVOT
             } else {
-                0.0
+                DEPENDENT_PIVOT
             };
+            dependent[k] = !(d > bound * diagonal && d > 0.0);
+            inv_pivot[k] = if dependent[k] { 0.0 } else { 1.0 / d };
         }
         start.get(n).copied().unwrap_or(0)
     }
@@ -323,7 +342,7 @@ mod tests {
                     m.entries.push((i, a[i][j]));
                 }
             }
-            m.end_column(a[j][j]);
+            m.end_column();
         }
         m
     }
@@ -364,6 +383,36 @@ mod tests {
         kept.solve(&mut x);
         fresh.solve(&mut y);
         assert!(x.iter().zip(&y).all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+
+    #[test]
+    fn a_row_found_dependent_stays_so_within_the_release_band_of_one_pattern() {
+        use super::{DEPENDENT_PIVOT, DEPENDENT_RELEASE};
+        // Row 1 is row 0 plus `e` in a direction of its own: its pivot ratio is e² / (1 + e²).
+        let with = |e: Real| {
+            let a = vec![vec![1.0, 1.0], vec![1.0, 1.0 + e * e]];
+            upper(&a)
+        };
+        let solve = |ldl: &SparseLdl| {
+            let mut x = vec![0.0, 1.0];
+            ldl.solve(&mut x);
+            x[1]
+        };
+        let mut ldl = SparseLdl::default();
+        ldl.factor(&with(0.0), false);
+        assert!(solve(&ldl).abs() < 1e-12);
+        // Above the bound but within the release band: still dependent, as a fresh factorisation is not.
+        let e = (2.0 * DEPENDENT_PIVOT).sqrt();
+        const { assert!(2.0 < DEPENDENT_RELEASE) };
+        ldl.factor(&with(e), true);
+        assert!(solve(&ldl).abs() < 1e-12);
+        let mut fresh = SparseLdl::default();
+        fresh.factor(&with(e), false);
+        assert!((solve(&fresh) - 1.0 / (e * e)).abs() < 1e-6 / (e * e));
+        // Past the band it counts again.
+        let e = (2.0 * DEPENDENT_RELEASE * DEPENDENT_PIVOT).sqrt();
+        ldl.factor(&with(e), true);
+        assert!((solve(&ldl) - 1.0 / (e * e)).abs() < 1e-6 / (e * e));
     }
 
     #[test]

@@ -22,13 +22,15 @@ pub(crate) struct Topology {
     /// The graphs solved directly (the first as many as `graph_of` names; the rest kept for their buffers).
     pub graphs: Vec<DirectGraph>,
     /// Scratch of the graph search ([`Topology::find_paths_and_graphs`]): the graphs' members and their
-    /// ranges, per joint whether a graph took it and its path, per body its union-find parent, the capable
-    /// joints by group and each group's first joint and range, a group's bodies.
+    /// ranges, per joint whether a graph took it and its path, per body its union-find parent and whether
+    /// a joint closed a loop of dynamic bodies there, the capable joints by group and each group's first
+    /// joint and range, a group's bodies.
     pub(super) graph_members: Vec<usize>,
     pub(super) graph_ranges: Vec<Range<usize>>,
     pub(super) in_graph: Vec<bool>,
     pub(super) joint_path: Vec<usize>,
     pub(super) parent: Vec<usize>,
+    pub(super) closes_loop: Vec<bool>,
     pub(super) grouped: Vec<(usize, usize)>,
     pub(super) group_starts: Vec<(usize, Range<usize>)>,
     pub(super) scratch_bodies: Vec<usize>,
