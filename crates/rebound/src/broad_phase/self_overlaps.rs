@@ -1,0 +1,242 @@
+//! The pool's traversal of the broad phase's tree against itself (the `parallel` feature): every pair of
+//! overlapping leaves, found over the pool into buffers kept from step to step.
+//!
+//! Written here, not taken from parry: `Bvh::traverse_bvtt_single_tree_parallel` returns a new `Vec` from
+//! every task it splits off and concatenates them by appending, so it allocates and reallocates in every
+//! step, and parry keeps its nodes' children private, so its traversal cannot be split from outside.
+//! [`SelfOverlaps::copy`] reads the tree through parry's public depth-first walk (`Bvh::traverse_indexed`)
+//! into two arrays kept here: the nodes (parry's own `BvhNode`s, with their box test) and each node's
+//! children. The top of that copy is split into units of work ([`Unit`]), each traversed by one task into
+//! its own kept list.
+//!
+//! The pairs are those of parry's traversal (every two leaves whose boxes overlap, each pair once), in
+//! another order: the caller sorts them (`keep_lowest`), so the candidate pairs are the one-thread search's
+//! for any number of threads.
+
+use crate::ColliderHandle;
+use parry3d::partitioning::{Bvh, BvhNode, TraversalAction};
+use rebound_math::par;
+
+/// Units of work the top of the tree is split into, at least (while it has subtrees to split): rayon hands
+/// them to the threads as they come free, which evens out units of unequal size.
+const MIN_UNITS: usize = 64;
+
+/// A node of the copy: its index into [`SelfOverlaps::nodes`].
+type NodeId = u32;
+
+/// A pair of leaves that passed the caller's filter, lower handle first.
+type Pair = (ColliderHandle, ColliderHandle);
+
+/// One unit of the traversal: the leaf pairs within one subtree, or between two subtrees.
+#[derive(Debug, Clone, Copy)]
+enum Unit {
+    Within(NodeId),
+    Between(NodeId, NodeId),
+}
+
+/// The copy of the tree's shape and the traversal's buffers, kept from step to step.
+#[derive(Debug, Clone, Default)]
+pub(super) struct SelfOverlaps {
+    /// The tree's nodes in the order parry's walk checks them: the two children of a node side by side,
+    /// the first pair the root's two children.
+    nodes: Vec<BvhNode>,
+    /// Per node, the index of its first child in `nodes` (the second follows it); 0 for a leaf.
+    children: Vec<NodeId>,
+    /// Nodes whose children the walk has yet to reach (scratch of [`SelfOverlaps::copy`]).
+    waiting: Vec<NodeId>,
+    /// This step's units, and the next level's while the top is split.
+    units: Vec<Unit>,
+    next_units: Vec<Unit>,
+    /// Per unit, the pairs it found and kept.
+    found: Vec<Vec<Pair>>,
+}
+
+impl SelfOverlaps {
+    /// Every two leaves of `bvh` whose boxes overlap that `keep` (on their slots) makes a pair, appended to
+    /// `pairs` (unsorted), found over the pool.
+    pub(super) fn find(
+        &mut self,
+        bvh: &Bvh,
+        keep: impl Fn(u32, u32) -> Option<Pair> + Sync + Send,
+        pairs: &mut Vec<Pair>,
+    ) {
+        if bvh.leaf_count() < 2 {
+            return;
+        }
+        self.copy(bvh);
+        self.split();
+        let (nodes, children, units) = (&self.nodes, &self.children, &self.units);
+        let tree = Tree { nodes, children };
+        par::extend_in_parts(pairs, &mut self.found, units.len(), |r, out| {
+            let mut emit = |a: u32, b: u32| out.extend(keep(a, b));
+            match units.get(r) {
+                Some(&Unit::Within(id)) => tree.within(id, &mut emit),
+                Some(&Unit::Between(a, b)) => tree.between(a, b, &mut emit),
+                None => {}
+            }
+        });
+    }
+
+    /// Copies the shape of `bvh` (at least two leaves) by one depth-first walk. parry's walk checks the two
+    /// children of a node one after the other, then goes down into the left one if it is not a leaf (the
+    /// right one waiting on its stack if it is not a leaf either), else into the right one, else into the
+    /// last one that waited; the copy follows the same rule to know whose children each pair is.
+    fn copy(&mut self, bvh: &Bvh) {
+        let (nodes, children, waiting) = (&mut self.nodes, &mut self.children, &mut self.waiting);
+        nodes.clear();
+        children.clear();
+        waiting.clear();
+        // The node whose children the walk checks next (none for the root's).
+        let mut parent: Option<NodeId> = None;
+        bvh.traverse_indexed(None, |node, _| {
+            let id = nodes.len() as NodeId;
+            nodes.push(*node);
+            children.push(0);
+            if id % 2 == 0 {
+                if let Some(slot) = parent.and_then(|p| children.get_mut(p as usize)) {
+                    *slot = id;
+                }
+                return TraversalAction::Continue;
+            }
+            let left = id - 1;
+            let left_inner = nodes.get(left as usize).is_some_and(|n| !n.is_leaf());
+            parent = match (left_inner, !node.is_leaf()) {
+                (true, true) => {
+                    waiting.push(id);
+                    Some(left)
+                }
+                (true, false) => Some(left),
+                (false, true) => Some(id),
+                (false, false) => waiting.pop(),
+            };
+            TraversalAction::Continue
+        });
+    }
+
+    /// Splits the traversal of the copy, level by level from the root's children, into at least
+    /// [`MIN_UNITS`] units (or as many as the tree's top gives).
+    fn split(&mut self) {
+        let tree = Tree {
+            nodes: &self.nodes,
+            children: &self.children,
+        };
+        self.units.clear();
+        self.units
+            .extend([Unit::Within(0), Unit::Within(1), Unit::Between(0, 1)]);
+        while self.units.len() < MIN_UNITS {
+            self.next_units.clear();
+            let mut split_any = false;
+            for &unit in &self.units {
+                split_any |= tree.split(unit, &mut self.next_units);
+            }
+            core::mem::swap(&mut self.units, &mut self.next_units);
+            if !split_any {
+                break;
+            }
+        }
+    }
+}
+
+/// The copy read by the traversal.
+#[derive(Clone, Copy)]
+struct Tree<'a> {
+    nodes: &'a [BvhNode],
+    children: &'a [NodeId],
+}
+
+impl Tree<'_> {
+    /// The node `id` and, if it is not a leaf, the index of its first child.
+    #[inline(always)]
+    fn node(&self, id: NodeId) -> Option<(&BvhNode, Option<NodeId>)> {
+        let node = self.nodes.get(id as usize)?;
+        let first = (!node.is_leaf())
+            .then(|| self.children.get(id as usize).copied())
+            .flatten();
+        Some((node, first))
+    }
+
+    /// `unit`'s parts one level down into `out` (a unit between two leaves as it is, parts that cannot hold
+    /// a pair left out); whether it was split.
+    fn split(&self, unit: Unit, out: &mut Vec<Unit>) -> bool {
+        match unit {
+            Unit::Within(id) => {
+                if let Some((_, Some(c))) = self.node(id) {
+                    out.extend([
+                        Unit::Within(c),
+                        Unit::Within(c + 1),
+                        Unit::Between(c, c + 1),
+                    ]);
+                }
+                true
+            }
+            Unit::Between(a, b) => {
+                let (Some((node_a, down_a)), Some((node_b, down_b))) = (self.node(a), self.node(b))
+                else {
+                    return true;
+                };
+                if !node_a.intersects(node_b) {
+                    return true;
+                }
+                match (down_a, down_b) {
+                    (None, None) => {
+                        out.push(unit);
+                        return false;
+                    }
+                    (None, Some(cb)) => {
+                        out.extend([Unit::Between(a, cb), Unit::Between(a, cb + 1)])
+                    }
+                    (Some(ca), None) => {
+                        out.extend([Unit::Between(ca, b), Unit::Between(ca + 1, b)])
+                    }
+                    (Some(ca), Some(cb)) => out.extend([
+                        Unit::Between(ca, cb),
+                        Unit::Between(ca, cb + 1),
+                        Unit::Between(ca + 1, cb),
+                        Unit::Between(ca + 1, cb + 1),
+                    ]),
+                }
+                true
+            }
+        }
+    }
+
+    /// Every pair of overlapping leaves within the subtree of `id`, as slots, to `emit`.
+    fn within(&self, id: NodeId, emit: &mut impl FnMut(u32, u32)) {
+        if let Some((_, Some(c))) = self.node(id) {
+            self.within(c, emit);
+            self.within(c + 1, emit);
+            self.between(c, c + 1, emit);
+        }
+    }
+
+    /// Every pair of overlapping leaves, one under `a` and one under `b` (disjoint subtrees), to `emit`.
+    fn between(&self, a: NodeId, b: NodeId, emit: &mut impl FnMut(u32, u32)) {
+        let (Some((node_a, down_a)), Some((node_b, down_b))) = (self.node(a), self.node(b)) else {
+            return;
+        };
+        if !node_a.intersects(node_b) {
+            return;
+        }
+        match (down_a, down_b) {
+            (None, None) => {
+                if let (Some(slot_a), Some(slot_b)) = (node_a.leaf_data(), node_b.leaf_data()) {
+                    emit(slot_a, slot_b);
+                }
+            }
+            (None, Some(cb)) => {
+                self.between(a, cb, emit);
+                self.between(a, cb + 1, emit);
+            }
+            (Some(ca), None) => {
+                self.between(ca, b, emit);
+                self.between(ca + 1, b, emit);
+            }
+            (Some(ca), Some(cb)) => {
+                self.between(ca, cb, emit);
+                self.between(ca, cb + 1, emit);
+                self.between(ca + 1, cb, emit);
+                self.between(ca + 1, cb + 1, emit);
+            }
+        }
+    }
+}
