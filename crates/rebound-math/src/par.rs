@@ -198,8 +198,18 @@ where
                 part.clear();
                 fill(r, part);
             });
+        let mut widest = 0;
         for part in used.iter() {
             out.extend_from_slice(part);
+            widest = widest.max(part.len());
+        }
+        // Every buffer made to hold twice what the fullest held: which part meets the most items moves from
+        // call to call (a traversal's parts follow the tree), and a buffer grown only by its own part
+        // would keep growing, one part after another, long after the total has stopped.
+        for part in used.iter_mut() {
+            if part.capacity() < widest {
+                part.reserve(2 * widest - part.len());
+            }
         }
         return;
     }
