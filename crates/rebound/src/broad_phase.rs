@@ -186,7 +186,7 @@ pub(crate) struct BroadPhase {
     filter_parts: Vec<Vec<(ColliderHandle, ColliderHandle)>>,
     /// The pool's traversal of the tree against itself: its copy of the tree and its buffers (reused).
     #[cfg(feature = "parallel")]
-    self_overlaps: self_overlaps::SelfOverlaps,
+    self_overlaps: self_overlaps::SelfOverlaps<(ColliderHandle, ColliderHandle)>,
     /// Per collider slot, what the pool computed for the pair search's boxes and for the refresh (scratch of
     /// `pool::on_pool`, reused: no allocation per step).
     #[cfg(feature = "parallel")]

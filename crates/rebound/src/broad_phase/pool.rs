@@ -16,7 +16,7 @@ pub(super) const POOL_SEARCH_BELOW: usize = 4;
 /// and caps them as the one-thread search does, so both give the same pairs).
 pub(super) fn search_on_pool(
     bvh: &Bvh,
-    traversal: &mut SelfOverlaps,
+    traversal: &mut SelfOverlaps<(ColliderHandle, ColliderHandle)>,
     keep: impl Fn(u32, u32) -> Option<(ColliderHandle, ColliderHandle)> + Sync + Send,
     pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
 ) {

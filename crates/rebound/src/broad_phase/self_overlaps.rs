@@ -13,7 +13,6 @@
 //! another order: the caller sorts them (`keep_lowest`), so the candidate pairs are the one-thread search's
 //! for any number of threads.
 
-use crate::ColliderHandle;
 use parry3d::partitioning::{Bvh, BvhNode, TraversalAction};
 use rebound_math::par;
 
@@ -24,9 +23,6 @@ const MIN_UNITS: usize = 64;
 /// A node of the copy: its index into [`SelfOverlaps::nodes`].
 type NodeId = u32;
 
-/// A pair of leaves that passed the caller's filter, lower handle first.
-type Pair = (ColliderHandle, ColliderHandle);
-
 /// One unit of the traversal: the leaf pairs within one subtree, or between two subtrees.
 #[derive(Debug, Clone, Copy)]
 enum Unit {
@@ -34,9 +30,10 @@ enum Unit {
     Between(NodeId, NodeId),
 }
 
-/// The copy of the tree's shape and the traversal's buffers, kept from step to step.
-#[derive(Debug, Clone, Default)]
-pub(super) struct SelfOverlaps {
+/// The copy of the tree's shape and the traversal's buffers, kept from step to step; `Pair` is what the
+/// caller's filter makes of two leaves.
+#[derive(Debug, Clone)]
+pub(super) struct SelfOverlaps<Pair> {
     /// The tree's nodes in the order parry's walk checks them: the two children of a node side by side,
     /// the first pair the root's two children.
     nodes: Vec<BvhNode>,
@@ -51,7 +48,20 @@ pub(super) struct SelfOverlaps {
     found: Vec<Vec<Pair>>,
 }
 
-impl SelfOverlaps {
+impl<Pair> Default for SelfOverlaps<Pair> {
+    fn default() -> Self {
+        Self {
+            nodes: Vec::new(),
+            children: Vec::new(),
+            waiting: Vec::new(),
+            units: Vec::new(),
+            next_units: Vec::new(),
+            found: Vec::new(),
+        }
+    }
+}
+
+impl<Pair: Copy + Send> SelfOverlaps<Pair> {
     /// Every two leaves of `bvh` whose boxes overlap that `keep` (on their slots) makes a pair, appended to
     /// `pairs` (unsorted), found over the pool.
     pub(super) fn find(
@@ -236,6 +246,116 @@ impl Tree<'_> {
                 self.between(ca, cb + 1, emit);
                 self.between(ca + 1, cb, emit);
                 self.between(ca + 1, cb + 1, emit);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use parry3d::bounding_volume::Aabb;
+    use parry3d::math::Vector;
+
+    /// A tree of `count` boxes scattered by a fixed linear congruential sequence, grown by insertion,
+    /// moved, refitted and optimised as the broad phase does it.
+    fn scattered(count: u32, seed: u64) -> Bvh {
+        let mut state = seed;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 40) as f32 / (1_u64 << 24) as f32
+        };
+        let mut random_box = || {
+            let centre = Vector::new(next() * 20.0, next() * 20.0, next() * 20.0);
+            let half = Vector::splat(0.2 + next());
+            Aabb::new(centre - half, centre + half)
+        };
+        let mut bvh = Bvh::new();
+        for slot in 0..count {
+            bvh.insert(random_box(), slot);
+        }
+        let mut workspace = parry3d::partitioning::BvhWorkspace::default();
+        for slot in (0..count).step_by(3) {
+            let _ = bvh.insert_or_update_partially(random_box(), slot, 0.0);
+        }
+        bvh.refit(&mut workspace);
+        bvh.optimize_incremental(&mut workspace);
+        bvh
+    }
+
+    /// The pairs of parry's one-thread traversal, each lower slot first, sorted.
+    fn parry_pairs(bvh: &Bvh) -> Vec<(u32, u32)> {
+        let mut pairs = Vec::new();
+        let mut workspace = parry3d::partitioning::BvhWorkspace::default();
+        bvh.traverse_bvtt_single_tree::<false>(&mut workspace, &mut |a, b| {
+            pairs.push((a.min(b), a.max(b)));
+        });
+        pairs.sort_unstable();
+        pairs
+    }
+
+    /// On a pool of two threads (and on one), over trees of 0 to 3,000 boxes: the pairs parry's traversal
+    /// finds, each once, and the caller's filter applied to each.
+    #[test]
+    fn finds_the_pairs_of_parrys_traversal() {
+        let pools = [1, 2].map(|threads| {
+            par::rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("the test machine starts threads")
+        });
+        let mut traversal = SelfOverlaps::default();
+        for (count, seed) in [
+            (0, 1),
+            (1, 2),
+            (2, 3),
+            (7, 4),
+            (100, 5),
+            (1_000, 6),
+            (3_000, 7),
+        ] {
+            let bvh = scattered(count, seed);
+            let expected = parry_pairs(&bvh);
+            if count >= 1_000 {
+                assert!(
+                    expected.len() > count as usize,
+                    "{count} boxes: too few pairs to test"
+                );
+            }
+            for pool in &pools {
+                let mut found = vec![(u32::MAX, u32::MAX)];
+                pool.install(|| {
+                    traversal.find(&bvh, |a, b| Some((a.min(b), a.max(b))), &mut found);
+                });
+                assert_eq!(
+                    found.first(),
+                    Some(&(u32::MAX, u32::MAX)),
+                    "appended, not cleared"
+                );
+                let mut found = found.split_off(1);
+                let all = found.len();
+                found.sort_unstable();
+                found.dedup();
+                assert_eq!(found.len(), all, "{count} boxes: a pair found twice");
+                assert_eq!(found, expected, "{count} boxes: other pairs than parry's");
+                // The filter's verdict is applied: only the pairs of even slots kept.
+                let mut even = Vec::new();
+                pool.install(|| {
+                    traversal.find(
+                        &bvh,
+                        |a, b| (a % 2 == 0 && b % 2 == 0).then_some((a.min(b), a.max(b))),
+                        &mut even,
+                    );
+                });
+                even.sort_unstable();
+                let expected_even: Vec<_> = expected
+                    .iter()
+                    .copied()
+                    .filter(|&(a, b)| a % 2 == 0 && b % 2 == 0)
+                    .collect();
+                assert_eq!(even, expected_even, "{count} boxes: the filter not applied");
             }
         }
     }
