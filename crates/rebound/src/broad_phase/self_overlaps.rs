@@ -102,7 +102,7 @@ impl<Pair: Copy + Send> SelfOverlaps<Pair> {
             let id = nodes.len() as NodeId;
             nodes.push(*node);
             children.push(0);
-            if id % 2 == 0 {
+            if id.is_multiple_of(2) {
                 if let Some(slot) = parent.and_then(|p| children.get_mut(p as usize)) {
                     *slot = id;
                 }
@@ -193,10 +193,10 @@ impl Tree<'_> {
                         return false;
                     }
                     (None, Some(cb)) => {
-                        out.extend([Unit::Between(a, cb), Unit::Between(a, cb + 1)])
+                        out.extend([Unit::Between(a, cb), Unit::Between(a, cb + 1)]);
                     }
                     (Some(ca), None) => {
-                        out.extend([Unit::Between(ca, b), Unit::Between(ca + 1, b)])
+                        out.extend([Unit::Between(ca, b), Unit::Between(ca + 1, b)]);
                     }
                     (Some(ca), Some(cb)) => out.extend([
                         Unit::Between(ca, cb),
