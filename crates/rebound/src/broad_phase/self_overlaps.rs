@@ -5,15 +5,15 @@
 //! every task it splits off and concatenates them by appending, so it allocates and reallocates in every
 //! step, and parry keeps its nodes' children private, so its traversal cannot be split from outside.
 //! [`SelfOverlaps::copy`] reads the tree through parry's public depth-first walk (`Bvh::traverse_indexed`)
-//! into two arrays kept here: the nodes (parry's own `BvhNode`s, with their box test) and each node's
-//! children. The top of that copy is split into units of work ([`Unit`]), each traversed by one task into
+//! into an array kept here: each node's box and its children (or, for a leaf, its slot). The top of that copy is split into units of work ([`Unit`]), each traversed by one task into
 //! its own kept list.
 //!
 //! The pairs are those of parry's traversal (every two leaves whose boxes overlap, each pair once), in
 //! another order: the caller sorts them (`keep_lowest`), so the candidate pairs are the one-thread search's
 //! for any number of threads.
 
-use parry3d::partitioning::{Bvh, BvhNode, TraversalAction};
+use parry3d::partitioning::{Bvh, TraversalAction};
+use rebound_math::glam::Vec3A;
 use rebound_math::par;
 
 /// Units of work the top of the tree is split into, at least (while it has subtrees to split): rayon hands
@@ -30,15 +30,32 @@ enum Unit {
     Between(NodeId, NodeId),
 }
 
+/// A node of the copy: its box and, for a leaf, its slot, else the index of its first child in
+/// [`SelfOverlaps::nodes`] (the second follows it).
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    mins: Vec3A,
+    maxs: Vec3A,
+    down: u32,
+    is_leaf: bool,
+}
+
+impl Node {
+    /// Whether the two boxes overlap, touching included (parry's `BvhNode::intersects`, inlined here: it is
+    /// the traversal's inner test, and parry's is not inlined across crates).
+    #[inline(always)]
+    fn overlaps(&self, other: &Self) -> bool {
+        (self.mins.cmple(other.maxs) & self.maxs.cmpge(other.mins)).all()
+    }
+}
+
 /// The copy of the tree's shape and the traversal's buffers, kept from step to step; `Pair` is what the
 /// caller's filter makes of two leaves.
 #[derive(Debug, Clone)]
 pub(super) struct SelfOverlaps<Pair> {
     /// The tree's nodes in the order parry's walk checks them: the two children of a node side by side,
     /// the first pair the root's two children.
-    nodes: Vec<BvhNode>,
-    /// Per node, the index of its first child in `nodes` (the second follows it); 0 for a leaf.
-    children: Vec<NodeId>,
+    nodes: Vec<Node>,
     /// Nodes whose children the walk has yet to reach (scratch of [`SelfOverlaps::copy`]).
     waiting: Vec<NodeId>,
     /// This step's units, and the next level's while the top is split.
@@ -52,7 +69,6 @@ impl<Pair> Default for SelfOverlaps<Pair> {
     fn default() -> Self {
         Self {
             nodes: Vec::new(),
-            children: Vec::new(),
             waiting: Vec::new(),
             units: Vec::new(),
             next_units: Vec::new(),
@@ -75,10 +91,14 @@ impl<Pair: Copy + Send> SelfOverlaps<Pair> {
         }
         self.copy(bvh);
         self.split();
-        let (nodes, children, units) = (&self.nodes, &self.children, &self.units);
-        let tree = Tree { nodes, children };
+        let tree = Tree { nodes: &self.nodes };
+        let units = &self.units;
         par::extend_in_parts(pairs, &mut self.found, units.len(), |r, out| {
-            let mut emit = |a: u32, b: u32| out.extend(keep(a, b));
+            let mut emit = |a: u32, b: u32| {
+                if let Some(pair) = keep(a, b) {
+                    out.push(pair);
+                }
+            };
             match units.get(r) {
                 Some(&Unit::Within(id)) => tree.within(id, &mut emit),
                 Some(&Unit::Between(a, b)) => tree.between(a, b, &mut emit),
@@ -92,30 +112,33 @@ impl<Pair: Copy + Send> SelfOverlaps<Pair> {
     /// right one waiting on its stack if it is not a leaf either), else into the right one, else into the
     /// last one that waited; the copy follows the same rule to know whose children each pair is.
     fn copy(&mut self, bvh: &Bvh) {
-        let (nodes, children, waiting) = (&mut self.nodes, &mut self.children, &mut self.waiting);
+        let (nodes, waiting) = (&mut self.nodes, &mut self.waiting);
         nodes.clear();
-        children.clear();
         waiting.clear();
         // The node whose children the walk checks next (none for the root's).
         let mut parent: Option<NodeId> = None;
         bvh.traverse_indexed(None, |node, _| {
             let id = nodes.len() as NodeId;
-            nodes.push(*node);
-            children.push(0);
+            let is_leaf = node.is_leaf();
+            nodes.push(Node {
+                mins: node.mins().into(),
+                maxs: node.maxs().into(),
+                down: node.leaf_data().unwrap_or(0),
+                is_leaf,
+            });
             if id.is_multiple_of(2) {
-                if let Some(slot) = parent.and_then(|p| children.get_mut(p as usize)) {
-                    *slot = id;
+                if let Some(up) = parent.and_then(|p| nodes.get_mut(p as usize)) {
+                    up.down = id;
                 }
                 return TraversalAction::Continue;
             }
-            let left = id - 1;
-            let left_inner = nodes.get(left as usize).is_some_and(|n| !n.is_leaf());
-            parent = match (left_inner, !node.is_leaf()) {
+            let left_inner = nodes.get(id as usize - 1).is_some_and(|n| !n.is_leaf);
+            parent = match (left_inner, !is_leaf) {
                 (true, true) => {
                     waiting.push(id);
-                    Some(left)
+                    Some(id - 1)
                 }
-                (true, false) => Some(left),
+                (true, false) => Some(id - 1),
                 (false, true) => Some(id),
                 (false, false) => waiting.pop(),
             };
@@ -126,13 +149,13 @@ impl<Pair: Copy + Send> SelfOverlaps<Pair> {
     /// Splits the traversal of the copy, level by level from the root's children, into at least
     /// [`MIN_UNITS`] units (or as many as the tree's top gives).
     fn split(&mut self) {
-        let tree = Tree {
-            nodes: &self.nodes,
-            children: &self.children,
-        };
+        let tree = Tree { nodes: &self.nodes };
         self.units.clear();
-        self.units
-            .extend([Unit::Within(0), Unit::Within(1), Unit::Between(0, 1)]);
+        self.units.push(Unit::Within(0));
+        self.units.push(Unit::Within(1));
+        if tree.overlap(0, 1) {
+            self.units.push(Unit::Between(0, 1));
+        }
         while self.units.len() < MIN_UNITS {
             self.next_units.clear();
             let mut split_any = false;
@@ -150,60 +173,59 @@ impl<Pair: Copy + Send> SelfOverlaps<Pair> {
 /// The copy read by the traversal.
 #[derive(Clone, Copy)]
 struct Tree<'a> {
-    nodes: &'a [BvhNode],
-    children: &'a [NodeId],
+    nodes: &'a [Node],
 }
 
 impl Tree<'_> {
-    /// The node `id` and, if it is not a leaf, the index of its first child.
+    /// Whether nodes `a` and `b` overlap.
     #[inline(always)]
-    fn node(&self, id: NodeId) -> Option<(&BvhNode, Option<NodeId>)> {
-        let node = self.nodes.get(id as usize)?;
-        let first = (!node.is_leaf())
-            .then(|| self.children.get(id as usize).copied())
-            .flatten();
-        Some((node, first))
+    fn overlap(&self, a: NodeId, b: NodeId) -> bool {
+        self.nodes[a as usize].overlaps(&self.nodes[b as usize])
     }
 
-    /// `unit`'s parts one level down into `out` (a unit between two leaves as it is, parts that cannot hold
-    /// a pair left out); whether it was split.
+    /// The pairs of children to visit under two overlapping nodes `a` and `b`: each child of an inner node
+    /// against the other node or its children.
+    #[inline(always)]
+    fn child_pairs(&self, a: NodeId, b: NodeId) -> ([(NodeId, NodeId); 4], usize) {
+        let (na, nb) = (&self.nodes[a as usize], &self.nodes[b as usize]);
+        match (na.is_leaf, nb.is_leaf) {
+            (true, true) => ([(a, b); 4], 0),
+            (true, false) => ([(a, nb.down), (a, nb.down + 1), (0, 0), (0, 0)], 2),
+            (false, true) => ([(na.down, b), (na.down + 1, b), (0, 0), (0, 0)], 2),
+            (false, false) => {
+                let (ca, cb) = (na.down, nb.down);
+                ([(ca, cb), (ca, cb + 1), (ca + 1, cb), (ca + 1, cb + 1)], 4)
+            }
+        }
+    }
+
+    /// `unit`'s parts one level down into `out` (a unit between two leaves as it is, parts whose boxes do
+    /// not overlap left out); whether it was split.
     fn split(&self, unit: Unit, out: &mut Vec<Unit>) -> bool {
         match unit {
             Unit::Within(id) => {
-                if let Some((_, Some(c))) = self.node(id) {
-                    out.extend([
-                        Unit::Within(c),
-                        Unit::Within(c + 1),
-                        Unit::Between(c, c + 1),
-                    ]);
+                let node = &self.nodes[id as usize];
+                if node.is_leaf {
+                    return false;
+                }
+                let c = node.down;
+                out.push(Unit::Within(c));
+                out.push(Unit::Within(c + 1));
+                if self.overlap(c, c + 1) {
+                    out.push(Unit::Between(c, c + 1));
                 }
                 true
             }
             Unit::Between(a, b) => {
-                let (Some((node_a, down_a)), Some((node_b, down_b))) = (self.node(a), self.node(b))
-                else {
-                    return true;
-                };
-                if !node_a.intersects(node_b) {
-                    return true;
+                let (pairs, count) = self.child_pairs(a, b);
+                if count == 0 {
+                    out.push(unit);
+                    return false;
                 }
-                match (down_a, down_b) {
-                    (None, None) => {
-                        out.push(unit);
-                        return false;
+                for &(x, y) in pairs.iter().take(count) {
+                    if self.overlap(x, y) {
+                        out.push(Unit::Between(x, y));
                     }
-                    (None, Some(cb)) => {
-                        out.extend([Unit::Between(a, cb), Unit::Between(a, cb + 1)]);
-                    }
-                    (Some(ca), None) => {
-                        out.extend([Unit::Between(ca, b), Unit::Between(ca + 1, b)]);
-                    }
-                    (Some(ca), Some(cb)) => out.extend([
-                        Unit::Between(ca, cb),
-                        Unit::Between(ca, cb + 1),
-                        Unit::Between(ca + 1, cb),
-                        Unit::Between(ca + 1, cb + 1),
-                    ]),
                 }
                 true
             }
@@ -212,40 +234,47 @@ impl Tree<'_> {
 
     /// Every pair of overlapping leaves within the subtree of `id`, as slots, to `emit`.
     fn within(&self, id: NodeId, emit: &mut impl FnMut(u32, u32)) {
-        if let Some((_, Some(c))) = self.node(id) {
-            self.within(c, emit);
-            self.within(c + 1, emit);
+        let node = &self.nodes[id as usize];
+        if node.is_leaf {
+            return;
+        }
+        let c = node.down;
+        self.within(c, emit);
+        self.within(c + 1, emit);
+        if self.overlap(c, c + 1) {
             self.between(c, c + 1, emit);
         }
     }
 
-    /// Every pair of overlapping leaves, one under `a` and one under `b` (disjoint subtrees), to `emit`.
+    /// Every pair of overlapping leaves, one under `a` and one under `b` (disjoint subtrees whose boxes
+    /// overlap), to `emit`.
     fn between(&self, a: NodeId, b: NodeId, emit: &mut impl FnMut(u32, u32)) {
-        let (Some((node_a, down_a)), Some((node_b, down_b))) = (self.node(a), self.node(b)) else {
-            return;
-        };
-        if !node_a.intersects(node_b) {
-            return;
-        }
-        match (down_a, down_b) {
-            (None, None) => {
-                if let (Some(slot_a), Some(slot_b)) = (node_a.leaf_data(), node_b.leaf_data()) {
-                    emit(slot_a, slot_b);
+        let (na, nb) = (&self.nodes[a as usize], &self.nodes[b as usize]);
+        match (na.is_leaf, nb.is_leaf) {
+            (true, true) => emit(na.down, nb.down),
+            (true, false) => self.leaf_against(na, nb.down, emit),
+            (false, true) => self.leaf_against(nb, na.down, emit),
+            (false, false) => {
+                let (ca, cb) = (na.down, nb.down);
+                for (x, y) in [(ca, cb), (ca, cb + 1), (ca + 1, cb), (ca + 1, cb + 1)] {
+                    if self.overlap(x, y) {
+                        self.between(x, y, emit);
+                    }
                 }
             }
-            (None, Some(cb)) => {
-                self.between(a, cb, emit);
-                self.between(a, cb + 1, emit);
-            }
-            (Some(ca), None) => {
-                self.between(ca, b, emit);
-                self.between(ca + 1, b, emit);
-            }
-            (Some(ca), Some(cb)) => {
-                self.between(ca, cb, emit);
-                self.between(ca, cb + 1, emit);
-                self.between(ca + 1, cb, emit);
-                self.between(ca + 1, cb + 1, emit);
+        }
+    }
+
+    /// Every leaf under the two children `first`, `first + 1` of a node that overlaps `leaf`, against it.
+    fn leaf_against(&self, leaf: &Node, first: NodeId, emit: &mut impl FnMut(u32, u32)) {
+        for child in [first, first + 1] {
+            let node = &self.nodes[child as usize];
+            if leaf.overlaps(node) {
+                if node.is_leaf {
+                    emit(leaf.down, node.down);
+                } else {
+                    self.leaf_against(leaf, node.down, emit);
+                }
             }
         }
     }
