@@ -5,8 +5,8 @@
 //! every task it splits off and concatenates them by appending, so it allocates and reallocates in every
 //! step, and parry keeps its nodes' children private, so its traversal cannot be split from outside.
 //! [`SelfOverlaps::copy`] reads the tree through parry's public depth-first walk (`Bvh::traverse_indexed`)
-//! into an array kept here: each node's box and its children (or, for a leaf, its slot). The top of that copy is split into units of work ([`Unit`]), each traversed by one task into
-//! its own kept list.
+//! into an array kept here: each node's box and its children (or, for a leaf, its slot). The top of that
+//! copy is split into units of work ([`Unit`]), each traversed by one task into its own kept list.
 //!
 //! The pairs are those of parry's traversal (every two leaves whose boxes overlap, each pair once), in
 //! another order: the caller sorts them (`keep_lowest`), so the candidate pairs are the one-thread search's
@@ -23,7 +23,8 @@ const MIN_UNITS: usize = 64;
 /// A node of the copy: its index into [`SelfOverlaps::nodes`].
 type NodeId = u32;
 
-/// One unit of the traversal: the leaf pairs within one subtree, or between two subtrees.
+/// One unit of the traversal: the leaf pairs within one subtree, or between two disjoint subtrees whose
+/// boxes overlap.
 #[derive(Debug, Clone, Copy)]
 enum Unit {
     Within(NodeId),
