@@ -174,6 +174,51 @@ where
     }
 }
 
+/// Appends to `out`, in the order `0..count`, what `fill(r, part)` appends to each part `r`: over the pool,
+/// each part into its own buffer of `parts` (kept from call to call, so that nothing is allocated once they
+/// have grown), then the buffers copied to `out` in order; on one thread, each part straight into `out`.
+/// The list is the same for any number of threads. For parts whose lengths are not known before they are
+/// filled (a filter, a traversal), where rayon's `par_extend` would collect into a new list per task.
+#[inline]
+pub fn extend_in_parts<U, F>(out: &mut Vec<U>, parts: &mut Vec<Vec<U>>, count: usize, fill: F)
+where
+    U: Copy + Send,
+    F: Fn(usize, &mut Vec<U>) + Sync + Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() && count > 1 {
+        if parts.len() < count {
+            parts.resize_with(count, Vec::new);
+        }
+        let used = &mut parts[..count];
+        used.par_iter_mut()
+            .with_min_len(1)
+            .enumerate()
+            .for_each(|(r, part)| {
+                part.clear();
+                fill(r, part);
+            });
+        let mut widest = 0;
+        for part in used.iter() {
+            out.extend_from_slice(part);
+            widest = widest.max(part.len());
+        }
+        // Every buffer made to hold twice what the fullest held: which part meets the most items moves from
+        // call to call (a traversal's parts follow the tree), and a buffer grown only by its own part
+        // would keep growing, one part after another, long after the total has stopped.
+        for part in used.iter_mut() {
+            if part.capacity() < widest {
+                part.reserve(2 * widest - part.len());
+            }
+        }
+        return;
+    }
+    let _ = parts;
+    for r in 0..count {
+        fill(r, out);
+    }
+}
+
 /// Runs `a` and `b`, on two threads if the pool has them, and returns both results.
 #[inline]
 pub fn join<A, B, RA, RB>(a: A, b: B) -> (RA, RB)
@@ -232,6 +277,19 @@ mod tests {
         extend_concatenated(&mut out, &starts, 200, |r| parts[r]);
         assert_eq!(out.len(), 201);
         assert!(out[1..].iter().enumerate().all(|(i, &x)| x == i as u32));
+    }
+
+    #[test]
+    fn extend_in_parts_keeps_part_order() {
+        let mut parts = Vec::new();
+        let mut out = vec![u32::MAX];
+        // Part r holds the multiples of 7 in [100·r, 100·(r + 1)).
+        extend_in_parts(&mut out, &mut parts, 10, |r, part| {
+            part.extend((100 * r as u32..100 * (r as u32 + 1)).filter(|x| x % 7 == 0));
+        });
+        let expected: Vec<u32> = (0..1000).filter(|x| x % 7 == 0).collect();
+        assert_eq!(out[0], u32::MAX);
+        assert_eq!(out[1..], expected[..]);
     }
 
     #[test]

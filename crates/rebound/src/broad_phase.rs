@@ -56,6 +56,8 @@ use std::collections::BTreeSet;
 mod pair_filter;
 #[cfg(feature = "parallel")]
 mod pool;
+#[cfg(feature = "parallel")]
+mod self_overlaps;
 
 /// A slow body's new leaf is its fat box loosened by this fraction of the speculative margin, so that it
 /// holds the body's fat box for many steps of resting jitter (see the module docs).
@@ -179,6 +181,12 @@ pub(crate) struct BroadPhase {
     sort_scratch: Vec<(ColliderHandle, ColliderHandle)>,
     /// Candidate pairs the last pair search left out because of its cap.
     capped: usize,
+    /// Scratch of the kept overlaps' filter on the pool: the pairs of each run (reused: no allocation per
+    /// step).
+    filter_parts: Vec<Vec<(ColliderHandle, ColliderHandle)>>,
+    /// The pool's traversal of the tree against itself: its copy of the tree and its buffers (reused).
+    #[cfg(feature = "parallel")]
+    self_overlaps: self_overlaps::SelfOverlaps<(ColliderHandle, ColliderHandle)>,
     /// Per collider slot, what the pool computed for the pair search's boxes and for the refresh (scratch of
     /// `pool::on_pool`, reused: no allocation per step).
     #[cfg(feature = "parallel")]
@@ -254,7 +262,12 @@ impl BroadPhase {
                 );
             }
             if self.overlaps_current {
-                filter_kept(&self.overlaps, &filter, &mut self.pairs);
+                filter_kept(
+                    &self.overlaps,
+                    &filter,
+                    &mut self.filter_parts,
+                    &mut self.pairs,
+                );
                 return;
             }
         }
@@ -263,6 +276,7 @@ impl BroadPhase {
         if rebound_math::par::is_parallel() && last_found * POOL_SEARCH_BELOW <= max_pairs {
             search_on_pool(
                 &self.bvh,
+                &mut self.self_overlaps,
                 |slot1, slot2| filter.keeps_leaves(slot1, slot2),
                 &mut self.pairs,
             );

@@ -171,6 +171,7 @@ impl NarrowPhase {
         } else {
             let mut run = PairRun {
                 pairs: core::mem::take(&mut self.pairs),
+                cached: Vec::new(),
                 force_pairs: core::mem::take(&mut self.force_pairs),
                 convex: core::mem::take(&mut self.convex),
             };
@@ -216,32 +217,35 @@ impl NarrowPhase {
         if self.runs.len() < count {
             self.runs.resize_with(count, Default::default);
         }
-        let mut tasks = Vec::with_capacity(count);
-        let mut old = &mut self.previous[..];
-        for (range, run) in pairs.chunks(PAIRS_PER_TASK).zip(&mut self.runs) {
-            // The cached pairs up to this run's last pair (both lists are sorted).
+        // Each run takes the cached pairs up to its last pair (both lists are sorted) into its own list.
+        let mut old = self.previous.drain(..);
+        for (range, (run, _)) in pairs.chunks(PAIRS_PER_TASK).zip(&mut self.runs) {
             let last = range.last().copied();
-            let mine = old.partition_point(|(key, _)| Some(*key) <= last);
-            let (cached, rest) = old.split_at_mut(mine);
-            old = rest;
-            tasks.push((range, cached, run));
+            run.cached.clear();
+            let mine = old
+                .as_slice()
+                .partition_point(|(key, _)| Some(*key) <= last);
+            run.cached.extend(old.by_ref().take(mine));
         }
-        par::for_each_mut(&mut tasks, 1, |_, (range, cached, (run, manifolds))| {
+        drop(old);
+        let runs = self.runs.get_mut(..count).unwrap_or_default();
+        par::for_each_mut(runs, 1, |r, (run, manifolds)| {
+            let start = (r * PAIRS_PER_TASK).min(pairs.len());
+            let end = (start + PAIRS_PER_TASK).min(pairs.len());
+            let range = pairs.get(start..end).unwrap_or_default();
             run.pairs.clear();
             run.force_pairs.clear();
             manifolds.clear();
-            let mut old = cached
-                .iter_mut()
-                .map(|(key, cache)| (*key, core::mem::take(cache)))
-                .peekable();
+            let mut cached = core::mem::take(&mut run.cached);
+            let mut old = cached.drain(..).peekable();
             if watched {
                 run.collide_pairs::<true, _>(range, &mut old, input, None, &mut 0, manifolds);
             } else {
                 run.collide_pairs::<false, _>(range, &mut old, input, None, &mut 0, manifolds);
             }
+            drop(old);
+            run.cached = cached;
         });
-        drop(tasks);
-        self.previous.clear();
         // The runs' manifolds copied over the pool, each to its place in pair order.
         #[cfg(feature = "parallel")]
         {
@@ -296,6 +300,8 @@ struct PairInput<'a> {
 #[derive(Clone, Default)]
 struct PairRun {
     pairs: Vec<((ColliderHandle, ColliderHandle), PairCache)>,
+    /// Last step's cached pairs of the run's range (the parallel collide stage's; emptied as they are read).
+    cached: Vec<((ColliderHandle, ColliderHandle), PairCache)>,
     force_pairs: Vec<(u64, ColliderHandle, ColliderHandle)>,
     convex: ParryManifold<(), ()>,
 }

@@ -1,14 +1,15 @@
 //! The pair filter: what an overlapping pair of leaves must pass to become a candidate pair, and the dense
 //! per-collider record ([`Candidate`]) it reads instead of looking colliders and bodies up in their arenas.
 
-#[cfg(feature = "parallel")]
-use super::pool::PAIRS_PER_TASK;
 use crate::prediction::{ball_center, centres_clearly_apart, prediction_distance};
 use crate::{Collider, ColliderHandle, ColliderSet, ColliderShape, CollisionGroups};
 use rebound_dynamics::{BodyType, RigidBody};
 use rebound_math::Vec3;
 use rebound_world::BodyHandle;
 use std::collections::BTreeSet;
+
+/// Overlapping leaf pairs per run of the kept overlaps' filter (a task on the pool).
+const PAIRS_PER_TASK: usize = 1024;
 
 /// A body that moves and may push or be pushed this step: awake and not fixed.
 pub(crate) fn is_active(body: &RigidBody) -> bool {
@@ -170,28 +171,25 @@ pub(super) fn leaf_pair(
 }
 
 /// The kept overlaps that pass `filter`, in their order, into `pairs`: over the pool when it has more than
-/// one thread.
+/// one thread, in runs of [`PAIRS_PER_TASK`], each filtered into its own buffer of `parts` (kept from step
+/// to step).
 pub(super) fn filter_kept(
     overlaps: &[(ColliderHandle, ColliderHandle)],
     filter: &PairFilter<'_>,
+    parts: &mut Vec<Vec<(ColliderHandle, ColliderHandle)>>,
     pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
 ) {
-    #[cfg(feature = "parallel")]
-    if rebound_math::par::is_parallel() {
-        use rebound_math::par::rayon::prelude::*;
-        pairs.par_extend(
-            overlaps
-                .par_iter()
-                .with_min_len(PAIRS_PER_TASK)
-                .copied()
-                .filter(|&(h1, h2)| filter.keeps(h1, h2)),
-        );
-        return;
-    }
-    pairs.extend(
-        overlaps
-            .iter()
-            .copied()
-            .filter(|&(h1, h2)| filter.keeps(h1, h2)),
+    rebound_math::par::extend_in_parts(
+        pairs,
+        parts,
+        overlaps.len().div_ceil(PAIRS_PER_TASK),
+        |r, part| {
+            let run = overlaps
+                .get(r * PAIRS_PER_TASK..)
+                .unwrap_or_default()
+                .iter()
+                .take(PAIRS_PER_TASK);
+            part.extend(run.copied().filter(|&(h1, h2)| filter.keeps(h1, h2)));
+        },
     );
 }

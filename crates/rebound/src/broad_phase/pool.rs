@@ -1,35 +1,26 @@
 //! The broad phase's pair search over the thread pool (the `parallel` feature, on a pool of more than one
-//! thread): the colliders' boxes and leaf tests, then parry's traversal of the tree against itself with the
-//! pair filter. Each gives what the one-thread code of `broad_phase.rs` gives, in the same order.
+//! thread): the colliders' boxes and leaf tests, then the traversal of the tree against itself with the
+//! pair filter (`self_overlaps.rs`). Each gives what the one-thread code of `broad_phase.rs` gives, in the same order.
 
+use super::self_overlaps::SelfOverlaps;
 use crate::{Collider, ColliderHandle, ColliderSet};
 use parry3d::partitioning::Bvh;
-use rebound_math::par::rayon::prelude::*;
 
 /// The pool's pair search ([`BroadPhase::find_pairs`] on a pool of more than one thread, while the last
 /// search found fewer than `1 / POOL_SEARCH_BELOW` of the cap): it holds every overlapping leaf pair at
 /// once, where the one-thread search trims its list at twice the cap as it goes.
 pub(super) const POOL_SEARCH_BELOW: usize = 4;
 
-/// Overlapping leaf pairs per task of the pool's pair filter.
-pub(super) const PAIRS_PER_TASK: usize = 1024;
-
-/// The pair search over the thread pool: parry's traversal of the tree against itself with its subtrees as
-/// tasks (the overlapping leaves in the order the one-thread traversal finds them), then `keep` (the pair
-/// filter's verdict on two leaves) over the pool, keeping that order, into `pairs` (unsorted: the caller sorts and caps them as the
-/// one-thread search does, so both give the same pairs).
+/// The pair search over the thread pool: the tree traversed against itself with the pair filter `keep`
+/// (its verdict on two leaves) over the pool ([`SelfOverlaps`]), into `pairs` (unsorted: the caller sorts
+/// and caps them as the one-thread search does, so both give the same pairs).
 pub(super) fn search_on_pool(
     bvh: &Bvh,
+    traversal: &mut SelfOverlaps<(ColliderHandle, ColliderHandle)>,
     keep: impl Fn(u32, u32) -> Option<(ColliderHandle, ColliderHandle)> + Sync + Send,
     pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
 ) {
-    let leaves = bvh.traverse_bvtt_single_tree_parallel::<false>();
-    pairs.par_extend(
-        leaves
-            .par_iter()
-            .with_min_len(PAIRS_PER_TASK)
-            .filter_map(|&(slot1, slot2)| keep(slot1, slot2)),
-    );
+    traversal.find(bvh, keep, pairs);
 }
 
 /// For every collider, in collider order: `apply(broad_phase, handle, collider, compute(broad_phase, handle,
