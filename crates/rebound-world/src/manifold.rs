@@ -246,6 +246,7 @@ impl ContactManifold {
     }
 
     /// Adds a point; returns `false` when the manifold is full.
+    #[inline]
     pub fn push_point(&mut self, point: ManifoldPoint) -> bool {
         if self.point_count >= MAX_MANIFOLD_POINTS {
             return false;
@@ -256,6 +257,7 @@ impl ContactManifold {
     }
 
     /// The points in use.
+    #[inline]
     #[must_use]
     pub fn points(&self) -> &[ManifoldPoint] {
         &self.points[..self.point_count.min(MAX_MANIFOLD_POINTS)]
@@ -313,6 +315,7 @@ impl<'a> ManifoldWriter<'a> {
 
     /// How many manifolds were written.
     #[must_use]
+    #[inline]
     pub fn len(&self) -> usize {
         self.len
     }
@@ -325,18 +328,21 @@ impl<'a> ManifoldWriter<'a> {
 
     /// The manifolds written, in order.
     #[must_use]
+    #[inline]
     pub fn as_slice(&self) -> &[ContactManifold] {
         &self.list[..self.len]
     }
 
     /// The manifolds written, in order, to edit.
     #[must_use]
+    #[inline]
     pub fn as_mut_slice(&mut self) -> &mut [ContactManifold] {
         &mut self.list[..self.len]
     }
 
     /// Starts the next manifold, with no points ([`ContactManifold::new`]'s fields), written over the next
     /// older one where the list has one ([`ContactManifold::renew`]); returns it to add points to.
+    #[inline]
     pub fn begin(
         &mut self,
         body_a: BodyHandle,
@@ -366,6 +372,7 @@ impl<'a> ManifoldWriter<'a> {
     }
 
     /// Adds a whole manifold (every byte of it written).
+    #[inline]
     pub fn push(&mut self, manifold: ContactManifold) {
         self.list.truncate(self.len);
         self.list.push(manifold);
@@ -374,6 +381,7 @@ impl<'a> ManifoldWriter<'a> {
 
     /// Adds whole manifolds with the list's own methods: `append` is handed the list cut to the manifolds
     /// written so far, and what it appends counts as written.
+    #[inline]
     pub fn append_with(&mut self, append: impl FnOnce(&mut Vec<ContactManifold>)) {
         self.list.truncate(self.len);
         append(self.list);
@@ -386,6 +394,7 @@ impl<'a> ManifoldWriter<'a> {
     }
 
     /// Removes the last manifold written and returns it.
+    #[inline]
     pub fn pop(&mut self) -> Option<ContactManifold> {
         let last = self.len.checked_sub(1)?;
         self.len = last;
@@ -393,16 +402,19 @@ impl<'a> ManifoldWriter<'a> {
     }
 
     /// The last manifold written.
+    #[inline]
     pub fn last_mut(&mut self) -> Option<&mut ContactManifold> {
         self.as_mut_slice().last_mut()
     }
 
     /// The manifold written at `index`.
+    #[inline]
     pub fn get_mut(&mut self, index: usize) -> Option<&mut ContactManifold> {
         self.as_mut_slice().get_mut(index)
     }
 
     /// Keeps the first `len` manifolds written (no change if fewer were).
+    #[inline]
     pub fn truncate(&mut self, len: usize) {
         self.len = self.len.min(len);
     }
