@@ -7,7 +7,9 @@ mod pool;
 
 use crate::body_set::BodySet;
 use crate::handles::BodyHandle;
-use crate::manifold::{CollisionBackend, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint};
+use crate::manifold::{
+    CollisionBackend, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint, ManifoldWriter,
+};
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
 use rebound_dynamics::{BodyType, RigidBody};
@@ -45,14 +47,14 @@ pub(crate) fn collide<B: CollisionBackend>(
     dt: f32,
     c: &mut Collision,
 ) -> Dropped {
+    // Written over the list of two steps ago in place: each manifold writes only the slots it uses.
     let mut manifolds = core::mem::take(&mut c.manifolds);
-    manifolds.clear();
     backend.collide(
         &state.bodies,
         &state.settings,
         dt,
         &state.manifolds,
-        &mut manifolds,
+        &mut ManifoldWriter::new(&mut manifolds),
     );
     let bodies = &state.bodies;
     // Unstable sort: no buffer to allocate, and the result does not depend on the input order because a

@@ -46,7 +46,7 @@ pub use handles::{BodyHandle, JointHandle};
 pub use limits::{MAX_BOUND, QuarantineReason, StepLimits};
 pub use manifold::{
     CollisionBackend, ContactBasis, ContactManifold, LEVER_ARM_RELATIVE_TOLERANCE,
-    LEVER_ARM_TOLERANCE, MAX_MANIFOLD_POINTS, ManifoldPoint, NoCollision,
+    LEVER_ARM_TOLERANCE, MAX_MANIFOLD_POINTS, ManifoldPoint, ManifoldWriter, NoCollision,
 };
 pub use report::{AdvanceReport, Profile, StepReport, StepSkipped};
 pub use settings::{MAX_STEPS_PER_ADVANCE, MAX_SUBSTEPS, MIN_STEP_DT, WorldSettings};

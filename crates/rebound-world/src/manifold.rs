@@ -140,7 +140,11 @@ pub struct ContactBasis {
 /// bytes (three or four cache lines of its seven) where the compiler's order spread them over five; a pile of
 /// 16,384 balls holds some 50,000 manifolds twice (this step's and last step's), which no cache holds. Not
 /// aligned to whole lines: copying a 64-byte-aligned manifold costs a `memcpy` call.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// Only the first [`ContactManifold::point_count`] points are part of the manifold: a manifold written in
+/// place over an older one ([`ManifoldWriter::begin`]) leaves the slots past them as they were, and
+/// equality compares the points in use only.
+#[derive(Debug, Clone, Copy)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[repr(C)]
 pub struct ContactManifold {
@@ -208,7 +212,41 @@ impl ContactManifold {
         }
     }
 
+    /// Makes this manifold a new one with no points, as [`ContactManifold::new`] does, keeping only the
+    /// storage of its old points (never read: only the first `point_count` are), so that a manifold written
+    /// over an older one writes its header and its points, not four points' worth of slots.
+    #[inline]
+    pub fn renew(
+        &mut self,
+        body_a: BodyHandle,
+        body_b: BodyHandle,
+        key: u64,
+        normal: Vec3,
+        friction: f32,
+        restitution: f32,
+    ) {
+        self.body_a = body_a;
+        self.body_b = body_b;
+        self.key = key;
+        self.point_count = 0;
+        self.normal = normal;
+        self.friction = friction;
+        self.restitution = restitution;
+        self.rolling_friction = 0.0;
+        self.surface_velocity = Vec3::ZERO;
+        self.force_event_threshold = None;
+        self.basis = None;
+    }
+
+    /// Sets the point slots past [`ContactManifold::point_count`] to their default (for a snapshot, whose
+    /// serialised form then does not depend on what the slots held before).
+    pub fn clear_unused_points(&mut self) {
+        let used = self.point_count.min(MAX_MANIFOLD_POINTS);
+        self.points[used..].fill(ManifoldPoint::default());
+    }
+
     /// Adds a point; returns `false` when the manifold is full.
+    #[inline]
     pub fn push_point(&mut self, point: ManifoldPoint) -> bool {
         if self.point_count >= MAX_MANIFOLD_POINTS {
             return false;
@@ -219,6 +257,7 @@ impl ContactManifold {
     }
 
     /// The points in use.
+    #[inline]
     #[must_use]
     pub fn points(&self) -> &[ManifoldPoint] {
         &self.points[..self.point_count.min(MAX_MANIFOLD_POINTS)]
@@ -237,9 +276,160 @@ impl ContactManifold {
     }
 }
 
+/// Equal when every field is and the points in use are: the slots past `point_count` are no part of the
+/// manifold.
+impl PartialEq for ContactManifold {
+    fn eq(&self, other: &Self) -> bool {
+        self.body_a == other.body_a
+            && self.body_b == other.body_b
+            && self.key == other.key
+            && self.point_count == other.point_count
+            && self.normal == other.normal
+            && self.friction == other.friction
+            && self.restitution == other.restitution
+            && self.rolling_friction == other.rolling_friction
+            && self.surface_velocity == other.surface_velocity
+            && self.force_event_threshold == other.force_event_threshold
+            && self.points() == other.points()
+            && self.basis == other.basis
+    }
+}
+
+/// Where a backend writes a step's manifolds: over the storage of a list of older ones, in order, so that a
+/// manifold writes the cache lines of its header and of the points it has and leaves its unused point slots
+/// untouched (a ball's manifold has one point of four; a pile of 16,384 balls writes some 50,000 manifolds a
+/// step, far more than the caches hold). The list is cut to the manifolds written when the writer is
+/// dropped.
+#[derive(Debug)]
+pub struct ManifoldWriter<'a> {
+    list: &'a mut Vec<ContactManifold>,
+    len: usize,
+}
+
+impl<'a> ManifoldWriter<'a> {
+    /// A writer over `list`, whose manifolds it writes over from the first on (their contents are not read).
+    #[must_use]
+    pub fn new(list: &'a mut Vec<ContactManifold>) -> Self {
+        Self { list, len: 0 }
+    }
+
+    /// How many manifolds were written.
+    #[must_use]
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether no manifold was written.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The manifolds written, in order.
+    #[must_use]
+    #[inline]
+    pub fn as_slice(&self) -> &[ContactManifold] {
+        &self.list[..self.len]
+    }
+
+    /// The manifolds written, in order, to edit.
+    #[must_use]
+    #[inline]
+    pub fn as_mut_slice(&mut self) -> &mut [ContactManifold] {
+        &mut self.list[..self.len]
+    }
+
+    /// Starts the next manifold, with no points ([`ContactManifold::new`]'s fields), written over the next
+    /// older one where the list has one ([`ContactManifold::renew`]); returns it to add points to.
+    #[inline]
+    pub fn begin(
+        &mut self,
+        body_a: BodyHandle,
+        body_b: BodyHandle,
+        key: u64,
+        normal: Vec3,
+        friction: f32,
+        restitution: f32,
+    ) -> &mut ContactManifold {
+        let index = self.len;
+        self.len += 1;
+        if index < self.list.len() {
+            let manifold = &mut self.list[index];
+            manifold.renew(body_a, body_b, key, normal, friction, restitution);
+            manifold
+        } else {
+            self.list.push(ContactManifold::new(
+                body_a,
+                body_b,
+                key,
+                normal,
+                friction,
+                restitution,
+            ));
+            &mut self.list[index]
+        }
+    }
+
+    /// Adds a whole manifold (every byte of it written).
+    #[inline]
+    pub fn push(&mut self, manifold: ContactManifold) {
+        self.list.truncate(self.len);
+        self.list.push(manifold);
+        self.len += 1;
+    }
+
+    /// Adds whole manifolds with the list's own methods: `append` is handed the list cut to the manifolds
+    /// written so far, and what it appends counts as written.
+    #[inline]
+    pub fn append_with(&mut self, append: impl FnOnce(&mut Vec<ContactManifold>)) {
+        self.list.truncate(self.len);
+        append(self.list);
+        self.len = self.list.len();
+    }
+
+    /// Adds copies of `manifolds` (every byte of them written).
+    pub fn extend_from_slice(&mut self, manifolds: &[ContactManifold]) {
+        self.append_with(|list| list.extend_from_slice(manifolds));
+    }
+
+    /// Removes the last manifold written and returns it.
+    #[inline]
+    pub fn pop(&mut self) -> Option<ContactManifold> {
+        let last = self.len.checked_sub(1)?;
+        self.len = last;
+        self.list.get(last).copied()
+    }
+
+    /// The last manifold written.
+    #[inline]
+    pub fn last_mut(&mut self) -> Option<&mut ContactManifold> {
+        self.as_mut_slice().last_mut()
+    }
+
+    /// The manifold written at `index`.
+    #[inline]
+    pub fn get_mut(&mut self, index: usize) -> Option<&mut ContactManifold> {
+        self.as_mut_slice().get_mut(index)
+    }
+
+    /// Keeps the first `len` manifolds written (no change if fewer were).
+    #[inline]
+    pub fn truncate(&mut self, len: usize) {
+        self.len = self.len.min(len);
+    }
+}
+
+/// The list keeps the manifolds written, and no older one.
+impl Drop for ManifoldWriter<'_> {
+    fn drop(&mut self) {
+        self.list.truncate(self.len);
+    }
+}
+
 /// Finds contacts between bodies. Called once per step with the current poses.
 pub trait CollisionBackend {
-    /// Pushes the manifolds of the current poses into `out` (cleared by the world). Impulses may be left at
+    /// Writes the manifolds of the current poses into `out` (which starts empty). Impulses may be left at
     /// zero: the world matches points to last step's by body pair, key and feature id. The order of `out`
     /// must not depend on hashing or addresses; the world sorts by [`ContactManifold::order_key`] anyway.
     ///
@@ -258,7 +448,7 @@ pub trait CollisionBackend {
         settings: &WorldSettings,
         dt: f32,
         previous: &[ContactManifold],
-        out: &mut Vec<ContactManifold>,
+        out: &mut ManifoldWriter<'_>,
     );
 
     /// How many candidate pairs the last [`CollisionBackend::collide`] left out because of
@@ -280,7 +470,7 @@ impl CollisionBackend for NoCollision {
         _: &WorldSettings,
         _: f32,
         _: &[ContactManifold],
-        _: &mut Vec<ContactManifold>,
+        _: &mut ManifoldWriter<'_>,
     ) {
     }
 }
@@ -299,6 +489,80 @@ mod tests {
             feature_id,
             ..ManifoldPoint::default()
         }
+    }
+
+    fn handles() -> (BodyHandle, BodyHandle) {
+        (
+            BodyHandle::from_raw_parts(1, 0),
+            BodyHandle::from_raw_parts(2, 0),
+        )
+    }
+
+    fn point(separation: f32) -> ManifoldPoint {
+        ManifoldPoint {
+            local_anchor_a: Vec3::new(separation, 1.0, 2.0),
+            separation,
+            feature_id: 9,
+            normal_impulse: 0.5,
+            ..ManifoldPoint::default()
+        }
+    }
+
+    #[test]
+    fn a_manifold_written_over_an_old_one_equals_a_new_one_and_the_list_keeps_only_those_written() {
+        let (a, b) = handles();
+        // An old list of three full manifolds with a basis and materials set.
+        let mut old = ContactManifold::new(b, a, 3, Vec3::X, 0.9, 0.8);
+        old.rolling_friction = 0.1;
+        old.surface_velocity = Vec3::Z;
+        old.force_event_threshold = Some(2.0);
+        old.basis = Some(ContactBasis {
+            rotation: Quat::IDENTITY,
+            translation: Vec3::Y,
+            local_normal: Vec3::X,
+        });
+        for k in 0..MAX_MANIFOLD_POINTS {
+            assert!(old.push_point(point(-(k as f32))));
+        }
+        let mut list = vec![old; 3];
+        let mut fresh = ContactManifold::new(a, b, 7, Vec3::Y, 0.5, 0.0);
+        assert!(fresh.push_point(point(-0.01)));
+        {
+            let mut out = ManifoldWriter::new(&mut list);
+            assert!(out.is_empty());
+            let written = out.begin(a, b, 7, Vec3::Y, 0.5, 0.0);
+            assert!(written.push_point(point(-0.01)));
+            out.begin(a, b, 8, Vec3::Y, 0.5, 0.0);
+            // A manifold made and taken back (no point within reach) leaves no trace.
+            assert_eq!(out.pop().map(|m| m.key), Some(8));
+            assert_eq!(out.len(), 1);
+        }
+        assert_eq!(list.len(), 1);
+        assert_eq!(list[0], fresh);
+        // The slots past the point count still hold the old points; a snapshot clears them.
+        assert_eq!(list[0].points[1], old.points[1]);
+        list[0].clear_unused_points();
+        assert_eq!(list[0].points, fresh.points);
+    }
+
+    #[test]
+    fn a_writer_appends_past_the_old_list_and_whole_manifolds_anywhere() {
+        let (a, b) = handles();
+        let mut list = vec![ContactManifold::new(a, b, 1, Vec3::Y, 0.5, 0.0)];
+        let whole = ContactManifold::new(a, b, 2, Vec3::Y, 0.5, 0.0);
+        {
+            let mut out = ManifoldWriter::new(&mut list);
+            out.begin(a, b, 1, Vec3::X, 0.5, 0.0);
+            out.begin(a, b, 3, Vec3::X, 0.5, 0.0);
+            out.push(whole);
+            out.extend_from_slice(&[whole, whole]);
+            assert_eq!(out.len(), 5);
+            out.truncate(4);
+            assert_eq!(out.last_mut().map(|m| m.key), Some(2));
+            assert_eq!(out.get_mut(1).map(|m| m.key), Some(3));
+        }
+        let keys: Vec<u64> = list.iter().map(|m| m.key).collect();
+        assert_eq!(keys, [1, 3, 2, 2]);
     }
 
     #[test]

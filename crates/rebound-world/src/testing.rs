@@ -2,7 +2,10 @@
 //! without parry. Brute force over all pairs (O(n²)): fine for tens of bodies, not for games — the `rebound`
 //! facade has the real one.
 
-use crate::{BodyHandle, BodySet, CollisionBackend, ContactManifold, ManifoldPoint, WorldSettings};
+use crate::{
+    BodyHandle, BodySet, CollisionBackend, ContactManifold, ManifoldPoint, ManifoldWriter,
+    WorldSettings,
+};
 use rebound_dynamics::{BodyType, CombineRule, RigidBody};
 use rebound_math::Vec3;
 
@@ -115,7 +118,7 @@ impl CollisionBackend for SimpleBackend {
         settings: &WorldSettings,
         dt: f32,
         _previous: &[ContactManifold],
-        out: &mut Vec<ContactManifold>,
+        out: &mut ManifoldWriter<'_>,
     ) {
         // Pairs with at least one awake moving body: O(awake · n), so a sleeping scene costs O(n).
         self.active.clear();

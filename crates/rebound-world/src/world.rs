@@ -569,9 +569,14 @@ impl<B: CollisionBackend> World<B> {
     /// itself).
     #[must_use]
     pub fn snapshot(&self) -> WorldSnapshot {
+        let mut state = self.state.clone();
+        // The manifolds' unused point slots hold whatever the list held before: not part of the state.
+        for manifold in &mut state.manifolds {
+            manifold.clear_unused_points();
+        }
         WorldSnapshot {
             version: SNAPSHOT_VERSION,
-            state: self.state.clone(),
+            state,
             joint_rows: self.scratch.solver.joint_solver.kept_rows(),
         }
     }

@@ -254,7 +254,7 @@ impl rebound_world::CollisionBackend for Faulty {
         _: &WorldSettings,
         _: f32,
         _: &[rebound_world::ContactManifold],
-        out: &mut Vec<rebound_world::ContactManifold>,
+        out: &mut rebound_world::ManifoldWriter<'_>,
     ) {
         out.extend_from_slice(&self.0);
     }

@@ -7,7 +7,9 @@ use crate::broad_phase::BroadPhase;
 use crate::hooks::ContactHooks;
 use crate::narrow_phase::NarrowPhase;
 use crate::{Collider, ColliderHandle, ColliderSet};
-use rebound_world::{BodyHandle, BodySet, CollisionBackend, ContactManifold, WorldSettings};
+use rebound_world::{
+    BodyHandle, BodySet, CollisionBackend, ContactManifold, ManifoldWriter, WorldSettings,
+};
 use std::collections::BTreeSet;
 use std::sync::Arc;
 
@@ -83,7 +85,7 @@ impl CollisionBackend for ParryBackend {
         settings: &WorldSettings,
         dt: f32,
         previous: &[ContactManifold],
-        out: &mut Vec<ContactManifold>,
+        out: &mut ManifoldWriter<'_>,
     ) {
         self.broad_phase.find_pairs(
             &self.colliders,

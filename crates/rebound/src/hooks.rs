@@ -9,7 +9,7 @@
 use crate::{Collider, ColliderHandle};
 use rebound_dynamics::RigidBody;
 use rebound_math::Vec3;
-use rebound_world::{BodyHandle, ContactManifold, MAX_MANIFOLD_POINTS};
+use rebound_world::{BodyHandle, ContactManifold, MAX_MANIFOLD_POINTS, ManifoldWriter};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 /// What a hook sees of a pair: its two colliders and their bodies. A is the collider with the lower handle;
@@ -239,11 +239,11 @@ pub(crate) fn filter(hooks: &dyn ContactHooks, pair: &ContactPair<'_>, panics: &
 pub(crate) fn modify(
     hooks: &dyn ContactHooks,
     pair: &ContactPair<'_>,
-    manifolds: &mut Vec<ContactManifold>,
+    manifolds: &mut ManifoldWriter<'_>,
     first: usize,
     failures: &mut usize,
 ) {
-    for manifold in &mut manifolds[first..] {
+    for manifold in &mut manifolds.as_mut_slice()[first..] {
         let mut edit = ContactEdit::of(manifold, pair.body_a.1, pair.body_b.1);
         let returned = catch_unwind(AssertUnwindSafe(|| hooks.modify_contacts(pair, &mut edit)));
         if returned.is_err() || !edit.is_valid() {
@@ -252,12 +252,14 @@ pub(crate) fn modify(
         }
         edit.apply(manifold);
     }
-    let mut index = first;
-    while index < manifolds.len() {
-        if manifolds[index].point_count == 0 {
-            manifolds.remove(index);
-        } else {
-            index += 1;
+    // The manifolds left with points move down over the others, in order.
+    let written = manifolds.as_mut_slice();
+    let mut kept = first;
+    for index in first..written.len() {
+        if written[index].point_count != 0 {
+            written[kept] = written[index];
+            kept += 1;
         }
     }
+    manifolds.truncate(kept);
 }

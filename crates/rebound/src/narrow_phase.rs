@@ -51,7 +51,7 @@ use parry3d::query::{
 };
 use rebound_dynamics::RigidBody;
 use rebound_math::{Pose, Vec3, par, rotate_inverse};
-use rebound_world::{BodySet, ContactBasis, ContactManifold};
+use rebound_world::{BodySet, ContactBasis, ContactManifold, ManifoldWriter};
 
 /// Points a cached parry manifold has room for (see `PairCache::forget_history`).
 const POINT_CAPACITY: usize = 8;
@@ -152,7 +152,7 @@ impl NarrowPhase {
         previous: &[ContactManifold],
         hooks: Option<&dyn ContactHooks>,
         failures: &mut usize,
-        out: &mut Vec<ContactManifold>,
+        out: &mut ManifoldWriter<'_>,
     ) {
         core::mem::swap(&mut self.pairs, &mut self.previous);
         self.force_pairs.clear();
@@ -211,7 +211,7 @@ impl NarrowPhase {
         pairs: &[(ColliderHandle, ColliderHandle)],
         input: &PairInput<'_>,
         watched: bool,
-        out: &mut Vec<ContactManifold>,
+        out: &mut ManifoldWriter<'_>,
     ) {
         let count = pairs.len().div_ceil(PAIRS_PER_TASK);
         if self.runs.len() < count {
@@ -236,6 +236,7 @@ impl NarrowPhase {
             run.pairs.clear();
             run.force_pairs.clear();
             manifolds.clear();
+            let manifolds = &mut ManifoldWriter::new(manifolds);
             let mut cached = core::mem::take(&mut run.cached);
             let mut old = cached.drain(..).peekable();
             if watched {
@@ -256,9 +257,11 @@ impl NarrowPhase {
                 total += manifolds.len();
             }
             let runs = &self.runs;
-            par::extend_concatenated(out, &self.run_starts, total, |r| {
-                runs.get(r)
-                    .map_or(&[][..], |(_, manifolds)| manifolds.as_slice())
+            out.append_with(|out| {
+                par::extend_concatenated(out, &self.run_starts, total, |r| {
+                    runs.get(r)
+                        .map_or(&[][..], |(_, manifolds)| manifolds.as_slice())
+                });
             });
         }
         #[cfg(not(feature = "parallel"))]
@@ -327,7 +330,7 @@ impl PairRun {
         input: &PairInput<'_>,
         hooks: Option<&dyn ContactHooks>,
         failures: &mut usize,
-        out: &mut Vec<ContactManifold>,
+        out: &mut ManifoldWriter<'_>,
     ) {
         let PairInput {
             reach,
@@ -350,7 +353,13 @@ impl PairRun {
                     hooks::modify(hooks, &pair, out, first, failures);
                 }
                 if let Some((a, b, threshold, first)) = reporting.take() {
-                    report_forces(&mut self.force_pairs, a, b, threshold, &mut out[first..]);
+                    report_forces(
+                        &mut self.force_pairs,
+                        a,
+                        b,
+                        threshold,
+                        &mut out.as_mut_slice()[first..],
+                    );
                 }
             }
             let cached = take_cached(old, (h1, h2));
@@ -504,7 +513,13 @@ impl PairRun {
                 hooks::modify(hooks, &pair, out, first, failures);
             }
             if let Some((a, b, threshold, first)) = reporting {
-                report_forces(&mut self.force_pairs, a, b, threshold, &mut out[first..]);
+                report_forces(
+                    &mut self.force_pairs,
+                    a,
+                    b,
+                    threshold,
+                    &mut out.as_mut_slice()[first..],
+                );
             }
         }
     }

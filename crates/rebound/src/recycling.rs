@@ -12,7 +12,7 @@
 
 use crate::seam::Seam;
 use rebound_math::{Pose, rotate, rotate_inverse};
-use rebound_world::{BodyHandle, ContactManifold, ManifoldPoint};
+use rebound_world::{BodyHandle, ContactManifold, ManifoldPoint, ManifoldWriter};
 
 /// How far (m) the bodies of a box pair may move relative to each other, since the pair's manifold was
 /// computed from scratch, for the manifold to be recycled: 1 mm. See [`recyclable`].
@@ -116,24 +116,21 @@ impl Seam<'_> {
         old: &ContactManifold,
         relative: &Pose,
         prediction: f32,
-        out: &mut Vec<ContactManifold>,
+        out: &mut ManifoldWriter<'_>,
     ) {
         let Some(basis) = old.basis else {
             return;
         };
         let n = basis.local_normal;
-        // Written in place in `out` (a manifold is 432 bytes: built on the stack, its push would be a memcpy).
-        out.push(ContactManifold::new(
+        // Written in place in `out`: its header and its points, not the unused point slots.
+        let manifold = out.begin(
             old.body_a,
             old.body_b,
             old.key,
             rotate(self.b1.rotation(), n),
             0.0,
             0.0,
-        ));
-        let Some(manifold) = out.last_mut() else {
-            return;
-        };
+        );
         (
             manifold.friction,
             manifold.restitution,

@@ -1,4 +1,5 @@
-//! **The seam**: where a manifold from parry or from our generators becomes the world's [`ContactManifold`].
+//! **The seam**: where a manifold from parry or from our generators becomes the world's
+//! [`ContactManifold`](rebound_world::ContactManifold).
 //!
 //! parry's points are in each shape's (or sub-shape's) local frame; the world wants them in each body's
 //! frame relative to the body origin, with the normal in world space from A to B, at most
@@ -12,7 +13,7 @@ use parry3d::query::TrackedContact;
 use parry3d::shape::PackedFeatureId;
 use rebound_dynamics::{CombineRule, RigidBody};
 use rebound_math::{Pose, Vec3, rotate};
-use rebound_world::{ContactManifold, MAX_MANIFOLD_POINTS, ManifoldPoint};
+use rebound_world::{MAX_MANIFOLD_POINTS, ManifoldPoint, ManifoldWriter};
 
 /// Packs parry's two feature ids (2-bit kind + 30-bit index each) into one `u32`: the first rotated by 16
 /// bits, xor the second. Exact (no two feature pairs collide) while both indices are below 2¹⁴ = 16384,
@@ -54,7 +55,7 @@ fn is_usable(point: &impl SeamPoint) -> bool {
 }
 
 /// **The seam**: where one manifold of the collider pair (`c1`, `c2`), from parry or from our generators,
-/// becomes the world's [`ContactManifold`].
+/// becomes the world's [`ContactManifold`](rebound_world::ContactManifold).
 ///
 /// - body A is `c1`'s body, body B is `c2`'s; the normal is the generator's `local_n1` (outward from shape 1,
 ///   towards shape 2) rotated into world space;
@@ -86,7 +87,7 @@ impl Seam<'_> {
         &self,
         local_n1: Vec3,
         points: &[P],
-        out: &mut Vec<ContactManifold>,
+        out: &mut ManifoldWriter<'_>,
     ) {
         // Most candidate pairs of a pile are within the margin but not touching: nothing to convert.
         if points.is_empty() {
@@ -104,17 +105,7 @@ impl Seam<'_> {
             return;
         }
         let (friction, restitution, rolling_friction) = self.materials();
-        out.push(ContactManifold::new(
-            c1.body,
-            c2.body,
-            self.key,
-            normal,
-            friction,
-            restitution,
-        ));
-        let Some(manifold) = out.last_mut() else {
-            return;
-        };
+        let manifold = out.begin(c1.body, c2.body, self.key, normal, friction, restitution);
         manifold.rolling_friction = rolling_friction;
         // A shape at its body's origin (the common case) needs no transform.
         let to_body = |frame: &Pose, p: Vec3| {

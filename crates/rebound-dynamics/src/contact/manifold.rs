@@ -31,12 +31,20 @@ pub struct ContactPoint {
 }
 
 /// A contact manifold between two bodies, as the collision stage reports it.
+///
+/// Laid out for the stages that write and read it once a step (the world builds it in place over last
+/// step's, *prepare* reads it): the header first, the point count with it, then the points in order, each
+/// manifold on whole cache lines (`repr(C, align(64))`), so that a one-point manifold (a ball on anything)
+/// is two lines of its five and its unused point slots are never touched.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C, align(64))]
 pub struct Contact {
     /// Index of body A in the solver arrays.
     pub body_a: usize,
     /// Index of body B in the solver arrays.
     pub body_b: usize,
+    /// How many points are in use (0 to [`MAX_CONTACT_POINTS`]).
+    pub point_count: usize,
     /// Unit normal from A to B.
     pub normal: Vec3,
     /// Combined friction coefficient μ (dimensionless, ≥ 0).
@@ -64,9 +72,10 @@ pub struct Contact {
     pub load: f32,
     /// The points; only the first `point_count` are used.
     pub points: [ContactPoint; MAX_CONTACT_POINTS],
-    /// How many points are in use (0 to [`MAX_CONTACT_POINTS`]).
-    pub point_count: usize,
 }
+
+// The header and the first point within two cache lines.
+const _: () = assert!(core::mem::offset_of!(Contact, points) + size_of::<ContactPoint>() <= 2 * 64);
 
 impl Contact {
     /// A manifold between bodies `body_a` and `body_b` with normal `normal` (unit, A → B) and no points yet.
@@ -81,6 +90,7 @@ impl Contact {
         let mut contact = Self {
             body_a,
             body_b,
+            point_count: 0,
             normal,
             friction,
             restitution,
@@ -89,7 +99,6 @@ impl Contact {
             push_out_speed: 0.0,
             load: 0.0,
             points: [ContactPoint::default(); MAX_CONTACT_POINTS],
-            point_count: 0,
         };
         // The defaults of the other fields are written once, in `renew`.
         contact.renew(body_a, body_b, normal, friction, restitution);
