@@ -290,6 +290,7 @@ impl PreparedHinge {
     /// The worst position error of [`PreparedHinge::direct_rows`]' rows at the pose `a`, `b` (m or rad), from
     /// the errors alone: the point and alignment rows' (as [`equality_violation`] measures them for `stage`)
     /// and the angle past the limits in the direct solve.
+    #[inline]
     pub(crate) fn direct_violation(
         &self,
         pair: &BodyPair,
