@@ -20,8 +20,8 @@ use rebound_math::{Quat, Vec3};
 /// The relative pose to keep is given by the anchors and the joint frames ([`crate::Joint::local_basis_a`],
 /// [`crate::Joint::local_basis_b`]): [`crate::Joint::from_world`] with the bodies' current poses welds them
 /// where they are. Softness: the joint softness in the bias pass, none in the relax pass. Rotation first, point
-/// last. On a directly solved path or graph ([`crate::path`]) its six rows are solved there together
-/// ([`PreparedFixed::direct_rows`]).
+/// last. On a directly solved path or graph (see [`crate::JointSettings::direct_chains`]) its six rows are
+/// solved there together.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct FixedJoint;
