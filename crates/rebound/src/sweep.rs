@@ -239,11 +239,9 @@ pub(crate) fn sweep(
         pushed,
         candidates,
     } = scratch;
-    tied_bodies(world, tied);
+    // The joints are looked through once, at the first impact (a step without one never walks them).
+    let mut tied_known = false;
     for &(handle, start) in spinning.iter() {
-        if tied.binary_search(&handle).is_ok() {
-            continue;
-        }
         pushed_partners(handle, world.contacts(), pushed);
         let Some(t) = first_impact(
             (handle, start),
@@ -254,6 +252,13 @@ pub(crate) fn sweep(
         ) else {
             continue;
         };
+        if !tied_known {
+            tied_bodies(world, tied);
+            tied_known = true;
+        }
+        if tied.binary_search(&handle).is_ok() {
+            continue;
+        }
         let Some(body) = world.body_mut(handle) else {
             continue;
         };

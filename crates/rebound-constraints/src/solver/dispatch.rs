@@ -474,7 +474,7 @@ pub(super) fn reaction_impulses(kind: &Prepared, s: &JointState) -> (f32, f32) {
 }
 
 /// The accumulated impulses of joint `j`'s direct rows, in row order (0 for a joint without direct rows).
-#[inline(always)]
+#[inline]
 pub(super) fn state_lambda(j: &PreparedJoint) -> [f32; MAX_ROWS] {
     let s = &j.state;
     match &j.kind {
