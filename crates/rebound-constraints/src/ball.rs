@@ -308,7 +308,9 @@ pub(crate) fn solve(
 #[inline]
 pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
     let l = state.linear_impulse;
-    [l.x, l.y, l.z, 0.0, 0.0]
+    let mut out = [0.0; MAX_ROWS];
+    out[..3].copy_from_slice(&[l.x, l.y, l.z]);
+    out
 }
 
 /// Writes the impulses a direct solve gave [`direct_rows`]' rows back into `state`.

@@ -10,7 +10,7 @@ use crate::limits::Limits;
 use crate::motor::Motor;
 use crate::pair::BodyPair;
 use crate::part::{AlignPart, AnglePart, PointPart};
-use crate::path::{JointRows, MAX_ROWS, TargetRule};
+use crate::path::{JointRows, MAX_ROWS, Row, TargetRule, equality_violation};
 use crate::soft_spring::JointSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
@@ -220,10 +220,12 @@ impl PreparedHinge {
         PointPart::apply_with_twist(pair, (r_a, r_b), p, twist, a, b);
     }
 
-    /// The point rows and the two alignment rows for the direct solve of a chain ([`crate::path`]) at the
-    /// current pose; the limit and motor rows stay with [`PreparedHinge::solve_coordinate`] (the spring acts in
-    /// *apply forces*).
+    /// The point rows and the two alignment rows for the direct solve of a path or graph ([`crate::path`])
+    /// at the current pose, then, for limits in the direct solve ([`PreparedHinge::has_direct_limit`]), the
+    /// limit row of the bound nearer the angle ([`limit_row`]); the motor and the other limits stay with
+    /// [`PreparedHinge::solve_coordinate`] (the spring acts in *apply forces*).
     pub(crate) fn direct_rows(
+        &self,
         pair: &BodyPair,
         a: &SolverBody,
         b: &SolverBody,
@@ -231,27 +233,81 @@ impl PreparedHinge {
         out: &mut JointRows,
     ) {
         ball::direct_rows(pair, a, b, stage, out);
-        let (axis, perpendiculars) = alignment_axes(pair.frames(a, b));
+        let frames = pair.frames(a, b);
+        let (axis, perpendiculars) = alignment_axes(frames);
         AlignPart::push_rows(axis, perpendiculars, stage, out);
+        if let Some(limits) = self.direct_limits() {
+            let (row, c, rule) = limit_row(limits, axis, twist_angle(frames.0, frames.1), stage);
+            out.push(row, c, rule);
+        }
     }
 
     /// The accumulated impulses of [`PreparedHinge::direct_rows`]' rows, in row order: the point block's,
-    /// then the two alignment rows'.
+    /// the two alignment rows', then the limit row's (the lower bound's impulse, `λ ≥ 0`, plus the upper
+    /// bound's, `λ ≤ 0`: the one along the axis that the row pushed carries on).
     #[inline]
-    pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
+    pub(crate) fn direct_impulses(&self, state: &JointState) -> [f32; MAX_ROWS] {
         let (l, w) = (state.linear_impulse, state.angular_impulse);
-        [l.x, l.y, l.z, w.x, w.y]
+        let limit = if self.direct_limits().is_some() {
+            state.lower_impulse + state.upper_impulse
+        } else {
+            0.0
+        };
+        [l.x, l.y, l.z, w.x, w.y, limit]
     }
 
-    /// Writes the impulses a direct solve gave [`PreparedHinge::direct_rows`]' rows back into `state`.
+    /// Writes the impulses a direct solve gave [`PreparedHinge::direct_rows`]' rows back into `state`: the
+    /// limit row's by its sign to the lower bound (`λ > 0`) or the upper one (`λ < 0`), as the limit rows of
+    /// [`PreparedHinge::solve_coordinate`] hold them.
     #[inline]
-    pub(crate) fn store_direct_impulses(state: &mut JointState, lambda: [f32; MAX_ROWS]) {
+    pub(crate) fn store_direct_impulses(&self, state: &mut JointState, lambda: [f32; MAX_ROWS]) {
         ball::store_direct_impulses(state, lambda);
         state.angular_impulse.x = lambda[3];
         state.angular_impulse.y = lambda[4];
+        if self.direct_limits().is_some() {
+            let limit = lambda[5];
+            state.lower_impulse = limit.max(0.0);
+            state.upper_impulse = limit.min(0.0);
+        }
     }
 
-    /// The position errors `C` of [`PreparedHinge::direct_rows`]' rows and their target rules, in row order,
+    /// The limits solved in the direct solve when the hinge is on a path or graph: limits whose range is
+    /// at least [`MIN_DIRECT_RANGE`]. The row of the nearer bound alone is in the system, so a range too
+    /// narrow to tell the bounds apart within a substep (a hinge locked by equal bounds) keeps both rows in
+    /// [`PreparedHinge::solve_coordinate`].
+    #[inline]
+    pub(crate) fn direct_limits(&self) -> Option<Limits> {
+        self.rows
+            .limits
+            .filter(|l| l.upper() - l.lower() >= MIN_DIRECT_RANGE)
+    }
+
+    /// How many rows [`PreparedHinge::direct_rows`] pushes: 5, or 6 with a limit row.
+    pub(crate) fn direct_row_count(&self) -> usize {
+        if self.direct_limits().is_some() { 6 } else { 5 }
+    }
+
+    /// The worst position error of [`PreparedHinge::direct_rows`]' rows at the pose `a`, `b` (m or rad), from
+    /// the errors alone: the point and alignment rows' (as [`equality_violation`] measures them for `stage`)
+    /// and the angle past the limits in the direct solve.
+    #[inline]
+    pub(crate) fn direct_violation(
+        &self,
+        pair: &BodyPair,
+        a: &SolverBody,
+        b: &SolverBody,
+        stage: &Stage,
+    ) -> f32 {
+        let rows = equality_violation(&Self::direct_errors(pair, a, b), stage);
+        self.direct_limits().map_or(rows, |limits| {
+            let (fa, fb) = pair.frames(a, b);
+            let angle = twist_angle(fa, fb);
+            rows.max(limits.lower() - angle).max(angle - limits.upper())
+        })
+    }
+
+    /// The position errors `C` of [`PreparedHinge::direct_rows`]' point and alignment rows and their target
+    /// rules, in row order,
     /// computed as it computes them but without building the rows: what the position projection measures a
     /// path's worst error from after every step it tries.
     pub(crate) fn direct_errors(
@@ -265,13 +321,24 @@ impl PreparedHinge {
         [x, y, z, p, q]
     }
 
-    /// Whether the hinge has no limit or motor: all the rows its passes solve are then the point and
-    /// alignment rows of [`PreparedHinge::direct_rows`] (a spring acts in *apply forces*, before them).
-    pub(crate) fn has_no_coordinate_rows(&self) -> bool {
-        self.rows.is_idle()
+    /// Whether all the rows the hinge's passes solve are those of [`PreparedHinge::direct_rows`]: no motor,
+    /// and no limits or limits in the direct solve (a spring acts in *apply forces*, before them).
+    pub(crate) fn is_solved_directly_whole(&self) -> bool {
+        self.coordinate_rows_on_path().is_idle()
     }
 
-    /// The limit and motor rows alone (when the point and alignment rows are solved directly).
+    /// The rows [`PreparedHinge::solve_coordinate`] solves when the hinge is on a path or graph: the motor,
+    /// and the limits not in the direct solve.
+    #[inline]
+    fn coordinate_rows_on_path(&self) -> CoordinateRows {
+        CoordinateRows {
+            limits: self.rows.limits.filter(|_| self.direct_limits().is_none()),
+            ..self.rows
+        }
+    }
+
+    /// The motor and the limit rows not in the direct solve alone (when the point, alignment and, for a
+    /// range of at least [`MIN_DIRECT_RANGE`], limit rows are solved directly).
     pub(crate) fn solve_coordinate(
         &self,
         pair: &BodyPair,
@@ -280,12 +347,14 @@ impl PreparedHinge {
         b: &mut SolverBody,
         stage: &Stage,
     ) {
+        let rows = self.coordinate_rows_on_path();
         // A plain hinge (no limit or motor; every hinge of a bridge) skips the angle and its row.
-        if self.rows.is_idle() {
+        if rows.is_idle() {
             return;
         }
         let frames = pair.frames(a, b);
-        self.solve_angle(pair, frames, hinge_axis(frames.0), state, a, b, stage);
+        let (part, angle) = angle_at(pair, frames, hinge_axis(frames.0));
+        rows.solve(&part, pair, angle, state, a, b, stage);
     }
 
     /// The limit and motor rows on the angle between the joint frames `frames` (world), about A's
@@ -345,6 +414,24 @@ impl Coordinate for PreparedHinge {
 #[inline]
 fn angle_at(pair: &BodyPair, (fa, fb): (Quat, Quat), axis: Vec3) -> (AnglePart, f32) {
     (AnglePart::new(pair, axis), twist_angle(fa, fb))
+}
+
+/// The narrowest range of limits (rad) that the direct solve holds ([`PreparedHinge::direct_limits`]).
+pub(crate) const MIN_DIRECT_RANGE: f32 = 0.1;
+
+/// The limit row of the bound of `limits` nearer the hinge angle `angle` (rad), about A's hinge `axis`
+/// (world), for a pass of `stage`, with its position error and target rule: the angle row ([`AnglePart::row`])
+/// with `C = θ − θ_min`, `λ ≥ 0`, or `C = θ − θ_max`, `λ ≤ 0` — as [`CoordinateRows::solve`]'s limit rows,
+/// speculative inside the range, one-sided, and left to the path solver's active set.
+fn limit_row(limits: Limits, axis: Vec3, angle: f32, stage: &Stage) -> (Row, f32, TargetRule) {
+    let (c_lower, c_upper) = (angle - limits.lower(), angle - limits.upper());
+    let (c, rule, bounds) = if c_lower < -c_upper {
+        (c_lower, TargetRule::LowerLimit, (0.0, f32::INFINITY))
+    } else {
+        (c_upper, TargetRule::UpperLimit, (f32::NEG_INFINITY, 0.0))
+    };
+    let row = AnglePart::row(axis, rule.target(c, stage)).clamped(bounds.0, bounds.1);
+    (row, c, rule)
 }
 
 /// A's hinge axis and B's two axes across it, from the joint frames `fa`, `fb` (world), at the current pose:

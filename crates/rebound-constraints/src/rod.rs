@@ -4,7 +4,7 @@
 use crate::error::ConstraintError;
 use crate::pair::BodyPair;
 use crate::part::{Bound, DistanceLink};
-use crate::path::{JointRows, MAX_ROWS};
+use crate::path::{JointRows, MAX_ROWS, one_row};
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::SolverBody;
@@ -94,7 +94,7 @@ impl PreparedRod {
     /// The accumulated impulse of the rod's direct row ([`PreparedRod::direct_row`]), as its row order.
     #[inline]
     pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
-        [state.axial_impulse, 0.0, 0.0, 0.0, 0.0]
+        one_row(state.axial_impulse)
     }
 
     /// Writes the impulse a direct solve gave the rod's row back into `state`.

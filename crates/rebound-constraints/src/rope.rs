@@ -6,7 +6,7 @@ use crate::error::ConstraintError;
 use crate::error::check_in_range;
 use crate::pair::BodyPair;
 use crate::part::{AxisPart, Bound, DistanceLink, RowTarget};
-use crate::path::{JointRows, MAX_ROWS};
+use crate::path::{JointRows, MAX_ROWS, one_row};
 use crate::stage::Stage;
 use crate::state::JointState;
 use rebound_dynamics::{SolverBody, StepContext};
@@ -191,7 +191,7 @@ impl PreparedRope {
     /// The accumulated impulse of the rope's direct row ([`PreparedRope::direct_row`]), as its row order.
     #[inline]
     pub(crate) fn direct_impulses(state: &JointState) -> [f32; MAX_ROWS] {
-        [state.upper_impulse, 0.0, 0.0, 0.0, 0.0]
+        one_row(state.upper_impulse)
     }
 
     /// Writes the impulse a direct solve gave the rope's row back into `state`, and notes it for the

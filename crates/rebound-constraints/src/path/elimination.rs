@@ -14,7 +14,7 @@ use super::factor::{
     ldl_factor,
 };
 use super::link::{FactorKey, Link, ScalarEntries};
-use super::row::{MAX_ROWS, Real};
+use super::row::{MAX_ROWS, Real, one_row};
 use rebound_dynamics::{Softness, SolverBody};
 
 /// Paths of at least this many links are solved from both ends at once, meeting at the link in the middle
@@ -438,7 +438,7 @@ pub(super) fn scalar_back<const BACKWARD: bool>(
     let mut released = false;
     let mut step = |link: &Link, out: &mut [Real; MAX_ROWS]| {
         let x = link.scalar.r_prime - link.scalar.c_prime * next;
-        *out = link.finish([x, 0.0, 0.0, 0.0, 0.0], uniform);
+        *out = link.finish(one_row(x), uniform);
         released |= link.would_deactivate(out);
         next = x;
     };

@@ -42,10 +42,10 @@ pub(super) fn ldl_factor<const N: usize>(block: &mut Block, inv_pivots: &mut [Re
         scale = scale.max(l[k][k]);
     }
     let tiny = (scale * RELATIVE_PIVOT).max(Real::MIN_POSITIVE);
-    let mut pivots = [0.0; MAX_ROWS];
+    let mut pivots: [Real; N] = [0.0; N];
     for j in 0..N {
         // lj_d[k] = Lⱼₖ·dₖ, shared by the pivot and the column below it.
-        let mut lj_d = [0.0; MAX_ROWS];
+        let mut lj_d: [Real; N] = [0.0; N];
         let mut pivot = l[j][j];
         for k in 0..j {
             lj_d[k] = l[j][k] * pivots[k];
@@ -74,18 +74,19 @@ pub(super) fn ldl_factor<const N: usize>(block: &mut Block, inv_pivots: &mut [Re
 
 /// `W = L⁻¹·C` for the top-left `N × N` of `c`, written into `w` (forward substitution with the unit lower
 /// triangular factor of [`ldl_factor`]): `wᵢ = cᵢ − Σₖ<ᵢ Lᵢₖ·wₖ`, a row at a time (no copy of `C` first,
-/// which would call `memcpy`).
+/// which would call `memcpy`), the first `N` entries of each (the entries past them are left as they are:
+/// the sweep reads `W`'s top-left `N × N` alone).
 #[inline(always)]
 pub(super) fn forward_substitute_block<const N: usize>(l: &Block, c: &Block, w: &mut Block) {
     for i in 0..N {
-        let mut row = c[i];
+        let mut row: [Real; N] = core::array::from_fn(|col| c[i][col]);
         for k in 0..i {
             let f = l[i][k];
             for col in 0..N {
                 row[col] -= f * w[k][col];
             }
         }
-        w[i] = row;
+        w[i][..N].copy_from_slice(&row);
     }
 }
 

@@ -84,7 +84,7 @@ pub(super) const LANES: usize = 4;
 ///
 /// Laid out hot fields first (`repr(C)`): what every pass reads of every link — impulses, active set, the
 /// keys of the kept rows and factorisation, the scalar sweep's entries, then the rows ([`JointRows`], also
-/// ordered so) — and the 5 × 5 blocks of the block sweep last. A link is about 2 kB; a 500-rope chain's links
+/// ordered so) — and the 6 × 6 blocks of the block sweep last. A link is about 2.5 kB; a 500-rope chain's links
 /// are a megabyte, far more than the first-level cache, and each pass sweeps them several times (rows and
 /// activation, forward and back substitution, the active-set check, the update): packed so, a one-row link's
 /// reads sit in the record's first cache lines.

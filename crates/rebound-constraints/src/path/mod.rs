@@ -39,7 +39,7 @@
 //! Each `Sᵢ` is symmetric positive semi-definite (a Schur complement of `K`), so it is factorised as
 //! `L·D·Lᵀ` without pivoting (`ldl_factor`), and the sweep is carried in the factors: `Cᵢ₋₁ᵀ·C'ᵢ₋₁ =
 //! Wᵀ·D⁻¹·W` with `W = L⁻¹·Cᵢ₋₁`, symmetric, so only its upper triangle is formed (see `block_sweep`). The
-//! blocks are as wide as the path's widest joint (5 × 5 for hinges, 3 × 3 for ball joints), with fixed loop
+//! blocks are as wide as the path's widest joint (6 × 6 for fixed joints and limited hinges, 5 × 5 for hinges, 3 × 3 for ball joints), with fixed loop
 //! bounds; rows of a narrower link, and rows not in the system, are zero rows and columns, whose pivots
 //! vanish and whose unknowns are 0. `Bᵢ` is built from its upper triangle, with each row's `I⁻¹·J_angular`
 //! turned once when the row is built (`JointRows::turned`), shared by `Bᵢ`, `Cᵢ` and the impulses' updates.
@@ -121,6 +121,6 @@ pub(crate) use link::{Link, link_at, resize_links};
 pub(crate) use pose::{BuiltAt, CARRY_ANGLE, PoseKey};
 pub(crate) use projection::project_rows;
 pub(crate) use row::{
-    InvMass, JointRows, MAX_ROWS, Real, Row, Side, TargetRule, equality_violation,
+    InvMass, JointRows, MAX_ROWS, Real, Row, Side, TargetRule, equality_violation, one_row,
 };
 pub(crate) use sweep::{Resume, solve_path};

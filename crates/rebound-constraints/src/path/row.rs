@@ -9,8 +9,9 @@ use rebound_dynamics::SolverBody;
 use rebound_math::quat::{RotationIntegrator, integrate_rotation};
 use rebound_math::{Mat3, Vec3};
 
-/// The most rows one joint gives the direct solve: a hinge's 3 point rows and 2 alignment rows.
-pub(crate) const MAX_ROWS: usize = 5;
+/// The most rows one joint gives the direct solve: a fixed joint's 3 point rows and 3 rotation rows, a
+/// limited hinge's 3 point rows, 2 alignment rows and its limit row.
+pub(crate) const MAX_ROWS: usize = 6;
 
 /// The precision of the path solve.
 pub(crate) type Real = f64;
@@ -41,8 +42,11 @@ pub(crate) enum TargetRule {
     /// [`RowTarget::equality`], `bias = bias_rate·C` with the joint softness in the bias pass, `Ċ = 0`, rigid,
     /// in the relax pass.
     Equality,
-    /// A rope's upper limit: [`RowTarget::upper_limit`], speculative (`bias = C·inv_h`, rigid) while slack.
+    /// An upper limit (a rope's length, a limit's upper bound): [`RowTarget::upper_limit`], speculative
+    /// (`bias = C·inv_h`, rigid) while `C < 0`.
     UpperLimit,
+    /// A lower limit (a hinge's lower bound): [`RowTarget::lower_limit`], speculative while `C > 0`.
+    LowerLimit,
 }
 
 impl TargetRule {
@@ -53,6 +57,9 @@ impl TargetRule {
             Self::Equality => RowTarget::equality(c, stage.bias, stage.joint_softness),
             Self::UpperLimit => {
                 RowTarget::upper_limit(c, stage.bias, stage.joint_softness, stage.inv_h)
+            }
+            Self::LowerLimit => {
+                RowTarget::lower_limit(c, stage.bias, stage.joint_softness, stage.inv_h)
             }
         }
     }
@@ -353,6 +360,14 @@ pub(crate) fn equality_violation(errors: &[(f32, TargetRule)], stage: &Stage) ->
             row_violation(rule.target(c, stage).bias, f32::NEG_INFINITY, f32::INFINITY)
         })
         .fold(0.0, f32::max)
+}
+
+/// `[x, 0, …, 0]`: the values of a one-row joint (a rope, a rod) in row order.
+#[inline(always)]
+pub(crate) fn one_row<T: Copy + Default>(x: T) -> [T; MAX_ROWS] {
+    let mut out = [T::default(); MAX_ROWS];
+    out[0] = x;
+    out
 }
 
 /// Moves `body` by `shift` (m) and turns it by the small rotation vector `turn` (rad): a position impulse's

@@ -12,7 +12,7 @@ use super::elimination::{
     scalar_side,
 };
 use super::link::{FactorKey, Link};
-use super::row::{MAX_ROWS, Real};
+use super::row::{MAX_ROWS, Real, one_row};
 use rebound_dynamics::{Softness, SolverBody};
 use rebound_math::par;
 
@@ -240,7 +240,7 @@ pub(super) fn path_shape(links: &[Link], start: usize) -> PathShape {
 
 /// [`solve_path`] for paths with multi-row joints: the block Thomas algorithm, over blocks of the path's
 /// largest row count `rows` (a link with fewer rows is padded with rows that solve to 0; a path of hinges
-/// runs the 5 × 5 sweep, one of ball joints the 3 × 3). With a `uniform` softness the right-hand side is the
+/// runs the 5 × 5 sweep, one of ball joints the 3 × 3, one with a fixed joint or a limited hinge the 6 × 6). With a `uniform` softness the right-hand side is the
 /// residual alone and the soft step is finished in the back substitution.
 pub(super) fn solve_block_path<'b, L>(
     links: &mut [Link],
@@ -256,6 +256,7 @@ where
         0..=2 => block_sweep::<2, L>(links, out, sweep, from),
         3 => block_sweep::<3, L>(links, out, sweep, from),
         4 => block_sweep::<4, L>(links, out, sweep, from),
+        5 => block_sweep::<5, L>(links, out, sweep, from),
         _ => block_sweep::<MAX_ROWS, L>(links, out, sweep, from),
     }
 }
@@ -372,7 +373,7 @@ where
     let Some((out_middle, out_after)) = out_rest.split_first_mut() else {
         return false;
     };
-    *out_middle = link.finish([x, 0.0, 0.0, 0.0, 0.0], sweep.uniform);
+    *out_middle = link.finish(one_row(x), sweep.uniform);
     let released = link.would_deactivate(out_middle);
     let uniform = sweep.uniform;
     let (a, b) = par::join(

@@ -177,8 +177,8 @@ impl Link {
         // products summed once. Every entry is written once, here and below, rather than the arrays and
         // blocks cleared first: clearing these few hundred bytes would call the C library's `memset`.
         let lanes = |v: Vec3| v.extend(0.0);
-        let jacobian: [[Vec4; 4]; MAX_ROWS] = core::array::from_fn(|k| match rows.get(k) {
-            Some(row) if k < N && live[k] => {
+        let jacobian: [[Vec4; 4]; N] = core::array::from_fn(|k| match rows.get(k) {
+            Some(row) if live[k] => {
                 [row.a.linear, row.a.angular, row.b.linear, row.b.angular].map(lanes)
             }
             _ => [Vec4::ZERO; 4],
@@ -226,9 +226,9 @@ impl Link {
             // entry its lane products (which commute) summed as that link sums them — its `M⁻¹·sⱼᵀ`, turned
             // when its rows were built, dotted with this link's side — so the same bits.
             let next_rows = &next.rows;
-            let next_impulses: [[Vec4; 2]; MAX_ROWS] =
+            let next_impulses: [[Vec4; 2]; N] =
                 core::array::from_fn(|j| match next_rows.rows.get(j) {
-                    Some(row) if j < N && next_live[j] => {
+                    Some(row) if next_live[j] => {
                         let [ta, tb] = next_rows.turned(j);
                         if next_b {
                             [row.b.linear * next_rows.mass_b.mass, tb].map(lanes)
@@ -251,14 +251,13 @@ impl Link {
             }
             return;
         }
-        let next_sides: [[Vec4; 2]; MAX_ROWS] =
-            core::array::from_fn(|j| match next.rows.rows.get(j) {
-                Some(row) if j < N && next_live[j] => {
-                    let side = if next_b { &row.b } else { &row.a };
-                    [side.linear, side.angular].map(lanes)
-                }
-                _ => [Vec4::ZERO; 2],
-            });
+        let next_sides: [[Vec4; 2]; N] = core::array::from_fn(|j| match next.rows.rows.get(j) {
+            Some(row) if next_live[j] => {
+                let side = if next_b { &row.b } else { &row.a };
+                [side.linear, side.angular].map(lanes)
+            }
+            _ => [Vec4::ZERO; 2],
+        });
         for i in 0..N {
             let (wl, wa) = (inverse[i][shared], inverse[i][shared + 1]);
             for j in 0..N {
@@ -273,14 +272,15 @@ impl Link {
     }
 
     /// Writes `M⁻¹·Jᵀ` of the first `N` rows into `impulse` ([`Link::impulse`]: zero for a row not in the
-    /// system), as [`Link::fill_blocks`] makes it with the blocks.
+    /// system), as [`Link::fill_blocks`] makes it with the blocks. The entries past `N` are left as they
+    /// are: a sweep `N` wide reads the rows below the link's row count, at most `N`.
     pub(super) fn fill_impulses<const N: usize>(&mut self) {
         let live = self.live_rows();
         let (ma, mb, rows) = (&self.rows.mass_a, &self.rows.mass_b, &self.rows.rows);
         let lanes = |v: Vec3| v.extend(0.0);
-        for k in 0..MAX_ROWS {
+        for k in 0..N {
             self.impulse[k] = match rows.get(k) {
-                Some(row) if k < N && live[k] => {
+                Some(row) if live[k] => {
                     let [ta, tb] = self.rows.turned(k);
                     [row.a.linear * ma.mass, ta, row.b.linear * mb.mass, tb].map(lanes)
                 }

@@ -35,18 +35,19 @@ fn product(m: &Block, x: &[Real; MAX_ROWS]) -> [Real; MAX_ROWS] {
 #[test]
 fn ldl_solves_a_symmetric_positive_system_and_zeroes_a_row_of_zeros() {
     let s = [
-        [4.0, 1.0, 0.5, 0.0, 0.0],
-        [1.0, 3.0, 0.2, 0.1, 0.0],
-        [0.5, 0.2, 2.0, 0.3, 0.0],
-        [0.0, 0.1, 0.3, 1.5, 0.0],
-        [0.0, 0.0, 0.0, 0.0, 0.0],
+        [4.0, 1.0, 0.5, 0.0, 0.2, 0.0],
+        [1.0, 3.0, 0.2, 0.1, 0.0, 0.0],
+        [0.5, 0.2, 2.0, 0.3, 0.0, 0.0],
+        [0.0, 0.1, 0.3, 1.5, 0.1, 0.0],
+        [0.2, 0.0, 0.0, 0.1, 2.5, 0.0],
+        [0.0; MAX_ROWS],
     ];
-    let x_true = [1.0, -2.0, 0.5, 3.0, 0.0];
+    let x_true = [1.0, -2.0, 0.5, 3.0, -1.0, 0.0];
     let x = ldl_solve::<MAX_ROWS>(&s, product(&s, &x_true));
     for (row, (x, t)) in x.iter().zip(&x_true).enumerate() {
         assert!((x - t).abs() <= 1e-9 * t.abs().max(1.0), "{row}: {x:?}");
     }
-    assert!(x[4] == 0.0, "{x:?}");
+    assert!(x[5] == 0.0, "{x:?}");
 }
 
 #[test]
@@ -65,7 +66,7 @@ fn ldl_gives_a_redundant_row_zero_and_solves_the_rest() {
         }
     }
     // A consistent right-hand side: `S·x₀` for some `x₀`.
-    let b = product(&s, &[0.3, -1.0, 0.7, 2.0, 0.0]);
+    let b = product(&s, &[0.3, -1.0, 0.7, 2.0, 0.0, 0.0]);
     let x = ldl_solve::<4>(&s, b);
     assert!(x.iter().all(|x| x.is_finite()), "{x:?}");
     assert!(x[2] == 0.0, "{x:?}");
@@ -82,13 +83,14 @@ fn ldl_gives_a_redundant_row_zero_and_solves_the_rest() {
 fn ldl_solves_an_identity_row_to_its_right_hand_side_of_zero() {
     // Row 1 not in the system, given an identity row: it solves to 0, the others as without it.
     let s = [
-        [2.0, 0.0, 0.4, 0.0, 0.0],
-        [0.0, 1.0, 0.0, 0.0, 0.0],
-        [0.4, 0.0, 0.5, 0.0, 0.0],
+        [2.0, 0.0, 0.4, 0.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+        [0.4, 0.0, 0.5, 0.0, 0.0, 0.0],
+        [0.0; MAX_ROWS],
         [0.0; MAX_ROWS],
         [0.0; MAX_ROWS],
     ];
-    let x_true = [0.25, 0.0, -4.0, 0.0, 0.0];
+    let x_true = [0.25, 0.0, -4.0, 0.0, 0.0, 0.0];
     let x = ldl_solve::<3>(&s, product(&s, &x_true));
     for (row, (x, t)) in x.iter().zip(&x_true).enumerate() {
         assert!((x - t).abs() <= 1e-9 * t.abs().max(1.0), "{row}: {x:?}");
@@ -271,11 +273,11 @@ fn only_rows_bounded_at_zero_can_be_released() {
         AxisPart::row(Vec3::X, r_a, r_b, RowTarget::speed(0.0)).clamped(f32::NEG_INFINITY, 0.0);
     let mut rows = JointRows::new(mass, mass);
     rows.push(rope, 0.0, TargetRule::UpperLimit);
-    let mut link = Link::new(rows, [-1.0, 0.0, 0.0, 0.0, 0.0]);
+    let mut link = Link::new(rows, one_row(-1.0));
     link.active[0] = true;
     assert!(link.rows.may_release);
-    assert!(link.would_deactivate(&[-2.0, 0.0, 0.0, 0.0, 0.0]));
-    assert!(!link.would_deactivate(&[0.5, 0.0, 0.0, 0.0, 0.0]));
+    assert!(link.would_deactivate(&one_row(-2.0)));
+    assert!(!link.would_deactivate(&one_row(0.5)));
     // Emptied for another joint: nothing left to release.
     link.reset(mass, mass);
     assert!(!link.rows.may_release);

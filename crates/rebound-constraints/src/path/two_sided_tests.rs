@@ -3,7 +3,7 @@
 
 use super::elimination::{Stale, Sweep, TWO_SIDED_MIN_LINKS, meet_of};
 use super::link::Link;
-use super::row::{InvMass, JointRows, MAX_ROWS, Real, TargetRule};
+use super::row::{InvMass, JointRows, MAX_ROWS, Real, TargetRule, one_row};
 use super::sweep::{block_sweep, solve_scalar_path};
 use crate::part::{AnglePart, AxisPart, RowTarget};
 use proptest::prelude::*;
@@ -126,22 +126,13 @@ fn residual(links: &[Link], bodies: &[SolverBody], x: &[[Real; MAX_ROWS]]) -> (R
         (0.0, 0.0, 0.0, 0.0);
     for (i, link) in links.iter().enumerate() {
         let r = if link.rows.count == 1 {
-            [
-                link.row_residual(&link.rows.rows[0], &bodies[i], &bodies[i + 1]),
-                0.0,
-                0.0,
-                0.0,
-                0.0,
-            ]
+            one_row(link.row_residual(&link.rows.rows[0], &bodies[i], &bodies[i + 1]))
         } else {
             link.residual(&bodies[i], &bodies[i + 1])
         };
         for row in 0..link.rows.count {
             let (b, c) = if link.rows.count == 1 {
-                (
-                    [link.scalar.b, 0.0, 0.0, 0.0, 0.0],
-                    [link.scalar.c, 0.0, 0.0, 0.0, 0.0],
-                )
+                (one_row(link.scalar.b), one_row(link.scalar.c))
             } else {
                 (link.b_block[row], link.c_block[row])
             };

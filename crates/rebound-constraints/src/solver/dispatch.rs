@@ -175,11 +175,12 @@ impl Prepared {
         !matches!(self, Self::Spring(_))
     }
 
-    /// Whether a Gauss–Seidel pass visits the joint: a joint on no path, and a hinge on one for its limit,
-    /// and motor rows, if it has any (the path solves the rest; its spring acts in *apply forces*).
+    /// Whether a Gauss–Seidel pass visits the joint: a joint on no path, and a hinge on one for its motor
+    /// and the limits the path does not solve, if it has any (the path solves the rest; its spring acts in
+    /// *apply forces*).
     pub(super) fn is_iterated(&self, on_path: bool) -> bool {
         match self {
-            Self::Hinge(hinge) => !on_path || !hinge.has_no_coordinate_rows(),
+            Self::Hinge(hinge) => !on_path || !hinge.is_solved_directly_whole(),
             Self::LimitedBall(ball) => !on_path || ball.is_iterated_on_path(),
             _ => !on_path,
         }
@@ -226,7 +227,8 @@ impl Prepared {
             Self::Rod(p) => p.direct_row(pair, (a, b), stage, rows),
             Self::Ball => ball::direct_rows(pair, a, b, stage, rows),
             Self::LimitedBall(p) => p.direct_rows(pair, a, b, stage, rows),
-            Self::Hinge(_) => PreparedHinge::direct_rows(pair, a, b, stage, rows),
+            Self::Hinge(p) => p.direct_rows(pair, a, b, stage, rows),
+            Self::Fixed(_) => PreparedFixed::direct_rows(pair, a, b, stage, rows),
             _ => return false,
         }
         true
@@ -252,15 +254,16 @@ impl Prepared {
             Self::Rod(_) => PreparedRod::store_direct_impulses(state, lambda),
             Self::Ball => ball::store_direct_impulses(state, lambda),
             Self::LimitedBall(p) => p.store_direct_impulses(state, lambda),
-            Self::Hinge(_) => PreparedHinge::store_direct_impulses(state, lambda),
+            Self::Hinge(p) => p.store_direct_impulses(state, lambda),
+            Self::Fixed(_) => PreparedFixed::store_direct_impulses(state, lambda),
             _ => {}
         }
     }
 
     /// The worst position error of the joint's direct rows at the pose `a`, `b` measured from the rows'
-    /// errors alone, for a kind whose rows are all equalities (a ball joint, a hinge): the value
-    /// [`JointRows::violation`] of the built rows gives, without building the Jacobians. `None` for the
-    /// other kinds, whose rows are built to be measured.
+    /// errors alone, for a ball joint, a hinge or a fixed joint: the value [`JointRows::violation`] of the
+    /// built rows gives, without building the Jacobians. `None` for the other kinds, whose rows are built to
+    /// be measured.
     pub(super) fn equality_violation(
         &self,
         pair: &BodyPair,
@@ -270,8 +273,9 @@ impl Prepared {
         match self {
             Self::Ball => Some(equality_violation(&ball::direct_errors(pair, a, b), stage)),
             Self::LimitedBall(p) => Some(p.direct_violation(pair, a, b, stage)),
-            Self::Hinge(_) => Some(equality_violation(
-                &PreparedHinge::direct_errors(pair, a, b),
+            Self::Hinge(p) => Some(p.direct_violation(pair, a, b, stage)),
+            Self::Fixed(_) => Some(equality_violation(
+                &PreparedFixed::direct_errors(pair, a, b),
                 stage,
             )),
             _ => None,
@@ -324,27 +328,34 @@ impl Prepared {
     pub(super) fn is_direct_capable(&self) -> bool {
         matches!(
             self,
-            Self::Rope(_) | Self::Rod(_) | Self::Ball | Self::LimitedBall(_) | Self::Hinge(_)
+            Self::Rope(_)
+                | Self::Rod(_)
+                | Self::Ball
+                | Self::LimitedBall(_)
+                | Self::Hinge(_)
+                | Self::Fixed(_)
         )
     }
 
     /// How many rows the joint gives the direct solve ([`Prepared::direct_rows`]): 1 for a rope or rod, 3 for a
-    /// ball joint (its point rows), 5 for a hinge (point and alignment rows), 0 for the others.
+    /// ball joint (its point rows; a limited one's are its point rows and at most 2 limit rows), 5 for a hinge
+    /// (point and alignment rows) and 6 with its limit row, 6 for a fixed joint, 0 for the others.
     pub(super) fn direct_row_count(&self) -> usize {
         match self {
             Self::Rope(_) | Self::Rod(_) => 1,
             Self::Ball | Self::LimitedBall(_) => 3,
-            Self::Hinge(_) => 5,
+            Self::Hinge(hinge) => hinge.direct_row_count(),
+            Self::Fixed(_) => 6,
             _ => 0,
         }
     }
 
     /// Whether all of the joint's rows are in the direct solve when it is on a path: a rope's, a rod's, a
-    /// ball joint's, a hinge's without limit or motor.
+    /// ball joint's, a fixed joint's, a hinge's without motor whose limits (if any) are in the direct solve.
     pub(super) fn is_solved_directly_whole(&self) -> bool {
         match self {
-            Self::Rope(_) | Self::Rod(_) | Self::Ball => true,
-            Self::Hinge(hinge) => hinge.has_no_coordinate_rows(),
+            Self::Rope(_) | Self::Rod(_) | Self::Ball | Self::Fixed(_) => true,
+            Self::Hinge(hinge) => hinge.is_solved_directly_whole(),
             _ => false,
         }
     }
@@ -471,7 +482,8 @@ pub(super) fn state_lambda(j: &PreparedJoint) -> [f32; MAX_ROWS] {
         Prepared::Rod(_) => PreparedRod::direct_impulses(s),
         Prepared::Ball => ball::direct_impulses(s),
         Prepared::LimitedBall(p) => p.direct_impulses(s),
-        Prepared::Hinge(_) => PreparedHinge::direct_impulses(s),
+        Prepared::Hinge(p) => p.direct_impulses(s),
+        Prepared::Fixed(_) => PreparedFixed::direct_impulses(s),
         _ => [0.0; MAX_ROWS],
     }
 }

@@ -202,4 +202,16 @@ impl JointSolver {
     pub fn is_empty(&self) -> bool {
         self.joints.is_empty()
     }
+
+    /// Whether every row of joint `joint` (its index in the joints given to the last
+    /// [`JointSolver::prepare`]) is in the direct solve of a path or graph ([`crate::path`]), none left to
+    /// the Gauss–Seidel passes: what a test of a joint kind's direct rows checks. `false` for a joint
+    /// skipped or not prepared.
+    #[must_use]
+    pub fn is_solved_directly(&self, joint: usize) -> bool {
+        self.joints
+            .iter()
+            .find(|j| j.source == joint)
+            .is_some_and(|j| j.path.is_some() && !j.kind.is_iterated(true))
+    }
 }

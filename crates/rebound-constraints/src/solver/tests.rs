@@ -9,11 +9,12 @@
 use super::JointSolver;
 use super::path_pass::{build_site, carry, rows_at};
 use crate::ball::BallJoint;
-use crate::fixed::FixedJoint;
 use crate::hinge::HingeJoint;
 use crate::hinge::PreparedHinge;
 use crate::joint::{Joint, JointBodies};
+use crate::motor::Motor;
 use crate::path::{CARRY_ANGLE, Link, PoseKey, empty_link};
+use crate::prismatic::PrismaticJoint;
 use crate::rope::Rope;
 use crate::settings::JointSettings;
 use crate::stage::Stage;
@@ -72,9 +73,9 @@ fn steps(rebuild: bool) -> String {
             .with_local_axes(Vec3::Z, Vec3::Z)
             .unwrap()
     };
-    // The first hinge's limits never bind, but they keep the deck from being a closed path (one relaxed
+    // The first hinge's motor has no torque, but it keeps the deck from being a closed path (one relaxed
     // in the last substep only), so that its rows are reused in every substep.
-    let limited = Joint::new(HingeJoint::new().with_limits(-3.0, 3.0).unwrap())
+    let limited = Joint::new(HingeJoint::new().with_motor(Motor::new(0.0, 0.0).unwrap()))
         .with_local_anchors(Vec3::new(0.5, 0.0, 0.0), Vec3::new(-0.5, 0.0, 0.0))
         .unwrap()
         .with_local_axes(Vec3::Z, Vec3::Z)
@@ -109,7 +110,7 @@ fn steps(rebuild: bool) -> String {
         assert_eq!(
             solver.topology.closed,
             [false, true],
-            "the deck has a limit, the chain is closed"
+            "the deck has a motor, the chain is closed"
         );
         assert_eq!(solver.reusable_links(&solver_bodies), 0, "prepare forgets");
         for _ in 0..ctx.substep_count {
@@ -232,21 +233,35 @@ fn a_path_is_closed_only_if_nothing_else_acts_on_its_dynamic_bodies() {
         b: bodies.len() - 1,
     });
     assert_eq!(closed(&bodies, &joints, &pairs), [true, true]);
-    // A fixed joint (not solved directly) on the second plank: the deck is still a path, not a closed one.
-    joints.push(Joint::new(FixedJoint::new()));
+    // A prismatic joint (not solved directly) on the second plank: the deck is still a path, not a closed
+    // one.
+    joints.push(Joint::new(PrismaticJoint::new()));
     pairs.push(JointBodies {
         a: 2,
         b: bodies.len() - 1,
     });
     assert_eq!(closed(&bodies, &joints, &pairs), [false, false]);
-    // A limit on one hinge: its rows are solved by Gauss–Seidel beside the path's.
+    // A limit on one hinge: its limit row is in the direct solve, the deck still closed; a motor on it is
+    // solved by Gauss–Seidel beside the path's rows, and so is a limit too narrow for the direct solve.
     let (bodies, mut joints, pairs) = hinge_deck(1.0);
-    joints[2] = Joint::new(HingeJoint::new().with_limits(-1.0, 1.0).unwrap())
-        .with_local_anchors(Vec3::new(0.5, 0.0, 0.0), Vec3::new(-0.5, 0.0, 0.0))
-        .unwrap()
-        .with_local_axes(Vec3::Z, Vec3::Z)
-        .unwrap();
-    assert_eq!(closed(&bodies, &joints, &pairs), [false]);
+    let mut on_third = |hinge: HingeJoint| {
+        joints[2] = Joint::new(hinge)
+            .with_local_anchors(Vec3::new(0.5, 0.0, 0.0), Vec3::new(-0.5, 0.0, 0.0))
+            .unwrap()
+            .with_local_axes(Vec3::Z, Vec3::Z)
+            .unwrap();
+        closed(&bodies, &joints, &pairs)
+    };
+    assert_eq!(
+        on_third(HingeJoint::new().with_limits(-1.0, 1.0).unwrap()),
+        [true]
+    );
+    let motor = Motor::new(1.0, 10.0).unwrap();
+    assert_eq!(on_third(HingeJoint::new().with_motor(motor)), [false]);
+    assert_eq!(
+        on_third(HingeJoint::new().with_limits(0.2, 0.25).unwrap()),
+        [false]
+    );
 }
 
 /// A deck's hinge rows are kept into the next step — for the same joints, between the same bodies, with
