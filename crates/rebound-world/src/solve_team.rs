@@ -84,8 +84,10 @@ struct Shared<'a> {
     ctx: &'a StepContext,
 }
 
-/// The solver's arrays the substeps read and write (the world's `prepare::Solver`, split).
+/// The solver's arrays the substeps read and write, and the plan's buffers (the world's `prepare::Solver`,
+/// split by `Solver::team_arrays`).
 pub(crate) struct Arrays<'a> {
+    pub(crate) plan: &'a mut Plan,
     pub(crate) states: &'a mut [SolverBody],
     pub(crate) params: &'a [BodyParams],
     pub(crate) contact_solver: &'a mut ContactSolver,
@@ -95,8 +97,9 @@ pub(crate) struct Arrays<'a> {
 }
 
 /// Stage *substeps* on the team; `false` (nothing done) if the contact solver was not prepared for it.
-pub(crate) fn solve_substeps(plan: &mut Plan, arrays: Arrays<'_>, ctx: &StepContext) -> bool {
+pub(crate) fn solve_substeps(arrays: Arrays<'_>, ctx: &StepContext) -> bool {
     let Arrays {
+        plan,
         states,
         params,
         contact_solver,
