@@ -26,6 +26,9 @@ pub struct JointTeam<'a> {
     coordinate_springs: bool,
     /// Whether the solver has nothing to solve (no joint, path or tether).
     idle: bool,
+    /// Whether *warm start*, *solve* and *relax* have nothing to do: every joint acts in *apply forces*
+    /// alone (a spring), and there is no path or tether.
+    forces_only: bool,
     /// The solver, for the passes one thread runs alone.
     solver: NonNull<JointSolver>,
     borrow: PhantomData<&'a mut JointSolver>,
@@ -41,10 +44,10 @@ impl JointSolver {
     /// The solver lent to a team of threads for the substeps' passes.
     pub fn team(&mut self) -> JointTeam<'_> {
         let (apart, coordinate_springs) = (self.pool.is_active(), self.coordinate_springs);
-        let idle = self.joints.is_empty()
-            && self.tethers.is_empty()
-            && self.links.is_empty()
-            && self.topology.paths.is_empty();
+        let no_rows =
+            self.tethers.is_empty() && self.links.is_empty() && self.topology.paths.is_empty();
+        let idle = no_rows && self.joints.is_empty();
+        let forces_only = no_rows && self.joints.iter().all(|j| j.kind.acts_in_no_pass());
         let solver = NonNull::from(&mut *self);
         // SAFETY: `solver` is `self`, borrowed for `'a`; the passes run through `solver` by one thread alone
         // never run while a chunk holds joints (the team's barrier between phases).
@@ -54,6 +57,7 @@ impl JointSolver {
             apart,
             coordinate_springs,
             idle,
+            forces_only,
             solver,
             borrow: PhantomData,
         }
@@ -65,6 +69,13 @@ impl JointTeam<'_> {
     #[must_use]
     pub fn is_idle(&self) -> bool {
         self.idle
+    }
+
+    /// Whether *warm start*, *solve* and *relax* leave every body as it is (every joint a spring, no path or
+    /// tether): those passes may be left out, and only *apply forces* runs.
+    #[must_use]
+    pub fn is_forces_only(&self) -> bool {
+        self.forces_only
     }
 
     /// Into how many chunks, of at most `threads`, *apply forces* is split: 1 unless the joints are pairwise
