@@ -7,11 +7,12 @@
 //! batches (a group too small to split, one chunk); *apply forces* split over the joints when they share no
 //! body; every other joint pass, the contacts' scalar path, the axis locks and the impulse sums one chunk,
 //! consecutive ones merged into one phase. Passes that change nothing are left out (the joints' warm start
-//! and passes when every joint is a spring), and integration passes that follow one another (a substep's
-//! positions, the next one's velocities) share a phase: each chunk runs both on its own range of bodies,
-//! and a body's integration reads that body alone. Every barrier costs the team a hand-over between
-//! threads, which on a scene of a few hundred bodies is as long as a phase's work. A chunk writes what it computes in place — a contact batch its
-//! dynamic bodies, a joint its two bodies, integration its bodies — and no two chunks of a phase share
+//! and passes when every joint is a spring), and *ranged* passes that follow one another share a phase:
+//! integration (a body's reads that body alone) and *apply forces* when each chunk's joints have their
+//! bodies in that chunk's range of bodies (a field of springs numbered pair by pair), so that a chunk
+//! runs them back to back on its own bodies — a field of springs walks all its substeps in one phase.
+//! Every barrier costs the team a hand-over between threads, which on a scene of a few hundred bodies is
+//! as long as a phase's work. A chunk writes what it computes in place — a contact batch its dynamic bodies, a joint its two bodies, integration its bodies — and no two chunks of a phase share
 //! anything they write (the colouring, the joints' plan, disjoint ranges), so every value is the one the
 //! loop computes: the same bits for any number of threads.
 #![allow(
@@ -37,15 +38,16 @@ pub(crate) struct Plan {
     ends: Vec<u32>,
 }
 
-/// A phase: the ops `start..end`, each run whole (one chunk), or split into `chunks`: one op, or
-/// integration ops over the same ranges of bodies.
+/// A phase: the ops `start..end`, each run whole (one chunk), or split into `chunks`: one op, or ranged
+/// ops over the same ranges of bodies.
 #[derive(Debug, Clone, Copy)]
 struct Phase {
     start: u32,
     end: u32,
     chunks: u32,
-    /// Whether every op of the phase is an integration pass (split over the bodies).
-    integration: bool,
+    /// Whether chunk `k` of every op of the phase touches only the bodies of range `k` (integration; *apply
+    /// forces* of joints within those ranges).
+    ranged: bool,
 }
 
 /// One pass of a substep, as the one-thread loop runs it.
@@ -73,25 +75,27 @@ impl Op {
 }
 
 impl Plan {
-    /// Adds `op` in `chunks` chunks; an op of one chunk joins a phase of one chunk before it, and an
-    /// integration op a phase of integration ops in as many chunks.
+    /// Adds `op` in `chunks` chunks ([`Plan::push_ranged`], ranged if it is integration).
     fn push(&mut self, op: Op, chunks: usize) {
+        self.push_ranged(op, chunks, op.is_integration());
+    }
+
+    /// Adds `op` in `chunks` chunks, `ranged` if its chunk `k` touches only the bodies of range `k`: an op
+    /// of one chunk joins a phase of one chunk before it, and a ranged op a ranged phase in as many chunks.
+    fn push_ranged(&mut self, op: Op, chunks: usize, ranged: bool) {
         self.ops.push(op);
         let end = self.ops.len() as u32;
         let chunks = chunks.max(1) as u32;
-        let integration = op.is_integration();
         match self.phases.last_mut() {
-            Some(last)
-                if last.chunks == chunks && (chunks == 1 || (integration && last.integration)) =>
-            {
+            Some(last) if last.chunks == chunks && (chunks == 1 || (ranged && last.ranged)) => {
                 last.end = end;
-                last.integration &= integration;
+                last.ranged &= ranged;
             }
             _ => self.phases.push(Phase {
                 start: end - 1,
                 end,
                 chunks,
-                integration,
+                ranged,
             }),
         }
     }
@@ -169,8 +173,8 @@ pub(crate) fn solve_substeps(arrays: Arrays<'_>, ctx: &StepContext) -> bool {
         };
         for &op in &plan.ops[start as usize..end as usize] {
             // SAFETY: the team runs the chunks of one phase at once and the phases one after another; a
-            // phase of several chunks holds one op, whose chunks write disjoint parts, or integration ops,
-            // each chunk on the same range of bodies in every one of them (see `run`).
+            // phase of several chunks holds one op, whose chunks write disjoint parts, or ranged ops, each
+            // chunk on the same range of bodies (and its own joints) in every one of them (see `run`).
             unsafe { run(&shared, op, chunk as usize, chunks as usize) };
         }
     });
@@ -196,6 +200,10 @@ fn make_plan(
     let scalar = contacts.has_scalar();
     let joint = !joints.is_idle();
     let joint_passes = joint && !joints.is_forces_only();
+    let force_chunks = joints.force_chunks(threads);
+    // SAFETY: no chunk runs yet (the team starts after the plan).
+    let forces_ranged = force_chunks == body_chunks
+        && unsafe { joints.forces_within_body_ranges(body_chunks, body_count) };
     let lock = |plan: &mut Plan| {
         if locks {
             plan.push(Op::LockAxes, 1);
@@ -215,7 +223,7 @@ fn make_plan(
         plan.push(Op::IntegrateVelocities, body_chunks);
         lock(plan);
         if joint {
-            plan.push(Op::ApplyForces, joints.force_chunks(threads));
+            plan.push_ranged(Op::ApplyForces, force_chunks, forces_ranged);
         }
         if joint_passes {
             plan.push(Op::JointWarmStart, 1);
@@ -350,11 +358,10 @@ mod tests {
     }
 
     #[test]
-    fn a_field_of_springs_takes_two_phases_a_substep_and_one() {
-        // Per substep: *apply forces* (split over the joints) and integration (the positions and the next
-        // substep's velocities in one phase, split over the bodies); the joints' other passes do nothing.
-        let substeps = WorldSettings::default().substep_count as usize;
-        assert_eq!(spring_field(1_000, 2, 1).0, 2 * substeps + 1);
+    fn a_field_of_springs_walks_its_substeps_in_one_phase() {
+        // Integration and *apply forces* of each half of the bodies and of their joints back to back; the
+        // joints' other passes do nothing.
+        assert_eq!(spring_field(1_000, 2, 1).0, 1);
     }
 
     #[test]

@@ -89,6 +89,29 @@ impl JointTeam<'_> {
         }
     }
 
+    /// Whether chunk `k` of `chunks` of *apply forces* touches only the bodies of range `k` of `chunks`
+    /// equal ranges of `body_count` bodies (as the team splits integration), for every `k`: then each chunk
+    /// may integrate its bodies and apply its joints' forces back to back. True for a field of springs whose
+    /// bodies are numbered pair by pair.
+    ///
+    /// # Safety
+    /// No chunk of this team runs while it looks (it reads every joint's bodies).
+    #[must_use]
+    pub unsafe fn forces_within_body_ranges(&self, chunks: usize, body_count: usize) -> bool {
+        if !self.apart || chunks <= 1 || self.force_chunks(chunks) != chunks {
+            return false;
+        }
+        let len = self.joints.len();
+        // SAFETY: nothing writes the joints meanwhile (the caller's contract).
+        let joints = unsafe { self.joints.slice_mut(0..len) };
+        (0..chunks).all(|k| {
+            let bodies = body_count * k / chunks..body_count * (k + 1) / chunks;
+            joints[len * k / chunks..len * (k + 1) / chunks]
+                .iter()
+                .all(|j| bodies.contains(&j.pair.index_a) && bodies.contains(&j.pair.index_b))
+        })
+    }
+
     /// Stage *apply forces* of chunk `chunk` of `chunks` of the joints ([`JointTeam::force_chunks`]); with one
     /// chunk, [`JointSolver::apply_forces`].
     ///
