@@ -200,6 +200,8 @@ where
 /// The spinners are the second halves of `rayon::join`s (on the stack: nothing is allocated), at most one
 /// per core the machine has besides this one, so a pool of more threads than cores is not crowded by
 /// spinners. A spinner that finds itself on `f`'s own thread (taken back while `f` waits) returns at once.
+/// A spinner runs whatever the pool has pending, other callers' tasks too; `with_pool_awake` returns once the
+/// task a spinner is running when `f` ends has ended.
 /// In the serial build, and in a pool of one thread, this is `f()`.
 #[inline]
 pub fn with_pool_awake<R, F>(f: F) -> R

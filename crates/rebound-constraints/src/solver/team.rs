@@ -98,7 +98,7 @@ impl JointTeam<'_> {
     /// No chunk of this team runs while it looks (it reads every joint's bodies).
     #[must_use]
     pub unsafe fn forces_within_body_ranges(&self, chunks: usize, body_count: usize) -> bool {
-        if !self.apart || chunks <= 1 || self.force_chunks(chunks) != chunks {
+        if !self.apart || chunks <= 1 {
             return false;
         }
         let len = self.joints.len();
