@@ -235,6 +235,108 @@ where
     (a(), b())
 }
 
+/// Runs `f` with the pool's other threads kept awake until it returns: each spins, running whatever the pool
+/// has pending (`rayon::yield_now`), instead of going to sleep between `f`'s parallel sections. A rayon
+/// worker that finds nothing to do sleeps after a few dozen rounds of yielding its core (tens of µs), and
+/// waking it takes about as long again — against a small scene's whole step of 200–400 µs with several
+/// sections, each of which would otherwise start with one thread while the other wakes up. Only who runs
+/// which task changes, never what a task computes: the results are the same bits.
+///
+/// The spinners are the second halves of `rayon::join`s (on the stack: nothing is allocated), at most one
+/// per core the machine has besides this one, so a pool of more threads than cores is not crowded by
+/// spinners. A spinner that finds itself on `f`'s own thread (taken back while `f` waits) returns at once.
+/// A spinner runs whatever the pool has pending, other callers' tasks too; `with_pool_awake` returns once the
+/// task a spinner is running when `f` ends has ended.
+/// In the serial build, and in a pool of one thread, this is `f()`.
+#[inline]
+pub fn with_pool_awake<R, F>(f: F) -> R
+where
+    F: FnOnce() -> R + Send,
+    R: Send,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() {
+        return awake::run(f);
+    }
+    f()
+}
+
+#[cfg(feature = "parallel")]
+mod awake {
+    use std::sync::OnceLock;
+    use std::sync::atomic::{AtomicBool, Ordering};
+
+    /// Failed looks for pending work between two yields of the core while a spinner waits.
+    const LOOKS_BEFORE_YIELD: u32 = 64;
+
+    /// How many threads may spin beside the caller: the pool's others, at most the machine's other cores.
+    fn spinner_count() -> usize {
+        static CORES: OnceLock<usize> = OnceLock::new();
+        let cores =
+            *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, usize::from));
+        rayon::current_num_threads().min(cores).saturating_sub(1)
+    }
+
+    pub(super) fn run<R, F>(f: F) -> R
+    where
+        F: FnOnce() -> R + Send,
+        R: Send,
+    {
+        let count = spinner_count();
+        if count == 0 {
+            return f();
+        }
+        let done = AtomicBool::new(false);
+        let owner = rayon::current_thread_index();
+        let (result, ()) = rayon::join(
+            || {
+                // Set also when `f` unwinds, so that no spinner waits for ever.
+                let _done = SetOnDrop(&done);
+                f()
+            },
+            || spinners(&done, owner, count),
+        );
+        result
+    }
+
+    /// `count` spinners: this one and, forked off first, the rest.
+    fn spinners(done: &AtomicBool, owner: Option<usize>, count: usize) {
+        if count > 1 {
+            rayon::join(|| spinners(done, owner, count - 1), || spin(done, owner));
+        } else {
+            spin(done, owner);
+        }
+    }
+
+    /// Runs the pool's pending work until `done`, yielding the core now and then when there is none.
+    fn spin(done: &AtomicBool, owner: Option<usize>) {
+        if owner.is_some() && rayon::current_thread_index() == owner {
+            return;
+        }
+        let mut looks = 0_u32;
+        while !done.load(Ordering::Acquire) {
+            if rayon::yield_now() == Some(rayon::Yield::Executed) {
+                looks = 0;
+            } else if looks < LOOKS_BEFORE_YIELD {
+                looks += 1;
+                std::hint::spin_loop();
+            } else {
+                looks = 0;
+                std::thread::yield_now();
+            }
+        }
+    }
+
+    /// Sets the flag when dropped.
+    struct SetOnDrop<'a>(&'a AtomicBool);
+
+    impl Drop for SetOnDrop<'_> {
+        fn drop(&mut self) {
+            self.0.store(true, Ordering::Release);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -290,6 +392,57 @@ mod tests {
         let expected: Vec<u32> = (0..1000).filter(|x| x % 7 == 0).collect();
         assert_eq!(out[0], u32::MAX);
         assert_eq!(out[1..], expected[..]);
+    }
+
+    #[test]
+    fn with_pool_awake_returns_what_f_returns() {
+        let mut items = vec![1_u32; 1000];
+        let sum = with_pool_awake(|| {
+            for_each_mut(&mut items, 8, |i, x| *x += i as u32);
+            items.iter().sum::<u32>()
+        });
+        assert_eq!(sum, 1000 + (0..1000).sum::<u32>());
+    }
+
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn with_pool_awake_on_pools_of_any_size() {
+        for threads in [1, 2, 3, 8] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap_or_else(|e| panic!("no pool: {e}"));
+            let sums = pool.install(|| {
+                with_pool_awake(|| {
+                    (0..50)
+                        .map(|round| {
+                            let mut out = Vec::new();
+                            let items: Vec<u64> = (0..4096).collect();
+                            map_collect_in_order(&items, &mut out, 64, |i, &x| {
+                                x * round + i as u64
+                            });
+                            out.iter().sum::<u64>()
+                        })
+                        .sum::<u64>()
+                })
+            });
+            let one: u64 = (0..4096_u64).sum();
+            assert_eq!(sums, (0..50).map(|r| one * r + one).sum::<u64>());
+        }
+    }
+
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn with_pool_awake_ends_its_spinners_when_f_panics() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap_or_else(|e| panic!("no pool: {e}"));
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            pool.install(|| with_pool_awake(|| panic!("f fails")));
+        }));
+        assert!(result.is_err());
+        assert_eq!(pool.install(|| with_pool_awake(|| 7)), 7);
     }
 
     #[test]

@@ -7,7 +7,8 @@
 //! counter and, before running it, waits until a second counter (the chunks ended) reaches its phase's first
 //! number. The chunks of the phases before `p` hold the smaller numbers, were all taken before any of `p`'s,
 //! and none of `p`'s ends before they have: so the ended count reaches `ends[p − 1]` exactly when they all
-//! have. The wait spins on that counter, then runs the pool's pending tasks or yields the core.
+//! have. The wait spins on that counter, looking for the pool's pending tasks every few spins, then runs
+//! them or yields the core.
 //!
 //! Which member runs which chunk is decided by who takes the number first; the results may not depend on
 //! it, and the solver's do not: a chunk computes the same values whichever thread runs it (see the callers).
@@ -29,6 +30,11 @@ use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 /// Spins on the ended count before each yield of the core while a member waits for a phase.
 #[cfg(feature = "parallel")]
 const SPINS_BEFORE_YIELD: u32 = 256;
+
+/// Spins between two looks for the pool's pending tasks while a member waits: a chunk's own tasks (a path
+/// solved from both ends) are taken up within a fraction of a microsecond, not after the whole spin.
+#[cfg(feature = "parallel")]
+const SPINS_BETWEEN_LOOKS: u32 = 16;
 
 /// The number of threads a team started here would have: the current pool's (1 in the serial build).
 #[must_use]
@@ -166,6 +172,11 @@ fn wait_for(counters: &Counters, count: u32) -> bool {
         }
         if spins < SPINS_BEFORE_YIELD {
             spins += 1;
+            if spins.is_multiple_of(SPINS_BETWEEN_LOOKS)
+                && rayon::yield_now() == Some(rayon::Yield::Executed)
+            {
+                continue;
+            }
             std::hint::spin_loop();
         } else if rayon::yield_now() != Some(rayon::Yield::Executed) {
             // Nothing of the pool's to run meanwhile: give the core away.

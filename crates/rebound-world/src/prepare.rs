@@ -59,6 +59,22 @@ pub(crate) struct Solver {
     pub(crate) plan: crate::solve_team::Plan,
 }
 
+impl Solver {
+    /// The arrays the substeps' team reads and writes, borrowed apart (`solve_team`).
+    #[cfg(feature = "parallel")]
+    pub(crate) fn team_arrays(&mut self) -> crate::solve_team::Arrays<'_> {
+        crate::solve_team::Arrays {
+            plan: &mut self.plan,
+            states: &mut self.states,
+            params: &self.params,
+            contact_solver: &mut self.contact_solver,
+            joint_solver: &mut self.joint_solver,
+            step_impulses: &mut self.step_impulses,
+            locked: &self.locked,
+        }
+    }
+}
+
 /// Stage *prepare*, part 1: the dense solver arrays. Awake moving bodies in handle order get indices
 /// first; fixed bodies are added when a contact or joint needs them; the world anchor (a fixed body at the
 /// origin) last, if a world joint exists. Quarantined bodies get none, so their joints are skipped.

@@ -13,28 +13,8 @@ use rebound_dynamics::integrate::{integrate_positions, integrate_velocities};
 /// Stage *substeps*.
 pub(crate) fn solve_substeps(s: &mut Solver, ctx: &StepContext) {
     #[cfg(feature = "parallel")]
-    if rebound_math::par::is_parallel() {
-        let Solver {
-            states,
-            params,
-            contact_solver,
-            joint_solver,
-            step_impulses,
-            locked,
-            plan,
-            ..
-        } = s;
-        let arrays = crate::solve_team::Arrays {
-            states,
-            params,
-            contact_solver,
-            joint_solver,
-            step_impulses,
-            locked,
-        };
-        if crate::solve_team::solve_substeps(plan, arrays, ctx) {
-            return;
-        }
+    if rebound_math::par::is_parallel() && crate::solve_team::solve_substeps(s.team_arrays(), ctx) {
+        return;
     }
     for index in 0..ctx.substep_count {
         let substep = Substep::new(index, ctx.substep_count);

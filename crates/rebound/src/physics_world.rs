@@ -256,8 +256,14 @@ impl PhysicsWorld {
         self.step_here(dt)
     }
 
-    /// One step on the current thread pool (see [`PhysicsWorld::set_thread_pool`]).
+    /// One step on the current thread pool (see [`PhysicsWorld::set_thread_pool`]), with the pool's other
+    /// threads kept awake between its parallel sections (`par::with_pool_awake`).
     fn step_here(&mut self, dt: f32) -> StepReport {
+        rebound_math::par::with_pool_awake(|| self.step_awake(dt))
+    }
+
+    /// [`PhysicsWorld::step_here`]'s step.
+    fn step_awake(&mut self, dt: f32) -> StepReport {
         let mut report = self.world.step(dt);
         report.hook_failure_count = self.world.backend().hook_failures;
         let narrow_phase = &self.world.backend().narrow_phase;

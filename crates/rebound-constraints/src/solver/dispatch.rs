@@ -172,7 +172,14 @@ impl Prepared {
     /// *apply forces* stage, see [`crate::spring`]).
     #[inline]
     pub(super) fn acts_in(&self, _bias: Bias) -> bool {
-        !matches!(self, Self::Spring(_))
+        !self.acts_in_no_pass()
+    }
+
+    /// Whether the joint acts in no pass but *apply forces* (a spring: its warm start and its visits in
+    /// *solve* and *relax* do nothing).
+    #[inline]
+    pub(super) fn acts_in_no_pass(&self) -> bool {
+        matches!(self, Self::Spring(_))
     }
 
     /// Whether a Gauss–Seidel pass visits the joint: a joint on no path, and a hinge on one for its motor

@@ -26,6 +26,9 @@ pub struct JointTeam<'a> {
     coordinate_springs: bool,
     /// Whether the solver has nothing to solve (no joint, path or tether).
     idle: bool,
+    /// Whether *warm start*, *solve* and *relax* have nothing to do: every joint acts in *apply forces*
+    /// alone (a spring), and there is no path or tether.
+    forces_only: bool,
     /// The solver, for the passes one thread runs alone.
     solver: NonNull<JointSolver>,
     borrow: PhantomData<&'a mut JointSolver>,
@@ -41,10 +44,10 @@ impl JointSolver {
     /// The solver lent to a team of threads for the substeps' passes.
     pub fn team(&mut self) -> JointTeam<'_> {
         let (apart, coordinate_springs) = (self.pool.is_active(), self.coordinate_springs);
-        let idle = self.joints.is_empty()
-            && self.tethers.is_empty()
-            && self.links.is_empty()
-            && self.topology.paths.is_empty();
+        let no_rows =
+            self.tethers.is_empty() && self.links.is_empty() && self.topology.paths.is_empty();
+        let idle = no_rows && self.joints.is_empty();
+        let forces_only = no_rows && self.joints.iter().all(|j| j.kind.acts_in_no_pass());
         let solver = NonNull::from(&mut *self);
         // SAFETY: `solver` is `self`, borrowed for `'a`; the passes run through `solver` by one thread alone
         // never run while a chunk holds joints (the team's barrier between phases).
@@ -54,6 +57,7 @@ impl JointSolver {
             apart,
             coordinate_springs,
             idle,
+            forces_only,
             solver,
             borrow: PhantomData,
         }
@@ -67,6 +71,13 @@ impl JointTeam<'_> {
         self.idle
     }
 
+    /// Whether *warm start*, *solve* and *relax* leave every body as it is (every joint a spring, no path or
+    /// tether): those passes may be left out, and only *apply forces* runs.
+    #[must_use]
+    pub fn is_forces_only(&self) -> bool {
+        self.forces_only
+    }
+
     /// Into how many chunks, of at most `threads`, *apply forces* is split: 1 unless the joints are pairwise
     /// apart and at least two chunks' worth.
     #[must_use]
@@ -76,6 +87,29 @@ impl JointTeam<'_> {
         } else {
             1
         }
+    }
+
+    /// Whether chunk `k` of `chunks` of *apply forces* touches only the bodies of range `k` of `chunks`
+    /// equal ranges of `body_count` bodies (as the team splits integration), for every `k`: then each chunk
+    /// may integrate its bodies and apply its joints' forces back to back. True for a field of springs whose
+    /// bodies are numbered pair by pair.
+    ///
+    /// # Safety
+    /// No chunk of this team runs while it looks (it reads every joint's bodies).
+    #[must_use]
+    pub unsafe fn forces_within_body_ranges(&self, chunks: usize, body_count: usize) -> bool {
+        if !self.apart || chunks <= 1 {
+            return false;
+        }
+        let len = self.joints.len();
+        // SAFETY: nothing writes the joints meanwhile (the caller's contract).
+        let joints = unsafe { self.joints.slice_mut(0..len) };
+        (0..chunks).all(|k| {
+            let bodies = body_count * k / chunks..body_count * (k + 1) / chunks;
+            joints[len * k / chunks..len * (k + 1) / chunks]
+                .iter()
+                .all(|j| bodies.contains(&j.pair.index_a) && bodies.contains(&j.pair.index_b))
+        })
     }
 
     /// Stage *apply forces* of chunk `chunk` of `chunks` of the joints ([`JointTeam::force_chunks`]); with one
