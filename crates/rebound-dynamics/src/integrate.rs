@@ -213,7 +213,6 @@ fn gyroscopic_iterations_with_norm(
     let (inertia, inv_inertia) = (Mat3A::from(*local_inertia), Mat3A::from(*local_inv_inertia));
     let mut omega = rotation.conjugate() * Vec3A::from(angular_velocity);
     let momentum = inertia * omega;
-    let omega_start_energy = omega.dot(momentum);
     let half_h = 0.5 * h;
     // The fixed-point map's derivative is about `½·h·|I⁻¹|·|L|` (`h·|ω|` times the inertia's anisotropy):
     // where that is small, plain iterations converge fast; elsewhere (a fast spin, or a thin rod turning
@@ -237,17 +236,32 @@ fn gyroscopic_iterations_with_norm(
         }
         return Vec3::from(rotation * omega);
     }
+    Vec3::from(rotation * newton_solve(omega, momentum, (&inertia, &inv_inertia), half_h))
+}
+
+/// The gyroscopic solve where the fixed-point map does not contract (see
+/// [`gyroscopic_iterations_with_norm`]): the body-frame ω' from the substep's `omega` and `momentum` (`L_b`),
+/// with the body-frame `inertia` and its inverse. Rare (a fast spin, a thin rod turning about a skew axis):
+/// kept out of the common path, which then needs fewer registers.
+#[inline(never)]
+fn newton_solve(
+    mut omega: Vec3A,
+    momentum: Vec3A,
+    (inertia, inv_inertia): (&Mat3A, &Mat3A),
+    half_h: f32,
+) -> Vec3A {
+    let omega_start_energy = omega.dot(momentum);
     // Newton's method on `F(ω) = ω − I⁻¹·g(ω) = 0`, `g(ω) = Δ(ω)*·L_b·Δ(ω)`, from the substep's ω.
-    let mut residual = momentum_residual(omega, momentum, &inertia, half_h);
+    let mut residual = momentum_residual(omega, momentum, inertia, half_h);
     for _ in 0..NEWTON_ITERATIONS {
-        let step = newton_step(omega, momentum, &inv_inertia, half_h);
+        let step = newton_step(omega, momentum, inv_inertia, half_h);
         // Backtracking: a full step far from the root can overshoot where the map is stiff (a thin rod's
         // inertia ratio multiplies `h·|ω|`); halve it until the momentum residual falls.
         let mut scale = 1.0;
         let mut accepted = false;
         for _ in 0..BACKTRACKS {
             let trial = omega - step * scale;
-            let r = momentum_residual(trial, momentum, &inertia, half_h);
+            let r = momentum_residual(trial, momentum, inertia, half_h);
             if r < residual {
                 omega = trial;
                 residual = r;
@@ -260,18 +274,17 @@ fn gyroscopic_iterations_with_norm(
             break;
         }
     }
-    let next = fixed_point_iteration(omega, momentum, &inv_inertia, half_h).next;
+    let next = fixed_point_iteration(omega, momentum, inv_inertia, half_h).next;
     // The exact root never gains kinetic energy (module docs); should the solve stop short of it, the
     // energy is capped at the substep's start (`½·ω·I·ω` in the body frame: the turn `Δ(ω')` is about ω'
     // itself, so the frame of `q` and of `q'` see the same vector).
     let energy_before = omega_start_energy;
-    let energy_after = next.dot(inertia * next);
-    let next = if energy_after > energy_before {
+    let energy_after = next.dot(*inertia * next);
+    if energy_after > energy_before {
         next * (energy_before / energy_after).sqrt()
     } else {
         next
-    };
-    Vec3::from(rotation * next)
+    }
 }
 
 /// Estimated derivative of the fixed-point map (dimensionless) from which the gyroscopic solve uses Newton's
