@@ -61,17 +61,19 @@ pub fn integrate_velocity(state: &mut SolverBody, p: &BodyParams, ctx: &StepCont
         Motion::Dynamic => {}
     }
     // Undamped bodies and bodies under no torque skip the division by 1 and the product with zero: the
-    // same bits (`v/1 = v`; `h·(I⁻¹·0)` is +0, which is what the addition of `Vec3::ZERO` adds).
-    let linear_acceleration = p.force * p.inv_mass + ctx.gravity * p.gravity_scale;
-    let mut v = state.linear_velocity;
+    // same bits (`v/1 = v`; `h·(I⁻¹·0)` is +0, which is what the addition of zero adds). In 16-byte vectors,
+    // each lane the same operation as alone, and each velocity written once.
+    let linear_acceleration =
+        Vec3A::from(p.force) * p.inv_mass + Vec3A::from(ctx.gravity) * p.gravity_scale;
+    let mut v = Vec3A::from(state.linear_velocity);
     if p.linear_damping != 0.0 {
         v /= 1.0 + h * p.linear_damping;
     }
-    state.linear_velocity = v + h * linear_acceleration;
+    let v = v + h * linear_acceleration;
 
-    if p.gyroscopic {
+    let mut omega = Vec3A::from(if p.gyroscopic {
         let rotation = state.delta_rotation * p.rotation;
-        state.angular_velocity = gyroscopic_iterations_with_norm(
+        gyroscopic_iterations_with_norm(
             state.angular_velocity,
             rotation,
             (&p.local_inertia, &p.local_inv_inertia),
@@ -79,20 +81,21 @@ pub fn integrate_velocity(state: &mut SolverBody, p: &BodyParams, ctx: &StepCont
             h,
             GYROSCOPIC_ITERATIONS,
             true,
-        );
-    }
-    let mut omega = state.angular_velocity;
+        )
+    } else {
+        state.angular_velocity
+    });
     if p.angular_damping != 0.0 {
         omega /= 1.0 + h * p.angular_damping;
     }
-    state.angular_velocity = omega
+    let omega = omega
         + if p.has_torque {
-            h * (p.inv_inertia_world * p.torque)
+            Vec3A::from(h * (p.inv_inertia_world * p.torque))
         } else {
-            Vec3::ZERO
+            Vec3A::ZERO
         };
-    state.linear_velocity = flush_tiny(state.linear_velocity);
-    state.angular_velocity = flush_tiny(state.angular_velocity);
+    state.linear_velocity = flush_tiny(v).into();
+    state.angular_velocity = flush_tiny(omega).into();
 }
 
 /// Sets the velocity components and the displacement along `locks`' axes to zero (the caller does it after
@@ -115,8 +118,8 @@ pub const TINY_SPEED: f32 = 1e-15;
 
 /// `v` with the components smaller than [`TINY_SPEED`] in magnitude set to zero.
 #[inline]
-fn flush_tiny(v: Vec3) -> Vec3 {
-    Vec3::select(v.abs().cmplt(Vec3::splat(TINY_SPEED)), Vec3::ZERO, v)
+fn flush_tiny(v: Vec3A) -> Vec3A {
+    Vec3A::select(v.abs().cmplt(Vec3A::splat(TINY_SPEED)), Vec3A::ZERO, v)
 }
 
 /// Stage *integrate positions* of one substep: `Δp += h·v`, `Δq` by ω (first order). Fixed bodies and
