@@ -61,17 +61,19 @@ pub fn integrate_velocity(state: &mut SolverBody, p: &BodyParams, ctx: &StepCont
         Motion::Dynamic => {}
     }
     // Undamped bodies and bodies under no torque skip the division by 1 and the product with zero: the
-    // same bits (`v/1 = v`; `h·(I⁻¹·0)` is +0, which is what the addition of `Vec3::ZERO` adds).
-    let linear_acceleration = p.force * p.inv_mass + ctx.gravity * p.gravity_scale;
-    let mut v = state.linear_velocity;
+    // same bits (`v/1 = v`; `h·(I⁻¹·0)` is +0, which is what the addition of zero adds). In 16-byte vectors,
+    // each lane the same operation as alone, and each velocity written once.
+    let linear_acceleration =
+        Vec3A::from(p.force) * p.inv_mass + Vec3A::from(ctx.gravity) * p.gravity_scale;
+    let mut v = Vec3A::from(state.linear_velocity);
     if p.linear_damping != 0.0 {
         v /= 1.0 + h * p.linear_damping;
     }
-    state.linear_velocity = v + h * linear_acceleration;
+    let v = v + h * linear_acceleration;
 
-    if p.gyroscopic {
+    let mut omega = Vec3A::from(if p.gyroscopic {
         let rotation = state.delta_rotation * p.rotation;
-        state.angular_velocity = gyroscopic_iterations_with_norm(
+        gyroscopic_iterations_with_norm(
             state.angular_velocity,
             rotation,
             (&p.local_inertia, &p.local_inv_inertia),
@@ -79,20 +81,21 @@ pub fn integrate_velocity(state: &mut SolverBody, p: &BodyParams, ctx: &StepCont
             h,
             GYROSCOPIC_ITERATIONS,
             true,
-        );
-    }
-    let mut omega = state.angular_velocity;
+        )
+    } else {
+        state.angular_velocity
+    });
     if p.angular_damping != 0.0 {
         omega /= 1.0 + h * p.angular_damping;
     }
-    state.angular_velocity = omega
+    let omega = omega
         + if p.has_torque {
-            h * (p.inv_inertia_world * p.torque)
+            Vec3A::from(h * (p.inv_inertia_world * p.torque))
         } else {
-            Vec3::ZERO
+            Vec3A::ZERO
         };
-    state.linear_velocity = flush_tiny(state.linear_velocity);
-    state.angular_velocity = flush_tiny(state.angular_velocity);
+    state.linear_velocity = flush_tiny(v).into();
+    state.angular_velocity = flush_tiny(omega).into();
 }
 
 /// Sets the velocity components and the displacement along `locks`' axes to zero (the caller does it after
@@ -115,8 +118,8 @@ pub const TINY_SPEED: f32 = 1e-15;
 
 /// `v` with the components smaller than [`TINY_SPEED`] in magnitude set to zero.
 #[inline]
-fn flush_tiny(v: Vec3) -> Vec3 {
-    Vec3::select(v.abs().cmplt(Vec3::splat(TINY_SPEED)), Vec3::ZERO, v)
+fn flush_tiny(v: Vec3A) -> Vec3A {
+    Vec3A::select(v.abs().cmplt(Vec3A::splat(TINY_SPEED)), Vec3A::ZERO, v)
 }
 
 /// Stage *integrate positions* of one substep: `Δp += h·v`, `Δq` by ω (first order). Fixed bodies and
@@ -213,7 +216,6 @@ fn gyroscopic_iterations_with_norm(
     let (inertia, inv_inertia) = (Mat3A::from(*local_inertia), Mat3A::from(*local_inv_inertia));
     let mut omega = rotation.conjugate() * Vec3A::from(angular_velocity);
     let momentum = inertia * omega;
-    let omega_start_energy = omega.dot(momentum);
     let half_h = 0.5 * h;
     // The fixed-point map's derivative is about `½·h·|I⁻¹|·|L|` (`h·|ω|` times the inertia's anisotropy):
     // where that is small, plain iterations converge fast; elsewhere (a fast spin, or a thin rod turning
@@ -237,17 +239,32 @@ fn gyroscopic_iterations_with_norm(
         }
         return Vec3::from(rotation * omega);
     }
+    Vec3::from(rotation * newton_solve(omega, momentum, (&inertia, &inv_inertia), half_h))
+}
+
+/// The gyroscopic solve where the fixed-point map does not contract (see
+/// [`gyroscopic_iterations_with_norm`]): the body-frame ω' from the substep's `omega` and `momentum` (`L_b`),
+/// with the body-frame `inertia` and its inverse. Rare (a fast spin, a thin rod turning about a skew axis):
+/// kept out of the common path, which then needs fewer registers.
+#[inline(never)]
+fn newton_solve(
+    mut omega: Vec3A,
+    momentum: Vec3A,
+    (inertia, inv_inertia): (&Mat3A, &Mat3A),
+    half_h: f32,
+) -> Vec3A {
+    let omega_start_energy = omega.dot(momentum);
     // Newton's method on `F(ω) = ω − I⁻¹·g(ω) = 0`, `g(ω) = Δ(ω)*·L_b·Δ(ω)`, from the substep's ω.
-    let mut residual = momentum_residual(omega, momentum, &inertia, half_h);
+    let mut residual = momentum_residual(omega, momentum, inertia, half_h);
     for _ in 0..NEWTON_ITERATIONS {
-        let step = newton_step(omega, momentum, &inv_inertia, half_h);
+        let step = newton_step(omega, momentum, inv_inertia, half_h);
         // Backtracking: a full step far from the root can overshoot where the map is stiff (a thin rod's
         // inertia ratio multiplies `h·|ω|`); halve it until the momentum residual falls.
         let mut scale = 1.0;
         let mut accepted = false;
         for _ in 0..BACKTRACKS {
             let trial = omega - step * scale;
-            let r = momentum_residual(trial, momentum, &inertia, half_h);
+            let r = momentum_residual(trial, momentum, inertia, half_h);
             if r < residual {
                 omega = trial;
                 residual = r;
@@ -260,18 +277,17 @@ fn gyroscopic_iterations_with_norm(
             break;
         }
     }
-    let next = fixed_point_iteration(omega, momentum, &inv_inertia, half_h).next;
+    let next = fixed_point_iteration(omega, momentum, inv_inertia, half_h).next;
     // The exact root never gains kinetic energy (module docs); should the solve stop short of it, the
     // energy is capped at the substep's start (`½·ω·I·ω` in the body frame: the turn `Δ(ω')` is about ω'
     // itself, so the frame of `q` and of `q'` see the same vector).
     let energy_before = omega_start_energy;
-    let energy_after = next.dot(inertia * next);
-    let next = if energy_after > energy_before {
+    let energy_after = next.dot(*inertia * next);
+    if energy_after > energy_before {
         next * (energy_before / energy_after).sqrt()
     } else {
         next
-    };
-    Vec3::from(rotation * next)
+    }
 }
 
 /// Estimated derivative of the fixed-point map (dimensionless) from which the gyroscopic solve uses Newton's

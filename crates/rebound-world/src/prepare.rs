@@ -181,6 +181,8 @@ pub(crate) fn build_contacts(
 ) {
     // Last step's contacts are written over in place (their points' storage kept), the rest cut off.
     let mut count = 0;
+    // The points handed to the solver, added to the report at the end.
+    let mut point_count = 0;
     s.contact_sources.clear();
     let mut reports_forces = false;
     // Only the awake moving bodies, which have the first solver indices, are counted.
@@ -203,7 +205,7 @@ pub(crate) fn build_contacts(
             continue;
         }
         // Written in place in the list, point by point (not built aside and moved in).
-        if let Some(contact) = s.contacts.get_mut(count) {
+        let contact = if let Some(contact) = s.contacts.get_mut(count) {
             contact.renew(
                 ia,
                 ib,
@@ -211,6 +213,7 @@ pub(crate) fn build_contacts(
                 manifold.friction,
                 manifold.restitution,
             );
+            contact
         } else {
             s.contacts.push(Contact::new(
                 ia,
@@ -219,9 +222,10 @@ pub(crate) fn build_contacts(
                 manifold.friction,
                 manifold.restitution,
             ));
-        }
-        let Some(contact) = s.contacts.get_mut(count) else {
-            continue;
+            let Some(contact) = s.contacts.last_mut() else {
+                continue;
+            };
+            contact
         };
         count += 1;
         contact.rolling_friction = manifold.rolling_friction;
@@ -243,7 +247,7 @@ pub(crate) fn build_contacts(
                 feature_id: point.feature_id,
             });
         }
-        report.contact_point_count += contact.point_count;
+        point_count += contact.point_count;
         if loads {
             s.stack_loads
                 .add(s.contact_sources.len(), contact, &s.params);
@@ -254,6 +258,7 @@ pub(crate) fn build_contacts(
         }
     }
     s.contacts.truncate(count);
+    report.contact_point_count += point_count;
     if crowded {
         share_push_out(s, ctx.max_push_out_speed);
     }

@@ -39,8 +39,8 @@ use crate::prepare::Solver;
 use crate::state::WorldState;
 use rebound_constraints::JointState;
 use rebound_dynamics::{BodyType, SolverBody};
-use rebound_math::Vec3;
 use rebound_math::glam::Vec3A;
+use rebound_math::{Vec3, Vec4};
 
 /// The most suspects of one step let back in one by one (see the module docs).
 pub(crate) const MAX_TRIED_SUSPECTS: usize = 8;
@@ -227,27 +227,38 @@ fn check_solved(bounds: &Bounds, solved: &SolverBody) -> Option<QuarantineReason
     }
 }
 
-/// Whether every solved body of `states` has velocities within the bounds and finite pose deltas: the
-/// largest squared speeds against the bounds, and one sum that is 0 when every number is finite and NaN
-/// otherwise (`x·0`), with no branch per body. The same answer as [`solved_within`] for each: a NaN speed
-/// is not counted in the largest but makes the sum NaN, an infinite one is the largest.
+/// Whether every solved body of `states` certainly has velocities within the bounds and finite pose deltas,
+/// from sums over all bodies of the squares of every component: a sum of non-negative numbers is no smaller
+/// than any of them (rounding keeps order), so a body's `v.x² + v.y² + v.z²`, added in the order
+/// [`Bounds::within`] adds it, is no larger than the sums' `Σv.x² + Σv.y² + Σv.z²`; a NaN or an infinity
+/// anywhere makes its sum fail the comparison. `false` sends the caller to the body-by-body check, which
+/// finds the answer (also when a sum overflows with every body within). The components go in the 16-byte
+/// groups a [`SolverBody`] keeps them in (`[v, ω.x]`, `[ω.y, ω.z, Δp.x, Δp.y]`, `Δq`, `Δp.z`): one product
+/// and one sum each, with no branch per body.
 fn all_solved_within(bounds: &Bounds, states: &[SolverBody]) -> bool {
-    let (largest, probe) =
-        states
-            .iter()
-            .fold((Vec3A::ZERO, Vec3A::ZERO), |(largest, probe), solved| {
-                let speeds = Vec3A::new(
-                    solved.linear_velocity.length_squared(),
-                    solved.angular_velocity.length_squared(),
-                    solved.delta_rotation.length_squared(),
-                );
-                (
-                    largest.max(speeds),
-                    probe + (speeds + Vec3A::from(solved.delta_position)) * 0.0,
-                )
-            });
-    let limits = Vec3A::new(bounds.speed_sq, bounds.angular_speed_sq, f32::INFINITY);
-    largest.cmple(limits).all() && probe.cmpeq(Vec3A::ZERO).all()
+    let (first, second, rotation, last) = states.iter().fold(
+        (Vec4::ZERO, Vec4::ZERO, Vec4::ZERO, 0.0_f32),
+        |(first, second, rotation, last), solved| {
+            let (v, w, dp) = (
+                solved.linear_velocity,
+                solved.angular_velocity,
+                solved.delta_position,
+            );
+            let a = Vec4::new(v.x, v.y, v.z, w.x);
+            let b = Vec4::new(w.y, w.z, dp.x, dp.y);
+            let q = Vec4::from(solved.delta_rotation);
+            (
+                first + a * a,
+                second + b * b,
+                rotation + q * q,
+                last + dp.z * dp.z,
+            )
+        },
+    );
+    let speed_sq = first.x + first.y + first.z;
+    let angular_speed_sq = first.w + second.x + second.y;
+    let deltas = second.z + second.w + rotation.element_sum() + last;
+    speed_sq <= bounds.speed_sq && angular_speed_sq <= bounds.angular_speed_sq && deltas.is_finite()
 }
 
 /// Whether a solved body's velocities are within the bounds and its pose deltas finite.
@@ -291,5 +302,96 @@ fn forget(state: &mut WorldState, bodies: &[(BodyHandle, QuarantineReason)]) {
                 ..JointState::default()
             };
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Bounds of 100 m/s and 50 rad/s (the position bound is not read after the solve).
+    fn bounds() -> Bounds {
+        Bounds {
+            speed_sq: 1.0e4,
+            angular_speed_sq: 2.5e3,
+            position: 1.0e4,
+        }
+    }
+
+    /// A component anywhere from tiny to beyond the bounds, or not finite.
+    fn component() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            8 => -120.0_f32..120.0,
+            1 => Just(f32::NAN),
+            1 => Just(f32::INFINITY),
+            1 => Just(-3.0e38_f32),
+        ]
+    }
+
+    fn vector() -> impl Strategy<Value = Vec3> {
+        (component(), component(), component()).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    fn solved() -> impl Strategy<Value = SolverBody> {
+        (vector(), vector(), vector(), vector(), component()).prop_map(|(v, w, dp, q, qw)| {
+            SolverBody {
+                delta_rotation: rebound_math::Quat::from_xyzw(q.x, q.y, q.z, qw),
+                linear_velocity: v,
+                angular_velocity: w,
+                delta_position: dp,
+            }
+        })
+    }
+
+    proptest! {
+        /// The check over all bodies never passes a set with a body the body-by-body check finds out of
+        /// bounds or not finite.
+        #[test]
+        fn all_within_only_when_each_is(states in prop::collection::vec(solved(), 0..6)) {
+            let bounds = bounds();
+            if all_solved_within(&bounds, &states) {
+                for solved in &states {
+                    prop_assert!(solved_within(&bounds, solved), "{solved:?}");
+                }
+            }
+        }
+
+        /// Bodies well within the bounds, in any number, pass it: the body-by-body search is skipped.
+        #[test]
+        fn bodies_at_moderate_speeds_pass(
+            states in prop::collection::vec(
+                (-1.0_f32..1.0, -1.0_f32..1.0, -1.0_f32..1.0).prop_map(|(x, y, z)| SolverBody {
+                    delta_rotation: rebound_math::Quat::from_rotation_y(x),
+                    linear_velocity: Vec3::new(x, y, z) * 5.0,
+                    angular_velocity: Vec3::new(z, x, y) * 2.0,
+                    delta_position: Vec3::new(y, z, x) * 0.1,
+                }),
+                0..64,
+            )
+        ) {
+            // Each body at most √75 m/s and √12 rad/s: 64 of them sum to at most 4,800 and 768.
+            prop_assert!(all_solved_within(&bounds(), &states));
+        }
+    }
+
+    #[test]
+    fn one_fast_body_among_slow_ones_fails_the_check_over_all() {
+        let slow = SolverBody {
+            linear_velocity: Vec3::new(1.0, 0.0, 0.0),
+            ..SolverBody::STATIC
+        };
+        let fast = SolverBody {
+            linear_velocity: Vec3::new(0.0, 100.5, 0.0),
+            ..SolverBody::STATIC
+        };
+        let spinning = SolverBody {
+            angular_velocity: Vec3::new(0.0, 0.0, 50.5),
+            ..SolverBody::STATIC
+        };
+        let bounds = bounds();
+        assert!(all_solved_within(&bounds, &[slow, slow]));
+        assert!(!all_solved_within(&bounds, &[slow, fast, slow]));
+        assert!(!all_solved_within(&bounds, &[spinning, slow]));
     }
 }
