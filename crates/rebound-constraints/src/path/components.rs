@@ -11,7 +11,6 @@
 //! floating loop of hinges), which is left to Gauss–Seidel alone.
 
 use super::graph::{DirectGraph, MAX_GRAPH_FILL, MAX_GRAPH_JOINTS};
-use super::row::MAX_ROWS;
 use super::topology::Topology;
 use crate::pair::BodyPair;
 use crate::pair::dynamic_bodies;
@@ -92,15 +91,16 @@ impl Topology {
     ) -> bool {
         self.paths.iter().any(|range| {
             let joints = &self.path_joints[range.clone()];
-            // `k` joints have at most `MAX_ROWS·k` rows and move at least `k − 1` bodies.
-            if MAX_ROWS * joints.len() <= 6 * joints.len().saturating_sub(1) {
+            // `k` joints move at least `k − 1` bodies: a path with no more rows than `6·(k − 1)` is not
+            // over-constrained, whichever of its ends are dynamic (a rope chain ends here).
+            let row_count: usize = joints.iter().map(|&index| rows(index)).sum();
+            if row_count <= 6 * joints.len().saturating_sub(1) {
                 return false;
             }
-            let (mut row_count, mut sides) = (0, 0);
-            for &index in joints {
-                row_count += rows(index);
-                sides += dynamic_bodies(pair(index)).iter().flatten().count();
-            }
+            let sides: usize = joints
+                .iter()
+                .map(|&index| dynamic_bodies(pair(index)).iter().flatten().count())
+                .sum();
             row_count > 6 * (sides + 1).saturating_sub(joints.len())
         })
     }
