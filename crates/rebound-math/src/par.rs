@@ -242,11 +242,13 @@ where
 /// sections, each of which would otherwise start with one thread while the other wakes up. Only who runs
 /// which task changes, never what a task computes: the results are the same bits.
 ///
-/// The spinners are the second halves of `rayon::join`s (on the stack: nothing is allocated), at most one
-/// per core the machine has besides this one, so a pool of more threads than cores is not crowded by
-/// spinners. A spinner that finds itself on `f`'s own thread (taken back while `f` waits) returns at once.
-/// A spinner runs whatever the pool has pending, other callers' tasks too; `with_pool_awake` returns once the
-/// task a spinner is running when `f` ends has ended.
+/// One thread is kept awake, when the pool and the machine have another: the spinner is the second half of
+/// a `rayon::join` (on the stack: nothing is allocated), pushed before any of `f`'s tasks, so the first
+/// thread to steal from the caller takes it before any of them, and never a thread already inside `f`'s
+/// work. (Spinners forked from one another could be taken up by a thread waiting inside `f` for a task of
+/// its own, which would then spin until `f` ended, and `f` would never end.) The spinner returns at once if
+/// it finds itself on `f`'s own thread (taken back while `f` waits). It runs whatever the pool has pending,
+/// other callers' tasks too; `with_pool_awake` returns once the task it is running when `f` ends has ended.
 /// In the serial build, and in a pool of one thread, this is `f()`.
 #[inline]
 pub fn with_pool_awake<R, F>(f: F) -> R
@@ -269,12 +271,12 @@ mod awake {
     /// Failed looks for pending work between two yields of the core while a spinner waits.
     const LOOKS_BEFORE_YIELD: u32 = 64;
 
-    /// How many threads may spin beside the caller: the pool's others, at most the machine's other cores.
-    fn spinner_count() -> usize {
+    /// Whether a thread may spin beside the caller: the pool has another and the machine another core.
+    fn spinner_wanted() -> bool {
         static CORES: OnceLock<usize> = OnceLock::new();
         let cores =
             *CORES.get_or_init(|| std::thread::available_parallelism().map_or(1, usize::from));
-        rayon::current_num_threads().min(cores).saturating_sub(1)
+        rayon::current_num_threads().min(cores) > 1
     }
 
     pub(super) fn run<R, F>(f: F) -> R
@@ -282,30 +284,20 @@ mod awake {
         F: FnOnce() -> R + Send,
         R: Send,
     {
-        let count = spinner_count();
-        if count == 0 {
+        if !spinner_wanted() {
             return f();
         }
         let done = AtomicBool::new(false);
         let owner = rayon::current_thread_index();
         let (result, ()) = rayon::join(
             || {
-                // Set also when `f` unwinds, so that no spinner waits for ever.
+                // Set also when `f` unwinds, so that the spinner does not wait for ever.
                 let _done = SetOnDrop(&done);
                 f()
             },
-            || spinners(&done, owner, count),
+            || spin(&done, owner),
         );
         result
-    }
-
-    /// `count` spinners: this one and, forked off first, the rest.
-    fn spinners(done: &AtomicBool, owner: Option<usize>, count: usize) {
-        if count > 1 {
-            rayon::join(|| spinners(done, owner, count - 1), || spin(done, owner));
-        } else {
-            spin(done, owner);
-        }
     }
 
     /// Runs the pool's pending work until `done`, yielding the core now and then when there is none.
@@ -433,7 +425,7 @@ mod tests {
 
     #[cfg(feature = "parallel")]
     #[test]
-    fn with_pool_awake_ends_its_spinners_when_f_panics() {
+    fn with_pool_awake_ends_its_spinner_when_f_panics() {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(2)
             .build()
