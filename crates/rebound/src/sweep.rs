@@ -12,7 +12,9 @@
 //! step, the body is put back on its path at `t*`, touching, with its velocities unchanged: the next step's
 //! contacts see the touch and the solver handles the impact. The body loses `dt − t*` of motion; kinetic
 //! energy is untouched (no velocity is changed) and the impact that follows removes energy or keeps it, as
-//! its restitution says.
+//! its restitution says. A body jointed to another dynamic body is not swept: put back alone while its
+//! partner moves on, it would open the joint by their relative motion over `dt − t*`; the joint keeps it
+//! with its partner, and the next step's contacts take what it touches.
 
 use crate::backend::ParryBackend;
 use crate::shape::{from_parry_pose, to_parry_pose};
@@ -239,9 +241,15 @@ pub(crate) fn sweep(
         pushed,
         candidates,
     } = scratch;
-    // The joints are looked through once, at the first impact (a step without one never walks them).
-    let mut tied_known = false;
+    // The joints are looked through once, and only in a step that sweeps some body; a tied body is not
+    // cast, since it would not be put back.
+    if !spinning.is_empty() {
+        tied_bodies(world, tied);
+    }
     for &(handle, start) in spinning.iter() {
+        if tied.binary_search(&handle).is_ok() {
+            continue;
+        }
         pushed_partners(handle, world.contacts(), pushed);
         let Some(t) = first_impact(
             (handle, start),
@@ -252,13 +260,6 @@ pub(crate) fn sweep(
         ) else {
             continue;
         };
-        if !tied_known {
-            tied_bodies(world, tied);
-            tied_known = true;
-        }
-        if tied.binary_search(&handle).is_ok() {
-            continue;
-        }
         let Some(body) = world.body_mut(handle) else {
             continue;
         };
