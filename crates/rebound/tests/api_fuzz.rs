@@ -685,10 +685,11 @@ fn the_long_randomised_run() {
 /// Found by the long run (shrunk): a turning body with a flat box (half-thickness 10⁻²⁰ m) starts a step
 /// touching a triangle mesh. Parry's nonlinear cast, asked for a later impact of a pair
 /// that touches at the start, steps through the time span by the pair's thinnest thickness — 10²⁰ steps:
-/// the world's `step` never returned. The sweep now leaves touching pairs to the contacts.
+/// the world's `step` never returned. The sweep leaves a touching pair to the contacts when parry's walk
+/// would take more than `MAX_TOUCHING_ROUNDS` rounds.
 #[test]
 fn a_flat_box_touching_a_mesh_while_it_turns_does_not_hang_the_sweep() {
-    run(&[
+    let ops = vec![
         Op::InsertBody {
             kind: 1,
             position: Vec3::new(-0.4122645, -1.9907694, 1.3278117),
@@ -741,5 +742,13 @@ fn a_flat_box_touching_a_mesh_while_it_turns_does_not_hang_the_sweep() {
             Vec3::new(0.06930992, 0.069069415, 0.06390921),
             -3.4028235e38,
         ),
-    ]);
+    ];
+    // On a thread of its own, so that a hang fails the test after the step budget instead of stalling it.
+    let (sender, receiver) = std::sync::mpsc::channel();
+    std::thread::spawn(move || sender.send(run(&ops)));
+    let budget = std::time::Duration::from_secs_f32(STEP_BUDGET);
+    assert!(
+        receiver.recv_timeout(budget).is_ok(),
+        "the case ran past {STEP_BUDGET} s: the sweep hung"
+    );
 }
