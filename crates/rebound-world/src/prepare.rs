@@ -108,36 +108,21 @@ pub(crate) fn build_solver_bodies(bodies: &BodySet, s: &mut Solver) {
     }
     // Each body's solver state and parameters read that body alone: over the pool, kept in index order.
     let body = |handle: &Option<BodyHandle>| handle.and_then(|h| bodies.get(h));
-    if par::is_parallel() {
-        // Both in one section: every entry is written.
-        let n = s.solver_handles.len();
-        s.states.resize(n, SolverBody::STATIC);
-        s.params.resize(n, BodyParams::WORLD);
-        let handles = &s.solver_handles;
-        par::for_each_indexed_zip_both_mut(
-            &mut s.states,
-            &mut s.params,
-            MIN_ITEMS_PER_TASK,
-            |i, state, params| {
-                if let Some(b) = handles.get(i).and_then(body) {
-                    *state = SolverBody::from_body(b);
-                    *params = BodyParams::from_body(b);
-                }
-            },
-        );
-        return;
-    }
-    par::map_collect_in_order(
-        &s.solver_handles,
+    // Both in one section: every entry is written.
+    let n = s.solver_handles.len();
+    s.states.resize(n, SolverBody::STATIC);
+    s.params.resize(n, BodyParams::WORLD);
+    let handles = &s.solver_handles;
+    par::for_each_indexed_zip_both_mut(
         &mut s.states,
-        MIN_ITEMS_PER_TASK,
-        |_, h| body(h).map_or(SolverBody::STATIC, SolverBody::from_body),
-    );
-    par::map_collect_in_order(
-        &s.solver_handles,
         &mut s.params,
         MIN_ITEMS_PER_TASK,
-        |_, h| body(h).map_or(BodyParams::WORLD, BodyParams::from_body),
+        |i, state, params| {
+            if let Some(b) = handles.get(i).and_then(body) {
+                *state = SolverBody::from_body(b);
+                *params = BodyParams::from_body(b);
+            }
+        },
     );
 }
 
