@@ -117,22 +117,21 @@ fn check(report: &Report) {
         // contacts they never had — a swinging chain folds onto itself, the bridge's balls roll onto new
         // planks — and when more of them exist than ever before, the step's buffers grow to hold them
         // (measured: under 1 per step on one thread; on two, the pool's per-task lists grow each on its
-        // own: up to 6 per step). A steady scene's step allocates nothing, except on a pool: the solver
-        // stage's team starts its helper with rayon's `Scope::spawn`, which boxes the job (48 bytes, once
-        // a step; `rebound_math::team`), and nothing else.
+        // own: up to 6 per step). A steady scene's step allocates nothing, on one thread or a pool (the
+        // solver stage's team starts its helpers as halves of `rayon::join`s on the stack,
+        // `rebound_math::team`).
         let steady = matches!(*name, "balls" | "pyramid" | "springs");
-        let team = if *threads > 1 { COUNTED } else { 0 };
         let allowed = match (steady, *threads > 1) {
-            (true, _) => team,
+            (true, _) => 0,
             (false, false) => 3 * COUNTED,
             (false, true) => 8 * COUNTED,
         };
         if steady {
             assert!(
-                *reallocations == 0 && *allocations <= team,
+                *reallocations == 0 && *allocations == 0,
                 "{name} on {threads} thread(s): {allocations} allocations and {reallocations} \
-                 reallocations ({bytes} bytes) in {COUNTED} steps (allowed {team} allocations); every \
-                 scene: {report:?}"
+                 reallocations ({bytes} bytes) in {COUNTED} steps (allowed none); every scene: \
+                 {report:?}"
             );
         }
         assert!(

@@ -268,8 +268,12 @@ mod awake {
     use std::sync::OnceLock;
     use std::sync::atomic::{AtomicBool, Ordering};
 
-    /// Failed looks for pending work between two yields of the core while a spinner waits.
-    const LOOKS_BEFORE_YIELD: u32 = 64;
+    /// Failed looks for pending work, a pause after each, between two yields of the core while a spinner
+    /// waits: a count, not a time. 4,096 looks (each a try at every queue of the pool) are about a
+    /// millisecond, longer than the serial stretches of a step, so the spinner keeps its core through the
+    /// step (a yield can hand the core to another process for a whole time slice) and only gives it away
+    /// now and then when the step's thread keeps it waiting longer.
+    const LOOKS_BEFORE_YIELD: u32 = 1 << 12;
 
     /// Whether a thread may spin beside the caller: the pool has another and the machine another core.
     fn spinner_wanted() -> bool {

@@ -7,34 +7,43 @@
 //! counter and, before running it, waits until a second counter (the chunks ended) reaches its phase's first
 //! number. The chunks of the phases before `p` hold the smaller numbers, were all taken before any of `p`'s,
 //! and none of `p`'s ends before they have: so the ended count reaches `ends[p − 1]` exactly when they all
-//! have. The wait spins on that counter, looking for the pool's pending tasks every few spins, then runs
-//! them or yields the core.
+//! have. The wait spins on that counter, looking for the pool's pending tasks every few spins; only after a
+//! fixed number of spins (a count, not a time: the same on every run) does it also yield the core, which
+//! a phase's wait never reaches when the members have cores of their own. A waiting member so neither
+//! sleeps nor gives its core to another process inside a step: on a machine whose idle cores halt, waking
+//! one costs more than a small scene's phase.
 //!
 //! Which member runs which chunk is decided by who takes the number first; the results may not depend on
 //! it, and the solver's do not: a chunk computes the same values whichever thread runs it (see the callers).
 //! A member only ever waits for chunks other members have taken and are running, and a chunk never waits,
 //! so the team cannot deadlock however many of its members the pool gets round to starting: the calling
-//! thread alone runs every chunk when the others are busy. Members are rayon jobs of the current pool
-//! (`rayon::in_place_scope`), so the world's thread-pool setting rules. A chunk may call into rayon (a
+//! thread alone runs every chunk when the others are busy. Members are rayon jobs of the current pool, so
+//! the world's thread-pool setting rules. A chunk may call into rayon (a
 //! joint path solved from both ends as two tasks), and a waiting member runs the pool's pending tasks
 //! (`rayon::yield_now`), so such a chunk's second task is taken up by a member that would otherwise only
 //! wait. A member job that starts on a thread already in a team — picked up while that thread waits, or
 //! inside a chunk — returns at once: a thread is a member of one team at a time, so no member waits on a
-//! chunk further up its own stack.
+//! chunk further up its own stack. The helpers are the second halves of nested `rayon::join`s on the
+//! caller's stack, so a team allocates nothing.
 //!
-//! In the serial build, and in a pool of one thread, [`run`] is the plain loop over the phases and chunks.
+//! In the serial build, in a pool of one thread, and for a list whose every phase is one chunk (nothing
+//! could run beside it), [`run`] is the plain loop over the phases and chunks.
 
 #[cfg(feature = "parallel")]
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
-/// Spins on the ended count before each yield of the core while a member waits for a phase.
+/// Spins on the ended count before a waiting member also yields the core (then at every look): 2^16
+/// spins of one pause each, with a look for the pool's tasks every [`SPINS_BETWEEN_LOOKS`], are 0.2 to a
+/// few milliseconds (a pause takes 10 to 140 cycles, by processor), longer than a phase of a small
+/// scene's step, so the yield comes into play when the pool has more threads than the machine has free
+/// cores (a member waiting on a chunk whose thread lost its core), not between a step's phases.
 #[cfg(feature = "parallel")]
-const SPINS_BEFORE_YIELD: u32 = 256;
+const SPINS_BEFORE_YIELD: u64 = 1 << 16;
 
 /// Spins between two looks for the pool's pending tasks while a member waits: a chunk's own tasks (a path
 /// solved from both ends) are taken up within a fraction of a microsecond, not after the whole spin.
 #[cfg(feature = "parallel")]
-const SPINS_BETWEEN_LOOKS: u32 = 16;
+const SPINS_BETWEEN_LOOKS: u64 = 16;
 
 /// The number of threads a team started here would have: the current pool's (1 in the serial build).
 #[must_use]
@@ -54,7 +63,7 @@ pub fn size() -> usize {
 /// every member has returned.
 pub fn run(ends: &[u32], work: &(dyn Fn(usize, u32) + Sync)) {
     #[cfg(feature = "parallel")]
-    if crate::par::is_parallel() {
+    if crate::par::is_parallel() && widest(ends) > 1 {
         run_on_pool(ends, work);
         return;
     }
@@ -85,27 +94,50 @@ struct Counters {
     failed: AtomicBool,
 }
 
+/// The most chunks of one phase of `ends`.
 #[cfg(feature = "parallel")]
-fn run_on_pool(ends: &[u32], work: &(dyn Fn(usize, u32) + Sync)) {
-    let counters = Counters::default();
-    let mut widest = 0;
-    let mut start = 0;
+fn widest(ends: &[u32]) -> u32 {
+    let (mut widest, mut start) = (0, 0);
     for &end in ends {
         widest = widest.max(end.saturating_sub(start));
         start = start.max(end);
     }
-    let helpers = (rayon::current_num_threads().saturating_sub(1)).min(widest as usize);
-    rayon::in_place_scope(|scope| {
-        for _ in 1..=helpers {
-            scope.spawn(|_| {
-                // A helper is never needed for progress: one started on a thread already in a team leaves.
-                if !IN_TEAM.get() {
-                    member(&counters, ends, work);
-                }
-            });
-        }
-        member(&counters, ends, work);
-    });
+    widest
+}
+
+#[cfg(feature = "parallel")]
+fn run_on_pool(ends: &[u32], work: &(dyn Fn(usize, u32) + Sync)) {
+    let counters = Counters::default();
+    // The caller is one member: a phase of `w` chunks needs `w − 1` more.
+    let helpers = (rayon::current_num_threads().saturating_sub(1))
+        .min(widest(ends).saturating_sub(1) as usize);
+    with_helpers(helpers, &counters, ends, work);
+}
+
+/// Offers `helpers` helper members to the pool, then walks the list as a member itself; returns once every
+/// helper has returned. Each helper is the second half of a `rayon::join`, on this thread's stack (nothing
+/// is allocated), which another thread steals or this one runs itself when its own walk is over (the
+/// numbers are gone then: it returns at once).
+#[cfg(feature = "parallel")]
+fn with_helpers(
+    helpers: usize,
+    counters: &Counters,
+    ends: &[u32],
+    work: &(dyn Fn(usize, u32) + Sync),
+) {
+    let Some(more) = helpers.checked_sub(1) else {
+        member(counters, ends, work);
+        return;
+    };
+    rayon::join(
+        || with_helpers(more, counters, ends, work),
+        || {
+            // A helper is never needed for progress: one started on a thread already in a team leaves.
+            if !IN_TEAM.get() {
+                member(counters, ends, work);
+            }
+        },
+    );
 }
 
 #[cfg(feature = "parallel")]
@@ -165,23 +197,21 @@ fn member(counters: &Counters, ends: &[u32], work: &(dyn Fn(usize, u32) + Sync))
 /// Waits until `count` chunks have ended (the barrier before a phase); `false` if a chunk panicked.
 #[cfg(feature = "parallel")]
 fn wait_for(counters: &Counters, count: u32) -> bool {
-    let mut spins = 0_u32;
+    let mut spins = 0_u64;
     while counters.ended.0.load(Ordering::Acquire) < count {
         if counters.failed.load(Ordering::Relaxed) {
             return false;
         }
-        if spins < SPINS_BEFORE_YIELD {
-            spins += 1;
-            if spins.is_multiple_of(SPINS_BETWEEN_LOOKS)
-                && rayon::yield_now() == Some(rayon::Yield::Executed)
-            {
-                continue;
+        spins += 1;
+        if spins.is_multiple_of(SPINS_BETWEEN_LOOKS) {
+            match rayon::yield_now() {
+                Some(rayon::Yield::Executed) => continue,
+                // Nothing of the pool's to run meanwhile, for long: give the core away now and then.
+                _ if spins >= SPINS_BEFORE_YIELD => std::thread::yield_now(),
+                _ => {}
             }
-            std::hint::spin_loop();
-        } else if rayon::yield_now() != Some(rayon::Yield::Executed) {
-            // Nothing of the pool's to run meanwhile: give the core away.
-            std::thread::yield_now();
         }
+        std::hint::spin_loop();
     }
     true
 }
