@@ -27,7 +27,14 @@ use rebound_dynamics::integrate::{integrate_position, integrate_velocity};
 use rebound_dynamics::{
     BodyParams, ContactSolver, ContactTeam, MAX_CONTACT_POINTS, SolverBody, StepContext,
 };
-use rebound_math::{Disjoint, par, team};
+use rebound_math::{Disjoint, team};
+
+/// Bodies per chunk below which integration is not split: a phase boundary hands the bodies from core to
+/// core (their cache lines, and a barrier), which costs more than integrating a few hundred bodies on one
+/// core. A smaller scene (a chain of 500 balls, a bridge) integrates in one chunk, which joins the phases
+/// of one chunk around it: fewer barriers, and every body stays in the cache of the thread that solves it.
+/// The split changes which thread integrates a body, never a value.
+const BODIES_PER_CHUNK: usize = 256;
 
 /// The substeps' phases, rebuilt every step (the buffers kept).
 #[derive(Debug, Default)]
@@ -195,7 +202,7 @@ fn make_plan(
     plan.ops.clear();
     plan.phases.clear();
     let threads = team::size();
-    let body_chunks = (body_count / par::MIN_ITEMS_PER_TASK).clamp(1, threads);
+    let body_chunks = (body_count / BODIES_PER_CHUNK).clamp(1, threads);
     let groups = contacts.group_count();
     let scalar = contacts.has_scalar();
     let joint = !joints.is_idle();
@@ -314,7 +321,7 @@ unsafe fn run(shared: &Shared<'_>, op: Op, chunk: usize, chunks: usize) {
 #[cfg(test)]
 mod tests {
     use crate::{World, WorldSettings};
-    use rebound_constraints::{Joint, SoftSpring, Spring, SpringModel};
+    use rebound_constraints::{Joint, Rope, SoftSpring, Spring, SpringModel};
     use rebound_dynamics::BodyDesc;
     use rebound_math::Vec3;
     use rebound_math::par::rayon;
@@ -362,6 +369,58 @@ mod tests {
         // Integration and *apply forces* of each half of the bodies and of their joints back to back; the
         // joints' other passes do nothing.
         assert_eq!(spring_field(1_000, 2, 1).0, 1);
+    }
+
+    /// A horizontal chain of `links` balls on ropes from a world anchor (as the `chain` scene), stepped
+    /// `steps` times on a pool of `threads` threads: the phases of its last plan and the state's digest.
+    fn rope_chain(links: usize, threads: usize, steps: usize) -> (usize, u64) {
+        let mut world =
+            World::new(WorldSettings::default()).unwrap_or_else(|e| panic!("settings: {e}"));
+        let mut previous = None;
+        for i in 0..links {
+            let ball = world
+                .insert_body(&BodyDesc::dynamic().with_position(Vec3::new(
+                    (i as f32 + 1.0) * 0.25,
+                    0.0,
+                    0.0,
+                )))
+                .unwrap_or_else(|e| panic!("body: {e}"));
+            let rope = Joint::new(Rope::new(0.25).unwrap_or_else(|e| panic!("rope: {e}")));
+            match previous {
+                None => world.insert_world_joint(rope, ball),
+                Some(p) => world.insert_joint(rope, p, ball),
+            }
+            .unwrap_or_else(|e| panic!("joint: {e}"));
+            previous = Some(ball);
+        }
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap_or_else(|e| panic!("no pool: {e}"));
+        for _ in 0..steps {
+            pool.install(|| world.step(1.0 / 60.0));
+        }
+        (
+            world.scratch.solver.plan.phase_count(),
+            world.state_digest(),
+        )
+    }
+
+    #[test]
+    fn a_chain_of_500_balls_walks_its_substeps_in_one_phase() {
+        // 500 bodies are integrated in one chunk (`BODIES_PER_CHUNK`), which joins the joints' passes of
+        // one chunk: the team has no barrier to hand over, and the path's two halves are its only tasks.
+        assert_eq!(rope_chain(500, 2, 1).0, 1);
+        // 1,024 bodies are split: two integration phases a substep, between the joint passes.
+        assert_eq!(rope_chain(1_024, 2, 1).0, 4 * 4);
+    }
+
+    #[test]
+    fn a_chain_on_any_pool_gives_the_one_thread_bits() {
+        let one = rope_chain(200, 1, 20).1;
+        for threads in [2, 3, 8] {
+            assert_eq!(rope_chain(200, threads, 20).1, one, "{threads} threads");
+        }
     }
 
     #[test]
