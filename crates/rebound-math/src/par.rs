@@ -220,6 +220,12 @@ where
 }
 
 /// Runs `a` and `b`, on two threads if the pool has them, and returns both results.
+///
+/// When `a` ends while another thread still runs `b`, this thread spins until `b` ends (looking for the
+/// pool's pending tasks every few spins) before it leaves the wait to rayon, whose waiting thread yields its
+/// core a few dozen times and then sleeps: on a machine whose idle cores halt, a sleep and a wake inside a
+/// step cost more than a small scene's whole task. The spin is bounded by a count (`spin::SPINS`), not a
+/// time; `b` not yet taken up by another thread is run here at once, as rayon does.
 #[inline]
 pub fn join<A, B, RA, RB>(a: A, b: B) -> (RA, RB)
 where
@@ -230,9 +236,73 @@ where
 {
     #[cfg(feature = "parallel")]
     if is_parallel() {
-        return rayon::join(a, b);
+        return spin::join(a, b);
     }
     (a(), b())
+}
+
+#[cfg(feature = "parallel")]
+pub(crate) mod spin {
+    use std::sync::atomic::{AtomicU8, Ordering};
+
+    /// Spins, a pause each, a thread waits for the other half of a join (or a team member for a phase)
+    /// before it yields its core: 2^16 are 0.2 to a few milliseconds (a pause takes 10 to 140 cycles, by
+    /// processor), longer than any wait between two tasks of one step when each thread has a core, so the
+    /// yield only comes into play when the pool has more threads than the machine has free cores.
+    pub(crate) const SPINS: u64 = 1 << 16;
+
+    /// Spins between two looks for the pool's pending tasks: a waiting thread takes up a task within a
+    /// fraction of a microsecond, not after the whole spin.
+    pub(crate) const SPINS_BETWEEN_LOOKS: u64 = 16;
+
+    /// `b`'s state, as the thread running `a` sees it.
+    const WAITING: u8 = 0;
+    const RUNNING: u8 = 1;
+    const ENDED: u8 = 2;
+
+    /// [`super::join`] on the pool.
+    pub(super) fn join<A, B, RA, RB>(a: A, b: B) -> (RA, RB)
+    where
+        A: FnOnce() -> RA + Send,
+        B: FnOnce() -> RB + Send,
+        RA: Send,
+        RB: Send,
+    {
+        let state = AtomicU8::new(WAITING);
+        rayon::join(
+            || {
+                let ra = a();
+                // Only a hint of when rayon's own wait would find `b` done (rayon's latch orders the
+                // results): spin while another thread runs `b`; if none has taken it, rayon runs it here.
+                let mut spins = 0;
+                while state.load(Ordering::Acquire) == RUNNING && spins < SPINS {
+                    spins += 1;
+                    if spins.is_multiple_of(SPINS_BETWEEN_LOOKS)
+                        && rayon::yield_now() == Some(rayon::Yield::Executed)
+                    {
+                        continue;
+                    }
+                    std::hint::spin_loop();
+                }
+                ra
+            },
+            || {
+                state.store(RUNNING, Ordering::Relaxed);
+                // Ended also when `b` unwinds, so that `a`'s thread does not spin for nothing.
+                let _ended = EndOnDrop(&state);
+                b()
+            },
+        )
+    }
+
+    /// Marks `b` ended when dropped.
+    struct EndOnDrop<'a>(&'a AtomicU8);
+
+    impl Drop for EndOnDrop<'_> {
+        fn drop(&mut self) {
+            self.0.store(ENDED, Ordering::Release);
+        }
+    }
 }
 
 /// Runs `f` with the pool's other threads kept awake until it returns: each spins, running whatever the pool
@@ -444,5 +514,46 @@ mod tests {
     #[test]
     fn join_returns_both() {
         assert_eq!(join(|| 2 + 2, || "four"), (4, "four"));
+    }
+
+    /// The sum of `0..n` by halving joins down to single items.
+    #[cfg(feature = "parallel")]
+    fn sum_by_joins(range: std::ops::Range<u64>) -> u64 {
+        if range.end - range.start <= 1 {
+            return range.start * u64::from(range.end > range.start);
+        }
+        let mid = range.start + (range.end - range.start) / 2;
+        let (a, b) = join(
+            || sum_by_joins(range.start..mid),
+            || sum_by_joins(mid..range.end),
+        );
+        a + b
+    }
+
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn nested_joins_on_pools_of_any_size() {
+        for threads in [1, 2, 3, 8] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap_or_else(|e| panic!("no pool: {e}"));
+            let sum = pool.install(|| with_pool_awake(|| sum_by_joins(0..10_000)));
+            assert_eq!(sum, (0..10_000).sum::<u64>(), "{threads} threads");
+        }
+    }
+
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn a_panicking_half_of_a_join_reaches_the_caller() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap_or_else(|e| panic!("no pool: {e}"));
+        let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            pool.install(|| join(|| sum_by_joins(0..1_000), || panic!("b fails")))
+        }));
+        assert!(result.is_err());
+        assert_eq!(pool.install(|| join(|| 1, || 2)), (1, 2));
     }
 }

@@ -32,18 +32,13 @@
 #[cfg(feature = "parallel")]
 use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 
-/// Spins on the ended count before a waiting member also yields the core (then at every look): 2^16
-/// spins of one pause each, with a look for the pool's tasks every [`SPINS_BETWEEN_LOOKS`], are 0.2 to a
-/// few milliseconds (a pause takes 10 to 140 cycles, by processor), longer than a phase of a small
-/// scene's step, so the yield comes into play when the pool has more threads than the machine has free
-/// cores (a member waiting on a chunk whose thread lost its core), not between a step's phases.
+// A waiting member looks for the pool's tasks every `SPINS_BETWEEN_LOOKS` spins (a chunk's own tasks, a
+// path solved from both ends, are taken up within a fraction of a microsecond) and also yields its core
+// after `SPINS_BEFORE_YIELD`: longer than a phase of a step, so the yield comes into play when the pool has
+// more threads than the machine has free cores (a member waiting on a chunk whose thread lost its core),
+// not between a step's phases.
 #[cfg(feature = "parallel")]
-const SPINS_BEFORE_YIELD: u64 = 1 << 16;
-
-/// Spins between two looks for the pool's pending tasks while a member waits: a chunk's own tasks (a path
-/// solved from both ends) are taken up within a fraction of a microsecond, not after the whole spin.
-#[cfg(feature = "parallel")]
-const SPINS_BETWEEN_LOOKS: u64 = 16;
+use crate::par::spin::{SPINS as SPINS_BEFORE_YIELD, SPINS_BETWEEN_LOOKS};
 
 /// The number of threads a team started here would have: the current pool's (1 in the serial build).
 #[must_use]
@@ -115,9 +110,10 @@ fn run_on_pool(ends: &[u32], work: &(dyn Fn(usize, u32) + Sync)) {
 }
 
 /// Offers `helpers` helper members to the pool, then walks the list as a member itself; returns once every
-/// helper has returned. Each helper is the second half of a `rayon::join`, on this thread's stack (nothing
-/// is allocated), which another thread steals or this one runs itself when its own walk is over (the
-/// numbers are gone then: it returns at once).
+/// helper has returned. Each helper is the second half of a join (`par::join`: a helper still on its last
+/// chunk is waited for by spinning), on this thread's stack (nothing is allocated), which another thread
+/// steals or this one runs itself when its own walk is over (the numbers are gone then: it returns at
+/// once).
 #[cfg(feature = "parallel")]
 fn with_helpers(
     helpers: usize,
@@ -129,7 +125,7 @@ fn with_helpers(
         member(counters, ends, work);
         return;
     };
-    rayon::join(
+    crate::par::join(
         || with_helpers(more, counters, ends, work),
         || {
             // A helper is never needed for progress: one started on a thread already in a team leaves.
