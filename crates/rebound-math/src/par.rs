@@ -43,11 +43,17 @@ where
 {
     #[cfg(feature = "parallel")]
     if is_parallel() && items.len() > min_len {
-        items
-            .par_iter_mut()
-            .with_min_len(min_len.max(1))
-            .enumerate()
-            .for_each(|(i, item)| f(i, item));
+        spin::split_mut(
+            items,
+            0,
+            min_len,
+            rayon::current_num_threads(),
+            &|start, part| {
+                for (k, item) in part.iter_mut().enumerate() {
+                    f(start + k, item);
+                }
+            },
+        );
         return;
     }
     let _ = min_len;
@@ -67,11 +73,18 @@ where
 {
     #[cfg(feature = "parallel")]
     if is_parallel() && items.len() > min_len {
-        items
-            .par_iter_mut()
-            .zip(with)
-            .with_min_len(min_len.max(1))
-            .for_each(|(item, w)| f(item, w));
+        let len = items.len().min(with.len());
+        spin::split_mut(
+            &mut items[..len],
+            0,
+            min_len,
+            rayon::current_num_threads(),
+            &|start, part| {
+                for (item, w) in part.iter_mut().zip(&with[start..]) {
+                    f(item, w);
+                }
+            },
+        );
         return;
     }
     let _ = min_len;
@@ -104,12 +117,20 @@ where
 {
     #[cfg(feature = "parallel")]
     if is_parallel() && items.len() > min_len {
-        items
-            .par_iter_mut()
-            .zip(with)
-            .with_min_len(min_len.max(1))
-            .enumerate()
-            .for_each(|(i, (item, w))| f(i, item, w));
+        let len = items.len().min(with.len());
+        let threads = rayon::current_num_threads();
+        spin::split_both_mut(
+            &mut items[..len],
+            &mut with[..len],
+            0,
+            min_len,
+            threads,
+            &|start, part, with| {
+                for (k, (item, w)) in part.iter_mut().zip(with).enumerate() {
+                    f(start + k, item, w);
+                }
+            },
+        );
         return;
     }
     let _ = min_len;
@@ -293,6 +314,57 @@ pub(crate) mod spin {
                 b()
             },
         )
+    }
+
+    /// Calls `f(start, part)` on parts of `items` (`start` the index of `part`'s first item in the whole)
+    /// that cover it once: `items` is halved, each half by a [`join`], until there is a part for each of
+    /// `threads` or a part would be shorter than `min_len`. One task a thread, against rayon's adaptive
+    /// split into several: a section of a small step is over in microseconds, each further task is one
+    /// more hand-over between threads, and the items these helpers serve (bodies, slots, joints) cost
+    /// about the same each. Each join's wait spins instead of sleeping ([`join`]).
+    pub(super) fn split_mut<T: Send>(
+        items: &mut [T],
+        start: usize,
+        min_len: usize,
+        threads: usize,
+        f: &(dyn Fn(usize, &mut [T]) + Sync),
+    ) {
+        if threads <= 1 || items.len() < 2 * min_len.max(1) {
+            f(start, items);
+            return;
+        }
+        let left = threads / 2;
+        let mid = items.len() * left / threads;
+        let (a, b) = items.split_at_mut(mid);
+        join(
+            || split_mut(a, start, min_len, left, f),
+            || split_mut(b, start + mid, min_len, threads - left, f),
+        );
+    }
+
+    /// [`split_mut`] over two lists of one length, split alike.
+    pub(super) fn split_both_mut<T: Send, U: Send, F>(
+        items: &mut [T],
+        with: &mut [U],
+        start: usize,
+        min_len: usize,
+        threads: usize,
+        f: &F,
+    ) where
+        F: Fn(usize, &mut [T], &mut [U]) + Sync,
+    {
+        if threads <= 1 || items.len() < 2 * min_len.max(1) {
+            f(start, items, with);
+            return;
+        }
+        let left = threads / 2;
+        let mid = items.len() * left / threads;
+        let (a, b) = items.split_at_mut(mid);
+        let (wa, wb) = with.split_at_mut(mid.min(with.len()));
+        join(
+            || split_both_mut(a, wa, start, min_len, left, f),
+            || split_both_mut(b, wb, start + mid, min_len, threads - left, f),
+        );
     }
 
     /// Marks `b` ended when dropped.
@@ -528,6 +600,50 @@ mod tests {
             || sum_by_joins(mid..range.end),
         );
         a + b
+    }
+
+    #[cfg(feature = "parallel")]
+    #[test]
+    fn for_each_visits_every_item_once_on_pools_of_any_size() {
+        for threads in [2, 3, 8] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap_or_else(|e| panic!("no pool: {e}"));
+            for len in [0, 1, 63, 64, 65, 129, 1000] {
+                pool.install(for_each_visits_every_item_once_of(len));
+            }
+        }
+    }
+
+    /// [`for_each_visits_every_item_once`] on `len` items.
+    #[cfg(feature = "parallel")]
+    fn for_each_visits_every_item_once_of(len: usize) -> impl FnOnce() + Send {
+        move || {
+            let mut items = vec![0_u32; len];
+            for_each_mut(&mut items, 8, |i, x| *x += i as u32 + 1);
+            assert!(items.iter().enumerate().all(|(i, &x)| x == i as u32 + 1));
+            let mut with: Vec<u32> = (0..len as u32 + 5).collect();
+            for_each_zip_mut(&mut items, &with, 8, |x, &w| *x -= w);
+            assert!(items.iter().all(|&x| x == 1));
+            for_each_indexed_zip_both_mut(&mut items, &mut with, 8, |i, x, w| {
+                *w += *x + i as u32;
+                *x = 0;
+            });
+            assert!(items.iter().all(|&x| x == 0));
+            assert!(
+                with[..len]
+                    .iter()
+                    .enumerate()
+                    .all(|(i, &w)| w == 2 * i as u32 + 1)
+            );
+            assert!(
+                with[len..]
+                    .iter()
+                    .enumerate()
+                    .all(|(i, &w)| w == (len + i) as u32)
+            );
+        }
     }
 
     #[cfg(feature = "parallel")]
