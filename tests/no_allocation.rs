@@ -118,7 +118,7 @@ fn check(report: &Report) {
         // planks — and when more of them exist than ever before, the step's buffers grow to hold them
         // (measured: under 1 per step on one thread; on two, the pool's per-task lists grow each on its
         // own: up to 6 per step). A steady scene's step allocates nothing, on one thread or a pool (the
-        // solver stage's team starts its helpers as halves of `rayon::join`s on the stack,
+        // solver stage's team starts its other members as halves of `rayon::join`s on the stack,
         // `rebound_math::team`).
         let steady = matches!(*name, "balls" | "pyramid" | "springs");
         let allowed = match (steady, *threads > 1) {

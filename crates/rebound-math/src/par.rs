@@ -320,7 +320,7 @@ pub(crate) mod spin {
     /// that cover it once: `items` is halved, each half by a [`join`], until there is a part for each of
     /// `threads` or a part would be shorter than `min_len`. One task a thread, against rayon's adaptive
     /// split into several: a section of a small step is over in microseconds, each further task is one
-    /// more hand-over between threads, and the items these helpers serve (bodies, slots, joints) cost
+    /// more hand-over between threads, and the items these functions serve (bodies, slots, joints) cost
     /// about the same each. Each join's wait spins instead of sleeping ([`join`]).
     pub(super) fn split_mut<T: Send>(
         items: &mut [T],

@@ -23,7 +23,7 @@
 //! (`rayon::yield_now`), so such a chunk's second task is taken up by a member that would otherwise only
 //! wait. A member job that starts on a thread already in a team — picked up while that thread waits, or
 //! inside a chunk — returns at once: a thread is a member of one team at a time, so no member waits on a
-//! chunk further up its own stack. The helpers are the second halves of nested `rayon::join`s on the
+//! chunk further up its own stack. The other members are the second halves of nested joins on the
 //! caller's stack, so a team allocates nothing.
 //!
 //! In the serial build, in a pool of one thread, and for a list whose every phase is one chunk (nothing
@@ -104,31 +104,31 @@ fn widest(ends: &[u32]) -> u32 {
 fn run_on_pool(ends: &[u32], work: &(dyn Fn(usize, u32) + Sync)) {
     let counters = Counters::default();
     // The caller is one member: a phase of `w` chunks needs `w − 1` more.
-    let helpers = (rayon::current_num_threads().saturating_sub(1))
+    let others = (rayon::current_num_threads().saturating_sub(1))
         .min(widest(ends).saturating_sub(1) as usize);
-    with_helpers(helpers, &counters, ends, work);
+    with_members(others, &counters, ends, work);
 }
 
-/// Offers `helpers` helper members to the pool, then walks the list as a member itself; returns once every
-/// helper has returned. Each helper is the second half of a join (`par::join`: a helper still on its last
+/// Offers `others` more members to the pool, then walks the list as a member itself; returns once every
+/// other member has returned. Each is the second half of a join (`par::join`: a member still on its last
 /// chunk is waited for by spinning), on this thread's stack (nothing is allocated), which another thread
 /// steals or this one runs itself when its own walk is over (the numbers are gone then: it returns at
 /// once).
 #[cfg(feature = "parallel")]
-fn with_helpers(
-    helpers: usize,
+fn with_members(
+    others: usize,
     counters: &Counters,
     ends: &[u32],
     work: &(dyn Fn(usize, u32) + Sync),
 ) {
-    let Some(more) = helpers.checked_sub(1) else {
+    let Some(more) = others.checked_sub(1) else {
         member(counters, ends, work);
         return;
     };
     crate::par::join(
-        || with_helpers(more, counters, ends, work),
+        || with_members(more, counters, ends, work),
         || {
-            // A helper is never needed for progress: one started on a thread already in a team leaves.
+            // No other member is needed for progress: one started on a thread already in a team leaves.
             if !IN_TEAM.get() {
                 member(counters, ends, work);
             }
