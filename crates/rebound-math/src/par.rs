@@ -193,31 +193,53 @@ where
     T: Send,
     F: Fn(usize, &mut [T]) + Sync + Send,
 {
-    let Some(out) = out.get_mut(..total) else {
+    // A list of zero-sized items: nothing is allocated.
+    let mut none = vec![(); total];
+    for_each_part_zip_mut(out, &mut none, starts, total, |r, part, _| f(r, part));
+}
+
+/// [`for_each_part_mut`] over two lists cut into the same parts: `f(r, part r of out, part r of with)`
+/// (both at least `total` long, else nothing is called). For a part written with a buffer of its own.
+#[inline]
+pub fn for_each_part_zip_mut<T, U, F>(
+    out: &mut [T],
+    with: &mut [U],
+    starts: &[usize],
+    total: usize,
+    f: F,
+) where
+    T: Send,
+    U: Send,
+    F: Fn(usize, &mut [T], &mut [U]) + Sync + Send,
+{
+    let (Some(out), Some(with)) = (out.get_mut(..total), with.get_mut(..total)) else {
         return;
     };
     #[cfg(feature = "parallel")]
     if is_parallel() && starts.len() > 1 {
-        parts::split(out, starts, 0, &f);
+        parts::split(out, with, starts, 0, &f);
         return;
     }
-    let mut rest = out;
+    let (mut rest, mut rest_with) = (out, with);
     let mut at = 0;
     for r in 0..starts.len() {
         let end = starts.get(r + 1).copied().unwrap_or(total).clamp(at, total);
         let (part, tail) = rest.split_at_mut(end - at);
-        f(r, part);
+        let (part_with, tail_with) = rest_with.split_at_mut(end - at);
+        f(r, part, part_with);
         rest = tail;
+        rest_with = tail_with;
         at = end;
     }
 }
 
 #[cfg(feature = "parallel")]
 mod parts {
-    /// [`super::for_each_part_mut`] over the parts `first..first + starts.len()`, `out` beginning at the
-    /// first one's start: the list of parts halved, each half a task, down to one part.
-    pub(super) fn split<T: Send, F: Fn(usize, &mut [T]) + Sync + Send>(
+    /// [`super::for_each_part_zip_mut`] over the parts `first..first + starts.len()`, both lists beginning
+    /// at the first one's start: the list of parts halved, each half a task, down to one part.
+    pub(super) fn split<T: Send, U: Send, F: Fn(usize, &mut [T], &mut [U]) + Sync + Send>(
         out: &mut [T],
+        with: &mut [U],
         starts: &[usize],
         first: usize,
         f: &F,
@@ -225,7 +247,7 @@ mod parts {
         let base = starts.first().copied().unwrap_or(0);
         if starts.len() <= 1 {
             if !starts.is_empty() {
-                f(first, out);
+                f(first, out, with);
             }
             return;
         }
@@ -234,10 +256,11 @@ mod parts {
             .get(half)
             .map_or(out.len(), |&s| s.saturating_sub(base).min(out.len()));
         let (low, high) = out.split_at_mut(cut);
+        let (low_with, high_with) = with.split_at_mut(cut);
         let (low_starts, high_starts) = starts.split_at(half);
         rayon::join(
-            || split(low, low_starts, first, f),
-            || split(high, high_starts, first + half, f),
+            || split(low, low_with, low_starts, first, f),
+            || split(high, high_with, high_starts, first + half, f),
         );
     }
 }
