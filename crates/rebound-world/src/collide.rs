@@ -61,7 +61,14 @@ pub(crate) fn collide<B: CollisionBackend>(
     // backend's keys are unique per body pair (equal keys — a faulty backend — still sort the same way
     // for the same input: the sort is deterministic). The key reads no number, so the manifolds the walk
     // below rejects (`is_usable`) sort like the others.
-    manifolds.sort_unstable_by_key(ContactManifold::order_key);
+    // A backend that writes its manifolds in order (the facade's, for one collider per body) leaves
+    // nothing to sort: on the pool the order is checked chunk by chunk and the sort's own pass skipped.
+    let in_order = par::is_parallel()
+        && manifolds.len() > pool::MANIFOLDS_PER_CHUNK
+        && pool::is_sorted_on_pool(&mut manifolds, &mut c.chunks);
+    if !in_order {
+        manifolds.sort_unstable_by_key(ContactManifold::order_key);
+    }
     // Contacts survive sleep: a pair of which neither body moves and one sleeps is not collided again (the
     // backend tests only pairs with a moving body), so last step's manifold carries over unchanged. The
     // pair stays in `contacts()` and touching, and its impulses warm-start the contact when a body wakes.

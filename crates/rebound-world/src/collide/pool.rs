@@ -42,6 +42,26 @@ pub(super) struct Chunks {
     /// Per chunk, how many old manifolds of its first key kept manifolds before it have taken.
     taken: Vec<usize>,
     counts: Vec<ChunkCounts>,
+    /// Per chunk, whether its manifolds are in order (scratch of [`is_sorted_on_pool`]).
+    sorted: Vec<bool>,
+}
+
+/// Whether `manifolds` are sorted by order key, checked over the pool chunk by chunk (and at the chunks'
+/// borders): a sorted list need not be sorted again (sorting it changes nothing).
+pub(super) fn is_sorted_on_pool(manifolds: &mut [ContactManifold], scratch: &mut Chunks) -> bool {
+    // Zero-sized partners: nothing is allocated.
+    let mut none = vec![(); manifolds.len()];
+    par::map_chunks_zip_mut(
+        manifolds,
+        &mut none,
+        MANIFOLDS_PER_CHUNK,
+        &mut scratch.sorted,
+        |_, chunk, _| chunk.is_sorted_by_key(ContactManifold::order_key),
+    );
+    scratch.sorted.iter().all(|&sorted| sorted)
+        && (MANIFOLDS_PER_CHUNK..manifolds.len())
+            .step_by(MANIFOLDS_PER_CHUNK)
+            .all(|start| manifolds[start - 1].order_key() <= manifolds[start].order_key())
 }
 
 /// How the walk treats a manifold, before the cap on contact points.
