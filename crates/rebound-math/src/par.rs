@@ -163,6 +163,129 @@ where
     out.extend(items.iter().enumerate().map(|(i, item)| f(i, item)));
 }
 
+/// `out` becomes `[f(0, chunk 0 of items, chunk 0 of with), f(1, …), …]`: `items` and `with` cut into
+/// chunks of `chunk_len` (the last one shorter; zipped: the shorter list sets how many), each chunk handed
+/// to `f` alone, with its number, on as many threads as the pool has, and the results kept in chunk order
+/// (`out`'s allocation is reused). For a pass whose items need what came before them in their chunk (a
+/// forward walk, a count), where [`for_each_zip_both_mut`] hands out single items.
+#[inline]
+pub fn map_chunks_zip_mut<T, U, R, F>(
+    items: &mut [T],
+    with: &mut [U],
+    chunk_len: usize,
+    out: &mut Vec<R>,
+    f: F,
+) where
+    T: Send,
+    U: Send,
+    R: Send,
+    F: Fn(usize, &mut [T], &mut [U]) -> R + Sync + Send,
+{
+    let chunk_len = chunk_len.max(1);
+    #[cfg(feature = "parallel")]
+    if is_parallel() && items.len() > chunk_len {
+        items
+            .par_chunks_mut(chunk_len)
+            .zip(with.par_chunks_mut(chunk_len))
+            .with_max_len(1)
+            .enumerate()
+            .map(|(k, (items, with))| f(k, items, with))
+            .collect_into_vec(out);
+        return;
+    }
+    out.clear();
+    out.extend(
+        items
+            .chunks_mut(chunk_len)
+            .zip(with.chunks_mut(chunk_len))
+            .enumerate()
+            .map(|(k, (items, with))| f(k, items, with)),
+    );
+}
+
+/// Calls `f(r, part r of out)` for every part of `out[..total]` on as many threads as the pool has: part
+/// `r` is `out[starts[r]..starts[r + 1]]` (the last one ends at `total`; `starts` ascending from 0, none past
+/// `total`). The parts are cut by halving the list of parts (`rayon::join`, nothing allocated), down to one
+/// part per task. For parts whose lengths are known before they are written: each written straight into
+/// its place.
+#[inline]
+pub fn for_each_part_mut<T, F>(out: &mut [T], starts: &[usize], total: usize, f: F)
+where
+    T: Send,
+    F: Fn(usize, &mut [T]) + Sync + Send,
+{
+    // A list of zero-sized items: nothing is allocated.
+    let mut none = vec![(); total];
+    for_each_part_zip_mut(out, &mut none, starts, total, |r, part, _| f(r, part));
+}
+
+/// [`for_each_part_mut`] over two lists cut into the same parts: `f(r, part r of out, part r of with)`
+/// (both at least `total` long, else nothing is called). For a part written with a buffer of its own.
+#[inline]
+pub fn for_each_part_zip_mut<T, U, F>(
+    out: &mut [T],
+    with: &mut [U],
+    starts: &[usize],
+    total: usize,
+    f: F,
+) where
+    T: Send,
+    U: Send,
+    F: Fn(usize, &mut [T], &mut [U]) + Sync + Send,
+{
+    let (Some(out), Some(with)) = (out.get_mut(..total), with.get_mut(..total)) else {
+        return;
+    };
+    #[cfg(feature = "parallel")]
+    if is_parallel() && starts.len() > 1 {
+        parts::split(out, with, starts, 0, &f);
+        return;
+    }
+    let (mut rest, mut rest_with) = (out, with);
+    let mut at = 0;
+    for r in 0..starts.len() {
+        let end = starts.get(r + 1).copied().unwrap_or(total).clamp(at, total);
+        let (part, tail) = rest.split_at_mut(end - at);
+        let (part_with, tail_with) = rest_with.split_at_mut(end - at);
+        f(r, part, part_with);
+        rest = tail;
+        rest_with = tail_with;
+        at = end;
+    }
+}
+
+#[cfg(feature = "parallel")]
+mod parts {
+    /// [`super::for_each_part_zip_mut`] over the parts `first..first + starts.len()`, both lists beginning
+    /// at the first one's start: the list of parts halved, each half a task, down to one part.
+    pub(super) fn split<T: Send, U: Send, F: Fn(usize, &mut [T], &mut [U]) + Sync + Send>(
+        out: &mut [T],
+        with: &mut [U],
+        starts: &[usize],
+        first: usize,
+        f: &F,
+    ) {
+        let base = starts.first().copied().unwrap_or(0);
+        if starts.len() <= 1 {
+            if !starts.is_empty() {
+                f(first, out, with);
+            }
+            return;
+        }
+        let half = starts.len() / 2;
+        let cut = starts
+            .get(half)
+            .map_or(out.len(), |&s| s.saturating_sub(base).min(out.len()));
+        let (low, high) = out.split_at_mut(cut);
+        let (low_with, high_with) = with.split_at_mut(cut);
+        let (low_starts, high_starts) = starts.split_at(half);
+        rayon::join(
+            || split(low, low_with, low_starts, first, f),
+            || split(high, high_with, high_starts, first + half, f),
+        );
+    }
+}
+
 /// Appends `part(0)`, `part(1)`, … `part(starts.len() − 1)` to `out`, in that order, copied over the pool:
 /// part `r` starts `starts[r]` items into what is appended (`starts` ascending from 0), and `total` items
 /// are appended in all. Each item is copied alone to its place, so the list is the same for any number of
@@ -517,6 +640,76 @@ mod tests {
         extend_concatenated(&mut out, &starts, 200, |r| parts[r]);
         assert_eq!(out.len(), 201);
         assert!(out[1..].iter().enumerate().all(|(i, &x)| x == i as u32));
+    }
+
+    /// Runs `f` on pools of 1, 2 and 3 threads (the parallel build; the serial build runs it once).
+    fn on_pools(f: impl Fn() + Send + Sync) {
+        #[cfg(feature = "parallel")]
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap_or_else(|e| panic!("no pool: {e}"));
+            pool.install(&f);
+        }
+        #[cfg(not(feature = "parallel"))]
+        f();
+    }
+
+    #[test]
+    fn map_chunks_zip_hands_out_each_chunk_once_in_order() {
+        on_pools(|| {
+            for len in [0_usize, 1, 63, 64, 65, 1000] {
+                let mut items: Vec<u32> = (0..len as u32).collect();
+                let mut with = vec![0_u32; len];
+                let mut out = vec![(usize::MAX, 0)];
+                map_chunks_zip_mut(&mut items, &mut with, 64, &mut out, |k, chunk, w| {
+                    for (x, y) in chunk.iter_mut().zip(w.iter_mut()) {
+                        *y = *x + 1;
+                        *x = k as u32;
+                    }
+                    (k, chunk.len())
+                });
+                let expected: Vec<_> = (0..len.div_ceil(64))
+                    .map(|k| (k, (len - 64 * k).min(64)))
+                    .collect();
+                assert_eq!(out, expected, "{len} items");
+                assert!(items.iter().enumerate().all(|(i, &k)| k as usize == i / 64));
+                assert!(with.iter().enumerate().all(|(i, &y)| y as usize == i + 1));
+            }
+        });
+    }
+
+    #[test]
+    fn for_each_part_hands_out_each_part_alone() {
+        on_pools(|| {
+            // Parts of lengths 3, 0, 1, 0, 196, 0 (the last one empty, at the end).
+            let starts = [0, 3, 3, 4, 4, 200];
+            let mut out = vec![u32::MAX; 210];
+            for_each_part_mut(&mut out, &starts, 200, |r, part| {
+                part.iter_mut().for_each(|x| *x = r as u32);
+            });
+            let expected: Vec<u32> = (0..200_u32)
+                .map(|i| match i {
+                    0..3 => 0,
+                    3 => 2,
+                    _ => 4,
+                })
+                .collect();
+            assert_eq!(out[..200], expected[..]);
+            assert!(out[200..].iter().all(|&x| x == u32::MAX), "past the total");
+            // Many parts, some empty: every item written once, by its own part.
+            let starts: Vec<usize> = (0..100).map(|r| r * r / 10).collect();
+            let total = 99 * 99 / 10 + 7;
+            let mut out = vec![u32::MAX; total];
+            for_each_part_mut(&mut out, &starts, total, |r, part| {
+                part.iter_mut().for_each(|x| *x = r as u32);
+            });
+            for (i, &x) in out.iter().enumerate() {
+                let r = starts.partition_point(|&s| s <= i) - 1;
+                assert_eq!(x as usize, r, "item {i}");
+            }
+        });
     }
 
     #[test]

@@ -33,8 +33,8 @@ pub(crate) struct Collision {
     rotations: Vec<(u64, Mat3)>,
     /// How many collide stages ran (so that a matrix of an earlier one is never read as current).
     collide_calls: u64,
-    /// For each manifold of the backend, what the pool found of it (on a pool of several threads only).
-    verdicts: Vec<pool::Verdict>,
+    /// The pool's walk's scratch (on a pool of several threads only).
+    chunks: pool::Chunks,
 }
 
 /// The backend's manifolds for the current poses into `c.manifolds`, sorted, validated and warm-started
@@ -61,7 +61,14 @@ pub(crate) fn collide<B: CollisionBackend>(
     // backend's keys are unique per body pair (equal keys — a faulty backend — still sort the same way
     // for the same input: the sort is deterministic). The key reads no number, so the manifolds the walk
     // below rejects (`is_usable`) sort like the others.
-    manifolds.sort_unstable_by_key(ContactManifold::order_key);
+    // A backend that writes its manifolds in order (the facade's, for one collider per body) leaves
+    // nothing to sort: on the pool the order is checked chunk by chunk and the sort's own pass skipped.
+    let in_order = par::is_parallel()
+        && manifolds.len() > pool::MANIFOLDS_PER_CHUNK
+        && pool::is_sorted_on_pool(&mut manifolds, &mut c.chunks);
+    if !in_order {
+        manifolds.sort_unstable_by_key(ContactManifold::order_key);
+    }
     // Contacts survive sleep: a pair of which neither body moves and one sleeps is not collided again (the
     // backend tests only pairs with a moving body), so last step's manifold carries over unchanged. The
     // pair stays in `contacts()` and touching, and its impulses warm-start the contact when a body wakes.
@@ -103,17 +110,17 @@ pub(crate) fn collide<B: CollisionBackend>(
     let mut kept = 0;
     let mut counts = Dropped::default();
     let (mut points, max_points) = (0, state.settings.limits.max_contact_points as usize);
-    // On a pool of several threads the walk's work on each manifold runs over the pool first
-    // (`pool::judge_on_pool`), and `pool::keep_judged` only keeps, caps and moves.
-    let judged = par::is_parallel() && pool::judge_on_pool(state, &mut manifolds, &mut c.verdicts);
-    if judged {
-        let mut lists = pool::Kept {
-            speeds: &mut speeds,
-            pushed: &mut pushed,
+    // On a pool of several threads the walk runs chunk by chunk over the pool (`pool::walk_on_pool`).
+    if par::is_parallel() && manifolds.len() > pool::MANIFOLDS_PER_CHUNK {
+        kept = pool::walk_on_pool(
+            state,
+            &mut manifolds,
+            &mut speeds,
+            &mut pushed,
             carried,
-            counts: &mut counts,
-        };
-        kept = pool::keep_judged(state, &mut manifolds, &c.verdicts, &mut lists);
+            &mut c.chunks,
+            &mut counts,
+        );
     } else {
         // One pass over the manifolds on one thread.
         for index in 0..manifolds.len() {

@@ -238,6 +238,25 @@ impl ContactManifold {
         self.basis = None;
     }
 
+    /// Becomes equal to `other`: its fields and its points in use written over this manifold's, the point
+    /// slots past them left as they were (as after [`ContactManifold::renew`]).
+    #[inline]
+    pub fn renew_from(&mut self, other: &Self) {
+        let used = other.point_count.min(MAX_MANIFOLD_POINTS);
+        self.body_a = other.body_a;
+        self.body_b = other.body_b;
+        self.key = other.key;
+        self.point_count = other.point_count;
+        self.normal = other.normal;
+        self.friction = other.friction;
+        self.restitution = other.restitution;
+        self.rolling_friction = other.rolling_friction;
+        self.surface_velocity = other.surface_velocity;
+        self.force_event_threshold = other.force_event_threshold;
+        self.points[..used].copy_from_slice(&other.points[..used]);
+        self.basis = other.basis;
+    }
+
     /// Sets the point slots past [`ContactManifold::point_count`] to their default (for a snapshot, whose
     /// serialised form then does not depend on what the slots held before).
     pub fn clear_unused_points(&mut self) {
@@ -369,6 +388,26 @@ impl<'a> ManifoldWriter<'a> {
             ));
             &mut self.list[index]
         }
+    }
+
+    /// The next `count` manifolds at once, to be written over in place, in any order, each with
+    /// [`ContactManifold::renew_from`] (or [`ContactManifold::renew`] and its points): the older manifolds
+    /// where the list has them, else manifolds with no points. All of them count as written.
+    pub fn next_slots(&mut self, count: usize) -> &mut [ContactManifold] {
+        let start = self.len;
+        self.len += count;
+        if self.list.len() < self.len {
+            let empty = ContactManifold::new(
+                BodyHandle::invalid(),
+                BodyHandle::invalid(),
+                0,
+                Vec3::ZERO,
+                0.0,
+                0.0,
+            );
+            self.list.resize(self.len, empty);
+        }
+        &mut self.list[start..self.len]
     }
 
     /// Adds a whole manifold (every byte of it written).

@@ -187,6 +187,9 @@ pub(crate) struct BroadPhase {
     /// The pool's traversal of the tree against itself: its copy of the tree and its buffers (reused).
     #[cfg(feature = "parallel")]
     self_overlaps: self_overlaps::SelfOverlaps<(ColliderHandle, ColliderHandle)>,
+    /// The pool's sort of the pairs its traversal found: its buffers (reused).
+    #[cfg(feature = "parallel")]
+    pool_sort: crate::pair_sort::PartSort,
     /// Per collider slot, what the pool computed for the pair search's boxes and for the refresh (scratch of
     /// `pool::on_pool`, reused: no allocation per step).
     #[cfg(feature = "parallel")]
@@ -274,13 +277,15 @@ impl BroadPhase {
         // On a pool of several threads, while the last search stayed well below the cap.
         #[cfg(feature = "parallel")]
         if rebound_math::par::is_parallel() && last_found * POOL_SEARCH_BELOW <= max_pairs {
-            search_on_pool(
+            self.capped += search_on_pool(
                 &self.bvh,
                 &mut self.self_overlaps,
                 |slot1, slot2| filter.keeps_leaves(slot1, slot2),
+                self.candidates.len(),
+                &mut self.pool_sort,
                 &mut self.pairs,
+                max_pairs,
             );
-            self.capped += keep_lowest(&mut self.pairs, &mut self.sort_scratch, max_pairs);
             return;
         }
         let (pairs, scratch, capped) = (&mut self.pairs, &mut self.sort_scratch, &mut self.capped);

@@ -98,10 +98,10 @@ pub(crate) struct NarrowPhase {
     /// The collider pair of each manifold of the last collide stage that reports contact forces, by manifold
     /// key (sorted by key once the stage is done): contact force events name colliders.
     pub(crate) force_pairs: Vec<(u64, ColliderHandle, ColliderHandle)>,
-    /// The runs of the parallel collide stage and their manifolds (empty between steps, capacity kept).
+    /// The runs of the parallel collide stage and their manifolds (scratch: each run writes over its list of
+    /// the last stage, capacity kept).
     runs: Vec<(PairRun, Vec<ContactManifold>)>,
     /// Where each run's manifolds start in the stage's list (scratch of the parallel collide stage).
-    #[cfg(feature = "parallel")]
     run_starts: Vec<usize>,
     /// Whether some collider has a force event threshold, with the [`ColliderSet::revision`] it was read
     /// at: a stage without hooks and without such a collider runs the pair loop that watches nothing.
@@ -235,7 +235,7 @@ impl NarrowPhase {
             let range = pairs.get(start..end).unwrap_or_default();
             run.pairs.clear();
             run.force_pairs.clear();
-            manifolds.clear();
+            // Written over last step's in place, as the one-thread stage writes over its list.
             let manifolds = &mut ManifoldWriter::new(manifolds);
             let mut cached = core::mem::take(&mut run.cached);
             let mut old = cached.drain(..).peekable();
@@ -247,29 +247,28 @@ impl NarrowPhase {
             drop(old);
             run.cached = cached;
         });
-        // The runs' manifolds copied over the pool, each to its place in pair order.
-        #[cfg(feature = "parallel")]
-        {
-            self.run_starts.clear();
-            let mut total = 0;
-            for (_, manifolds) in &self.runs[..count] {
-                self.run_starts.push(total);
-                total += manifolds.len();
-            }
-            let runs = &self.runs;
-            out.append_with(|out| {
-                par::extend_concatenated(out, &self.run_starts, total, |r| {
-                    runs.get(r)
-                        .map_or(&[][..], |(_, manifolds)| manifolds.as_slice())
-                });
-            });
-        }
-        #[cfg(not(feature = "parallel"))]
+        // The runs' manifolds copied over the pool, each run's into its place in pair order (the slots the
+        // list already has written over, the points in use only).
+        self.run_starts.clear();
+        let mut total = 0;
         for (_, manifolds) in &self.runs[..count] {
-            out.extend_from_slice(manifolds);
+            self.run_starts.push(total);
+            total += manifolds.len();
         }
-        for (run, manifolds) in &mut self.runs[..count] {
-            manifolds.clear();
+        let runs = &self.runs;
+        par::for_each_part_mut(
+            out.next_slots(total),
+            &self.run_starts,
+            total,
+            |r, slots| {
+                if let Some((_, manifolds)) = runs.get(r) {
+                    for (slot, manifold) in slots.iter_mut().zip(manifolds) {
+                        slot.renew_from(manifold);
+                    }
+                }
+            },
+        );
+        for (run, _) in &mut self.runs[..count] {
             self.pairs.append(&mut run.pairs);
             self.force_pairs.append(&mut run.force_pairs);
         }

@@ -3,6 +3,7 @@
 //! pair filter (`self_overlaps.rs`). Each gives what the one-thread code of `broad_phase.rs` gives, in the same order.
 
 use super::self_overlaps::SelfOverlaps;
+use crate::pair_sort::{PartSort, sort_parts};
 use crate::{Collider, ColliderHandle, ColliderSet};
 use parry3d::partitioning::Bvh;
 
@@ -12,15 +13,26 @@ use parry3d::partitioning::Bvh;
 pub(super) const POOL_SEARCH_BELOW: usize = 4;
 
 /// The pair search over the thread pool: the tree traversed against itself with the pair filter `keep`
-/// (its verdict on two leaves) over the pool ([`SelfOverlaps`]), into `pairs` (unsorted: the caller sorts
-/// and caps them as the one-thread search does, so both give the same pairs).
+/// (its verdict on two leaves) over the pool ([`SelfOverlaps`]), each unit's pairs into its own list, then
+/// sorted into `pairs` over the pool ([`sort_parts`]; `slot_count` bounds the collider slots). Returns how
+/// many pairs the cap `max_pairs` left out: the `max_pairs` lowest are kept, as the one-thread search keeps
+/// them, so both give the same pairs.
 pub(super) fn search_on_pool(
     bvh: &Bvh,
     traversal: &mut SelfOverlaps<(ColliderHandle, ColliderHandle)>,
     keep: impl Fn(u32, u32) -> Option<(ColliderHandle, ColliderHandle)> + Sync + Send,
+    slot_count: usize,
+    sort: &mut PartSort,
     pairs: &mut Vec<(ColliderHandle, ColliderHandle)>,
-) {
-    traversal.find(bvh, keep, pairs);
+    max_pairs: usize,
+) -> usize {
+    // Each pair of leaves is found once, and a leaf is one collider slot: the pairs are distinct, as
+    // `sort_parts` needs.
+    let parts = traversal.find_parts(bvh, keep);
+    sort_parts(parts, slot_count, pairs, sort);
+    let capped = pairs.len().saturating_sub(max_pairs);
+    pairs.truncate(max_pairs);
+    capped
 }
 
 /// For every collider, in collider order: `apply(broad_phase, handle, collider, compute(broad_phase, handle,

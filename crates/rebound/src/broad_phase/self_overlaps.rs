@@ -9,8 +9,8 @@
 //! copy is split into units of work ([`Unit`]), each traversed by one task into its own kept list.
 //!
 //! The pairs are those of parry's traversal (every two leaves whose boxes overlap, each pair once), in
-//! another order: the caller sorts them (`keep_lowest`), so the candidate pairs are the one-thread search's
-//! for any number of threads.
+//! another order and in one list per unit: the caller sorts them over the pool (`pair_sort::sort_parts`),
+//! so the candidate pairs are the one-thread search's for any number of threads.
 
 use parry3d::partitioning::{Bvh, TraversalAction};
 use rebound_math::glam::Vec3A;
@@ -79,22 +79,26 @@ impl<Pair> Default for SelfOverlaps<Pair> {
 }
 
 impl<Pair: Copy + Send> SelfOverlaps<Pair> {
-    /// Every two leaves of `bvh` whose boxes overlap that `keep` (on their slots) makes a pair, appended to
-    /// `pairs` (unsorted), found over the pool.
-    pub(super) fn find(
+    /// Every two leaves of `bvh` whose boxes overlap that `keep` (on their slots) makes a pair, found over
+    /// the pool: the pairs of each unit of work in its own list, returned (each pair once, in no order).
+    pub(super) fn find_parts(
         &mut self,
         bvh: &Bvh,
         keep: impl Fn(u32, u32) -> Option<Pair> + Sync + Send,
-        pairs: &mut Vec<Pair>,
-    ) {
+    ) -> &mut [Vec<Pair>] {
         if bvh.leaf_count() < 2 {
-            return;
+            return &mut [];
         }
         self.copy(bvh);
         self.split();
         let tree = Tree { nodes: &self.nodes };
         let units = &self.units;
-        par::extend_in_parts(pairs, &mut self.found, units.len(), |r, out| {
+        if self.found.len() < units.len() {
+            self.found.resize_with(units.len(), Vec::new);
+        }
+        let found = &mut self.found[..units.len()];
+        par::for_each_mut(found, 1, |r, out| {
+            out.clear();
             let mut emit = |a: u32, b: u32| {
                 if let Some(pair) = keep(a, b) {
                     out.push(pair);
@@ -106,6 +110,16 @@ impl<Pair: Copy + Send> SelfOverlaps<Pair> {
                 None => {}
             }
         });
+        // Every list made to hold twice what the fullest held: which unit meets the most pairs moves from
+        // step to step (the units follow the tree), and a list grown only by its own unit would keep
+        // growing, one unit after another, long after the total has stopped.
+        let widest = found.iter().map(Vec::len).max().unwrap_or(0);
+        for part in found.iter_mut() {
+            if part.capacity() < widest {
+                part.reserve(2 * widest - part.len());
+            }
+        }
+        found
     }
 
     /// Copies the shape of `bvh` (at least two leaves) by one depth-first walk. parry's walk checks the two
@@ -355,29 +369,23 @@ mod tests {
                 );
             }
             for pool in &pools {
-                let mut found = vec![(u32::MAX, u32::MAX)];
-                pool.install(|| {
-                    traversal.find(&bvh, |a, b| Some((a.min(b), a.max(b))), &mut found);
+                let mut found: Vec<_> = pool.install(|| {
+                    traversal
+                        .find_parts(&bvh, |a, b| Some((a.min(b), a.max(b))))
+                        .concat()
                 });
-                assert_eq!(
-                    found.first(),
-                    Some(&(u32::MAX, u32::MAX)),
-                    "appended, not cleared"
-                );
-                let mut found = found.split_off(1);
                 let all = found.len();
                 found.sort_unstable();
                 found.dedup();
                 assert_eq!(found.len(), all, "{count} boxes: a pair found twice");
                 assert_eq!(found, expected, "{count} boxes: other pairs than parry's");
                 // The filter's verdict is applied: only the pairs of even slots kept.
-                let mut even = Vec::new();
-                pool.install(|| {
-                    traversal.find(
-                        &bvh,
-                        |a, b| (a % 2 == 0 && b % 2 == 0).then_some((a.min(b), a.max(b))),
-                        &mut even,
-                    );
+                let mut even: Vec<_> = pool.install(|| {
+                    traversal
+                        .find_parts(&bvh, |a, b| {
+                            (a % 2 == 0 && b % 2 == 0).then_some((a.min(b), a.max(b)))
+                        })
+                        .concat()
                 });
                 even.sort_unstable();
                 let expected_even: Vec<_> = expected
