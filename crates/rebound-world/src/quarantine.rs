@@ -227,38 +227,35 @@ fn check_solved(bounds: &Bounds, solved: &SolverBody) -> Option<QuarantineReason
     }
 }
 
-/// Whether every solved body of `states` certainly has velocities within the bounds and finite pose deltas,
-/// from sums over all bodies of the squares of every component: a sum of non-negative numbers is no smaller
-/// than any of them (rounding keeps order), so a body's `v.x² + v.y² + v.z²`, added in the order
-/// [`Bounds::within`] adds it, is no larger than the sums' `Σv.x² + Σv.y² + Σv.z²`; a NaN or an infinity
-/// anywhere makes its sum fail the comparison. `false` sends the caller to the body-by-body check, which
-/// finds the answer (also when a sum overflows with every body within). The components go in the 16-byte
-/// groups a [`SolverBody`] keeps them in (`[v, ω.x]`, `[ω.y, ω.z, Δp.x, Δp.y]`, `Δq`, `Δp.z`): one product
-/// and one sum each, with no branch per body.
+/// Whether every solved body of `states` has velocities within the bounds and finite pose deltas, in one
+/// pass with no branch per body: the largest `|v|²` and `|ω|²` of all, each computed as [`Bounds::within`]
+/// computes it (a maximum is exact, so the answer is that of the body-by-body check at any number of
+/// bodies), and a probe `Σ x·0` over the components of `v`, `ω`, `Δp` and over `|Δq|²`, 0 exactly when all
+/// are finite and NaN otherwise (a NaN is lost by a maximum, not by a sum); the components go in the 16-byte
+/// groups a [`SolverBody`] keeps them in (`[v, ω.x]`, `[ω.y, ω.z, Δp.x, Δp.y]`). `true` exactly when
+/// [`solved_within`] holds for every body; `false` sends the caller to the body-by-body check, which finds
+/// which bodies are out.
 fn all_solved_within(bounds: &Bounds, states: &[SolverBody]) -> bool {
-    let (first, second, rotation, last) = states.iter().fold(
-        (Vec4::ZERO, Vec4::ZERO, Vec4::ZERO, 0.0_f32),
-        |(first, second, rotation, last), solved| {
-            let (v, w, dp) = (
-                solved.linear_velocity,
-                solved.angular_velocity,
-                solved.delta_position,
-            );
-            let a = Vec4::new(v.x, v.y, v.z, w.x);
-            let b = Vec4::new(w.y, w.z, dp.x, dp.y);
-            let q = Vec4::from(solved.delta_rotation);
-            (
-                first + a * a,
-                second + b * b,
-                rotation + q * q,
-                last + dp.z * dp.z,
-            )
-        },
-    );
-    let speed_sq = first.x + first.y + first.z;
-    let angular_speed_sq = first.w + second.x + second.y;
-    let deltas = second.z + second.w + rotation.element_sum() + last;
-    speed_sq <= bounds.speed_sq && angular_speed_sq <= bounds.angular_speed_sq && deltas.is_finite()
+    let (fastest, probe) =
+        states
+            .iter()
+            .fold((Vec3A::ZERO, Vec4::ZERO), |(fastest, probe), solved| {
+                let (v, w, dp) = (
+                    solved.linear_velocity,
+                    solved.angular_velocity,
+                    solved.delta_position,
+                );
+                let a = Vec4::new(v.x, v.y, v.z, w.x);
+                let b = Vec4::new(w.y, w.z, dp.x, dp.y);
+                let rest = Vec4::new(dp.z, solved.delta_rotation.length_squared(), 0.0, 0.0);
+                let speeds = Vec3A::new(v.length_squared(), w.length_squared(), 0.0);
+                (
+                    fastest.max(speeds),
+                    probe + (a * 0.0 + b * 0.0 + rest * 0.0),
+                )
+            });
+    let limits = Vec3A::new(bounds.speed_sq, bounds.angular_speed_sq, 0.0);
+    fastest.cmple(limits).all() && probe.cmpeq(Vec4::ZERO).all()
 }
 
 /// Whether a solved body's velocities are within the bounds and its pose deltas finite.
@@ -345,16 +342,13 @@ mod tests {
     }
 
     proptest! {
-        /// The check over all bodies never passes a set with a body the body-by-body check finds out of
-        /// bounds or not finite.
+        /// The check over all bodies passes exactly the sets whose every body the body-by-body check finds
+        /// within the bounds and finite.
         #[test]
         fn all_within_only_when_each_is(states in prop::collection::vec(solved(), 0..6)) {
             let bounds = bounds();
-            if all_solved_within(&bounds, &states) {
-                for solved in &states {
-                    prop_assert!(solved_within(&bounds, solved), "{solved:?}");
-                }
-            }
+            let each = states.iter().all(|solved| solved_within(&bounds, solved));
+            prop_assert_eq!(all_solved_within(&bounds, &states), each, "{:?}", states);
         }
 
         /// Bodies well within the bounds, in any number, pass it: the body-by-body search is skipped.
@@ -372,6 +366,32 @@ mod tests {
         ) {
             // Each body at most √75 m/s and √12 rad/s: 64 of them sum to at most 4,800 and 768.
             prop_assert!(all_solved_within(&bounds(), &states));
+        }
+    }
+
+    /// Many bodies each near the bounds pass the check over all (a sum of their squares would exceed the
+    /// bounds and send every step to the body-by-body search), and one NaN or infinity among them fails it.
+    #[test]
+    fn many_bodies_near_the_bounds_pass_and_one_not_finite_fails() {
+        let near = SolverBody {
+            linear_velocity: Vec3::new(0.0, 99.0, 10.0),
+            angular_velocity: Vec3::new(49.0, 0.0, 5.0),
+            delta_position: Vec3::new(1.0e3, -1.0e3, 1.0e3),
+            ..SolverBody::STATIC
+        };
+        let bounds = bounds();
+        let mut states = vec![near; 100_000];
+        assert!(solved_within(&bounds, &near));
+        assert!(all_solved_within(&bounds, &states));
+        for bad in [f32::NAN, f32::INFINITY] {
+            let mut broken = near;
+            broken.delta_position.z = bad;
+            states[50_000] = broken;
+            assert!(!all_solved_within(&bounds, &states), "{bad}");
+            broken = near;
+            broken.angular_velocity.y = bad;
+            states[50_000] = broken;
+            assert!(!all_solved_within(&bounds, &states), "{bad}");
         }
     }
 
