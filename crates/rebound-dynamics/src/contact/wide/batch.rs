@@ -621,22 +621,17 @@ impl Batch {
         LaneVelocities { va, wa, vb, wb }
     }
 
-    /// The lanes' bodies, by reference (the transposes read the 16-byte groups they need, not whole states);
-    /// empty lanes see [`SolverBody::STATIC`].
+    /// The lanes' bodies, by reference (the transposes read the 16-byte groups they need, not whole states).
+    /// An empty lane reads body 0 (its indices are [`EMPTY_LANE`]'s): with zero masses, normal and rows it
+    /// applies no impulse, whatever it reads, and its velocities are never written back, so no lane's result
+    /// depends on what an empty one reads, and no branch per lane is needed.
     #[inline(always)]
     fn states<'a>(
         &self,
         index: &[u32; LANES],
         bodies: &'a [SolverBody],
     ) -> [&'a SolverBody; LANES] {
-        let lane = |k: usize| {
-            if k < usize::from(self.lanes) {
-                bodies.get(index[k] as usize).unwrap_or(&SolverBody::STATIC)
-            } else {
-                &SolverBody::STATIC
-            }
-        };
-        [lane(0), lane(1), lane(2), lane(3)]
+        index.map(|i| bodies.get(i as usize).unwrap_or(&SolverBody::STATIC))
     }
 
     /// [`Batch::states`] of bodies that other threads may be writing: bodies A and B of every lane.
