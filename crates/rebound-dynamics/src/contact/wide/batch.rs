@@ -232,7 +232,8 @@ pub(crate) fn build(
 ) {
     let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
     let lanes = [lane(0), lane(1), lane(2), lane(3)];
-    let headers = lanes.map(|c| c.copied().unwrap_or(EMPTY_LANE));
+    // By reference: an empty lane reads the one `EMPTY_LANE` (no header is copied).
+    let headers: [&PreparedContact; LANES] = lanes.map(|c| c.unwrap_or(&EMPTY_LANE));
     let slot_count = lanes
         .iter()
         .flatten()
