@@ -11,6 +11,8 @@ use crate::manifold::ContactManifold;
 use crate::report::StepReport;
 use crate::state::WorldState;
 use rebound_constraints::{JointBodies, JointSolver};
+#[cfg(feature = "parallel")]
+use rebound_dynamics::Support;
 use rebound_dynamics::{
     BodyParams, BodyType, Contact, ContactPoint, ContactSolver, MAX_CONTACT_POINTS, SolverBody,
     StackLoads, StepContext,
@@ -39,12 +41,13 @@ pub(crate) struct Solver {
     pub(crate) contact_sources: Vec<usize>,
     /// Solver index → how many overlapping manifolds the dynamic body has this step (the push-out share).
     overlaps: Vec<u32>,
-    /// Over the pool: each solver contact's bodies (solver indices) and whether a point of its manifold
-    /// overlaps, found before the contacts are written.
+    /// Over the pool: each solver contact's bodies (solver indices), found before the contacts are written,
+    /// and, found as they are written, whether a point of its manifold overlaps and whether it is a support
+    /// of the load propagation.
     #[cfg(feature = "parallel")]
     contact_bodies: Vec<(u32, u32)>,
     #[cfg(feature = "parallel")]
-    contact_overlaps: Vec<bool>,
+    contact_facts: Vec<(bool, Option<Support>)>,
     /// Joints handed to the solver: their bodies and the handles they came from (the joint solver reads
     /// each joint and its state where the world keeps them, and writes the state back there).
     pub(crate) joint_bodies: Vec<JointBodies>,
@@ -265,8 +268,9 @@ const MIN_MANIFOLDS_ON_POOL: usize = 256;
 
 /// [`build_contacts`] over the pool, with the same contacts, loads and counts: the manifolds' solver indices
 /// on this thread (a fixed body gets its index when first met, in manifold order), then each contact written
-/// from its manifold over the pool, then, in contact order on this thread, the overlaps counted and the
-/// supports handed to the load propagation (whose lists and sums follow that order).
+/// from its manifold over the pool (and judged a support of the load propagation or not), then, in contact
+/// order on this thread, the overlaps counted and the supports linked (the propagation's lists and sums
+/// follow that order).
 #[cfg(feature = "parallel")]
 fn build_contacts_on_pool(
     bodies: &BodySet,
@@ -297,39 +301,51 @@ fn build_contacts_on_pool(
         count,
         Contact::new(0, 0, rebound_math::Vec3::ZERO, 0.0, 0.0),
     );
-    s.contact_overlaps.resize(count, false);
-    let (sources, pairs) = (&s.contact_sources, &s.contact_bodies);
+    s.contact_facts.resize(count, (false, None));
+    let loads = ctx.resting_overlap.is_some();
+    if loads {
+        s.stack_loads.begin(ctx.gravity);
+    }
+    let (sources, pairs, params, stack_loads) = (
+        &s.contact_sources,
+        &s.contact_bodies,
+        &s.params,
+        &s.stack_loads,
+    );
     par::for_each_indexed_zip_both_mut(
         &mut s.contacts,
-        &mut s.contact_overlaps,
+        &mut s.contact_facts,
         MIN_ITEMS_PER_TASK,
-        |i, contact, overlapping| {
+        |i, contact, facts| {
             let (Some(manifold), Some(&(ia, ib))) =
                 (sources.get(i).and_then(|&m| manifolds.get(m)), pairs.get(i))
             else {
                 return;
             };
-            *overlapping = write_contact(contact, ia as usize, ib as usize, manifold);
+            let overlapping = write_contact(contact, ia as usize, ib as usize, manifold);
+            *facts = (
+                overlapping,
+                loads
+                    .then(|| stack_loads.support(contact, params))
+                    .flatten(),
+            );
         },
     );
     s.overlaps.clear();
     s.overlaps.resize(s.states.len(), 0);
-    let loads = ctx.resting_overlap.is_some();
-    if loads {
-        s.stack_loads.begin(ctx.gravity);
-    }
     let (mut point_count, mut crowded) = (0, false);
     for i in 0..count {
-        let (Some(contact), Some(&overlapping)) = (s.contacts.get(i), s.contact_overlaps.get(i))
+        let (Some(contact), Some(&(overlapping, support))) =
+            (s.contacts.get(i), s.contact_facts.get(i))
         else {
             continue;
         };
         point_count += contact.point_count;
-        if loads {
-            s.stack_loads.add(i, contact, &s.params);
+        let (ia, ib) = (contact.body_a, contact.body_b);
+        if let Some(support) = support {
+            s.stack_loads.link(i, support, &s.params);
         }
         if overlapping {
-            let (ia, ib) = (contact.body_a, contact.body_b);
             crowded |= count_overlap(s, ia) | count_overlap(s, ib);
         }
     }

@@ -238,10 +238,10 @@ fn check_solved(bounds: &Bounds, solved: &SolverBody) -> Option<QuarantineReason
 /// the answer (also when different bodies have the largest squares of one vector's components, or a sum
 /// overflows, with every body within).
 fn all_solved_within(bounds: &Bounds, states: &[SolverBody]) -> bool {
-    let zero = (Vec4::ZERO, Vec4::ZERO, 0.0_f32);
-    let ((first, second, rotation), (largest_first, largest_second)) = states.iter().fold(
-        (zero, (Vec4::ZERO, Vec4::ZERO)),
-        |((first, second, rotation), (largest_first, largest_second)), solved| {
+    let sums = (Vec4::ZERO, Vec4::ZERO, Vec4::ZERO, 0.0_f32);
+    let ((first, second, rotation, last), (largest_first, largest_second)) = states.iter().fold(
+        (sums, (Vec4::ZERO, Vec4::ZERO)),
+        |((first, second, rotation, last), (largest_first, largest_second)), solved| {
             let (v, w, dp) = (
                 solved.linear_velocity,
                 solved.angular_velocity,
@@ -249,17 +249,23 @@ fn all_solved_within(bounds: &Bounds, states: &[SolverBody]) -> bool {
             );
             let a = Vec4::new(v.x, v.y, v.z, w.x);
             let b = Vec4::new(w.y, w.z, dp.x, dp.y);
+            let q = Vec4::from(solved.delta_rotation);
             let (aa, bb) = (a * a, b * b);
-            let last = Vec4::from(solved.delta_rotation).length_squared() + dp.z * dp.z;
             (
-                (first + aa, second + bb, rotation + last),
+                (
+                    first + aa,
+                    second + bb,
+                    rotation + q * q,
+                    last + dp.z * dp.z,
+                ),
                 (largest_first.max(aa), largest_second.max(bb)),
             )
         },
     );
     let speed_sq = largest_first.x + largest_first.y + largest_first.z;
     let angular_speed_sq = largest_first.w + largest_second.x + largest_second.y;
-    let finite = (first.element_sum() + second.element_sum() + rotation).is_finite();
+    let finite =
+        (first.element_sum() + second.element_sum() + rotation.element_sum() + last).is_finite();
     speed_sq <= bounds.speed_sq && angular_speed_sq <= bounds.angular_speed_sq && finite
 }
 
