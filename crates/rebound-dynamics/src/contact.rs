@@ -64,5 +64,5 @@ mod wide;
 pub use bias::Bias;
 pub use manifold::{Contact, ContactPoint, MAX_CONTACT_POINTS};
 pub use solver::ContactSolver;
-pub use stack_loads::StackLoads;
+pub use stack_loads::{StackLoads, Support};
 pub use team::ContactTeam;

@@ -23,6 +23,7 @@ pub use rebound_math as math;
 pub use body::{BodyDesc, BodyType, Integrator, RigidBody};
 pub use contact::{
     Bias, Contact, ContactPoint, ContactSolver, ContactTeam, MAX_CONTACT_POINTS, StackLoads,
+    Support,
 };
 pub use error::DynamicsError;
 pub use locks::LockedAxes;

@@ -363,6 +363,24 @@ where
     }
 }
 
+/// Sorts `items` by `key`, not keeping the order of equal keys, on as many threads as the pool has (in
+/// place: nothing is allocated). Items of equal keys may end up in another order than on one thread, so a
+/// caller whose items of one key differ must combine them in a way that does not depend on their order.
+#[inline]
+pub fn sort_unstable_by_key<T, K, F>(items: &mut [T], key: F)
+where
+    T: Send,
+    K: Ord,
+    F: Fn(&T) -> K + Sync,
+{
+    #[cfg(feature = "parallel")]
+    if is_parallel() && items.len() > MIN_ITEMS_PER_TASK {
+        items.par_sort_unstable_by_key(key);
+        return;
+    }
+    items.sort_unstable_by_key(key);
+}
+
 /// Runs `a` and `b`, on two threads if the pool has them, and returns both results.
 ///
 /// When `a` ends while another thread still runs `b`, this thread spins until `b` ends (looking for the

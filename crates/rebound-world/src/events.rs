@@ -10,7 +10,7 @@ use crate::limits::QuarantineReason;
 use crate::prepare::Solver;
 use crate::sorted_walk::walk_to;
 use crate::state::WorldState;
-use rebound_math::Vec3;
+use rebound_math::{Vec3, par};
 
 /// Something that happened during the last step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -163,7 +163,9 @@ pub(crate) fn emit_events(
             buffers.touching_speeds.push((pair, speed));
         }
     }
-    buffers.touching_speeds.sort_unstable_by_key(|x| x.0);
+    // By pair, then by the speed's bits: no two entries that differ have one key, so the list is the same
+    // whichever sort puts it in order (the pool's or one thread's).
+    par::sort_unstable_by_key(&mut buffers.touching_speeds, |x| (x.0, x.1.to_bits()));
     buffers.touching.clear();
     let mut contact_events = core::mem::take(&mut buffers.contact_events);
     contact_events.clear();

@@ -11,6 +11,8 @@ use crate::manifold::ContactManifold;
 use crate::report::StepReport;
 use crate::state::WorldState;
 use rebound_constraints::{JointBodies, JointSolver};
+#[cfg(feature = "parallel")]
+use rebound_dynamics::Support;
 use rebound_dynamics::{
     BodyParams, BodyType, Contact, ContactPoint, ContactSolver, MAX_CONTACT_POINTS, SolverBody,
     StackLoads, StepContext,
@@ -39,6 +41,13 @@ pub(crate) struct Solver {
     pub(crate) contact_sources: Vec<usize>,
     /// Solver index → how many overlapping manifolds the dynamic body has this step (the push-out share).
     overlaps: Vec<u32>,
+    /// Over the pool: each solver contact's bodies (solver indices), found before the contacts are written,
+    /// and, found as they are written, whether a point of its manifold overlaps and whether it is a support
+    /// of the load propagation.
+    #[cfg(feature = "parallel")]
+    contact_bodies: Vec<(u32, u32)>,
+    #[cfg(feature = "parallel")]
+    contact_facts: Vec<(bool, Option<Support>)>,
     /// Joints handed to the solver: their bodies and the handles they came from (the joint solver reads
     /// each joint and its state where the world keeps them, and writes the state back there).
     pub(crate) joint_bodies: Vec<JointBodies>,
@@ -164,6 +173,11 @@ pub(crate) fn build_contacts(
     ctx: &StepContext,
     report: &mut StepReport,
 ) {
+    #[cfg(feature = "parallel")]
+    if par::is_parallel() && manifolds.len() >= MIN_MANIFOLDS_ON_POOL {
+        build_contacts_on_pool(bodies, manifolds, s, ctx, report);
+        return;
+    }
     // Last step's contacts are written over in place (their points' storage kept), the rest cut off.
     let mut count = 0;
     // The points handed to the solver, added to the report at the end.
@@ -189,17 +203,9 @@ pub(crate) fn build_contacts(
         if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
             continue;
         }
-        // Written in place in the list, point by point (not built aside and moved in).
-        let contact = if let Some(contact) = s.contacts.get_mut(count) {
-            contact.renew(
-                ia,
-                ib,
-                manifold.normal,
-                manifold.friction,
-                manifold.restitution,
-            );
-            contact
-        } else {
+        // Written in place in the list, point by point (not built aside and moved in); a new one is pushed
+        // first while the list is short.
+        if count == s.contacts.len() {
             s.contacts.push(Contact::new(
                 ia,
                 ib,
@@ -207,31 +213,13 @@ pub(crate) fn build_contacts(
                 manifold.friction,
                 manifold.restitution,
             ));
-            let Some(contact) = s.contacts.last_mut() else {
-                continue;
-            };
-            contact
+        }
+        let Some(contact) = s.contacts.get_mut(count) else {
+            continue;
         };
         count += 1;
-        contact.rolling_friction = manifold.rolling_friction;
-        contact.surface_velocity = manifold.surface_velocity;
         reports_forces |= manifold.force_event_threshold.is_some();
-        let mut overlapping = false;
-        for point in manifold.points() {
-            overlapping |= point.separation < 0.0;
-            // The collide stage chose every point's lever arms.
-            let Some([anchor_a, anchor_b]) = point.solver_lever_arms else {
-                continue;
-            };
-            contact.push_point(ContactPoint {
-                anchor_a,
-                anchor_b,
-                separation: point.separation,
-                normal_impulse: point.normal_impulse,
-                tangent_impulse: point.tangent_impulse,
-                feature_id: point.feature_id,
-            });
-        }
+        let overlapping = write_contact(contact, ia, ib, manifold);
         point_count += contact.point_count;
         if loads {
             s.stack_loads
@@ -244,6 +232,19 @@ pub(crate) fn build_contacts(
     }
     s.contacts.truncate(count);
     report.contact_point_count += point_count;
+    finish_contacts(s, ctx, report, crowded, reports_forces);
+}
+
+/// The end of [`build_contacts`] once every solver contact is written: the push-out shares if some body
+/// overlaps more than one other (`crowded`), the force sums if a contact reports forces, the stack loads,
+/// the contact solver's preparation.
+fn finish_contacts(
+    s: &mut Solver,
+    ctx: &StepContext,
+    report: &mut StepReport,
+    crowded: bool,
+    reports_forces: bool,
+) {
     if crowded {
         share_push_out(s, ctx.max_push_out_speed);
     }
@@ -253,12 +254,136 @@ pub(crate) fn build_contacts(
         s.step_impulses
             .resize(s.contacts.len(), [0.0; MAX_CONTACT_POINTS]);
     }
-    if loads {
+    if ctx.resting_overlap.is_some() {
         s.stack_loads.finish(&mut s.contacts, &s.params, ctx.h);
     }
     report.rejected_contact_count +=
         s.contact_solver
             .prepare(&s.contacts, &s.states, &s.params, ctx);
+}
+
+/// Manifolds below which the solver contacts are built on one thread even on a pool.
+#[cfg(feature = "parallel")]
+const MIN_MANIFOLDS_ON_POOL: usize = 256;
+
+/// [`build_contacts`] over the pool, with the same contacts, loads and counts: the manifolds' solver indices
+/// on this thread (a fixed body gets its index when first met, in manifold order), then each contact written
+/// from its manifold over the pool (and judged a support of the load propagation or not), then, in contact
+/// order on this thread, the overlaps counted and the supports linked (the propagation's lists and sums
+/// follow that order).
+#[cfg(feature = "parallel")]
+fn build_contacts_on_pool(
+    bodies: &BodySet,
+    manifolds: &[ContactManifold],
+    s: &mut Solver,
+    ctx: &StepContext,
+    report: &mut StepReport,
+) {
+    s.contact_sources.clear();
+    s.contact_bodies.clear();
+    let mut reports_forces = false;
+    for (source, manifold) in manifolds.iter().enumerate() {
+        let ia = solver_index_of(s, bodies, manifold.body_a);
+        let ib = solver_index_of(s, bodies, manifold.body_b);
+        let (Some(ia), Some(ib)) = (ia, ib) else {
+            continue;
+        };
+        if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
+            continue;
+        }
+        reports_forces |= manifold.force_event_threshold.is_some();
+        s.contact_sources.push(source);
+        s.contact_bodies.push((ia as u32, ib as u32));
+    }
+    let count = s.contact_sources.len();
+    // Every entry is written over below; last step's keep their points' storage.
+    s.contacts.resize(
+        count,
+        Contact::new(0, 0, rebound_math::Vec3::ZERO, 0.0, 0.0),
+    );
+    s.contact_facts.resize(count, (false, None));
+    let loads = ctx.resting_overlap.is_some();
+    if loads {
+        s.stack_loads.begin(ctx.gravity);
+    }
+    let (sources, pairs, params, stack_loads) = (
+        &s.contact_sources,
+        &s.contact_bodies,
+        &s.params,
+        &s.stack_loads,
+    );
+    par::for_each_indexed_zip_both_mut(
+        &mut s.contacts,
+        &mut s.contact_facts,
+        MIN_ITEMS_PER_TASK,
+        |i, contact, facts| {
+            let (Some(manifold), Some(&(ia, ib))) =
+                (sources.get(i).and_then(|&m| manifolds.get(m)), pairs.get(i))
+            else {
+                return;
+            };
+            let overlapping = write_contact(contact, ia as usize, ib as usize, manifold);
+            *facts = (
+                overlapping,
+                loads
+                    .then(|| stack_loads.support(contact, params))
+                    .flatten(),
+            );
+        },
+    );
+    s.overlaps.clear();
+    s.overlaps.resize(s.states.len(), 0);
+    let (mut point_count, mut crowded) = (0, false);
+    for i in 0..count {
+        let (Some(contact), Some(&(overlapping, support))) =
+            (s.contacts.get(i), s.contact_facts.get(i))
+        else {
+            continue;
+        };
+        point_count += contact.point_count;
+        let (ia, ib) = (contact.body_a, contact.body_b);
+        if let Some(support) = support {
+            s.stack_loads.link(i, support, &s.params);
+        }
+        if overlapping {
+            crowded |= count_overlap(s, ia) | count_overlap(s, ib);
+        }
+    }
+    report.contact_point_count += point_count;
+    finish_contacts(s, ctx, report, crowded, reports_forces);
+}
+
+/// Writes `contact` over as the solver contact of `manifold` between the bodies of solver indices `ia` and
+/// `ib` (the points with the lever arms the collide stage chose); returns whether a point of the manifold
+/// overlaps.
+#[inline]
+fn write_contact(contact: &mut Contact, ia: usize, ib: usize, manifold: &ContactManifold) -> bool {
+    contact.renew(
+        ia,
+        ib,
+        manifold.normal,
+        manifold.friction,
+        manifold.restitution,
+    );
+    contact.rolling_friction = manifold.rolling_friction;
+    contact.surface_velocity = manifold.surface_velocity;
+    let mut overlapping = false;
+    for point in manifold.points() {
+        overlapping |= point.separation < 0.0;
+        // The collide stage chose every point's lever arms.
+        let Some([anchor_a, anchor_b]) = point.solver_lever_arms else {
+            continue;
+        };
+        contact.push_point(ContactPoint {
+            anchor_a,
+            anchor_b,
+            separation: point.separation,
+            normal_impulse: point.normal_impulse,
+            tangent_impulse: point.tangent_impulse,
+            feature_id: point.feature_id,
+        });
+    }
+    overlapping
 }
 
 /// Counts an overlapping manifold of the body of solver index `i` if it is dynamic (a fixed or kinematic

@@ -228,17 +228,20 @@ fn check_solved(bounds: &Bounds, solved: &SolverBody) -> Option<QuarantineReason
 }
 
 /// Whether every solved body of `states` certainly has velocities within the bounds and finite pose deltas,
-/// from sums over all bodies of the squares of every component: a sum of non-negative numbers is no smaller
-/// than any of them (rounding keeps order), so a body's `v.x² + v.y² + v.z²`, added in the order
-/// [`Bounds::within`] adds it, is no larger than the sums' `Σv.x² + Σv.y² + Σv.z²`; a NaN or an infinity
-/// anywhere makes its sum fail the comparison. `false` sends the caller to the body-by-body check, which
-/// finds the answer (also when a sum overflows with every body within). The components go in the 16-byte
-/// groups a [`SolverBody`] keeps them in (`[v, ω.x]`, `[ω.y, ω.z, Δp.x, Δp.y]`, `Δq`, `Δp.z`): one product
-/// and one sum each, with no branch per body.
+/// in one pass with no branch per body. The bounds are checked on the largest square of each velocity
+/// component over all bodies: a body's `v.x² + v.y² + v.z²`, added in the order [`Bounds::within`] adds it,
+/// is no larger than the sum of the three largest squares (rounding keeps order), and the largest squares do
+/// not grow with the number of bodies as a sum of them would. Finiteness is checked on sums of the squares of
+/// every component: a NaN or an infinity anywhere makes its sum NaN or infinite (a maximum would lose a
+/// NaN). The components go in the 16-byte groups a [`SolverBody`] keeps them in (`[v, ω.x]`,
+/// `[ω.y, ω.z, Δp.x, Δp.y]`, `Δq`, `Δp.z`). `false` sends the caller to the body-by-body check, which finds
+/// the answer (also when different bodies have the largest squares of one vector's components, or a sum
+/// overflows, with every body within).
 fn all_solved_within(bounds: &Bounds, states: &[SolverBody]) -> bool {
-    let (first, second, rotation, last) = states.iter().fold(
-        (Vec4::ZERO, Vec4::ZERO, Vec4::ZERO, 0.0_f32),
-        |(first, second, rotation, last), solved| {
+    let sums = (Vec4::ZERO, Vec4::ZERO, Vec4::ZERO, 0.0_f32);
+    let ((first, second, rotation, last), (largest_first, largest_second)) = states.iter().fold(
+        (sums, (Vec4::ZERO, Vec4::ZERO)),
+        |((first, second, rotation, last), (largest_first, largest_second)), solved| {
             let (v, w, dp) = (
                 solved.linear_velocity,
                 solved.angular_velocity,
@@ -247,18 +250,23 @@ fn all_solved_within(bounds: &Bounds, states: &[SolverBody]) -> bool {
             let a = Vec4::new(v.x, v.y, v.z, w.x);
             let b = Vec4::new(w.y, w.z, dp.x, dp.y);
             let q = Vec4::from(solved.delta_rotation);
+            let (aa, bb) = (a * a, b * b);
             (
-                first + a * a,
-                second + b * b,
-                rotation + q * q,
-                last + dp.z * dp.z,
+                (
+                    first + aa,
+                    second + bb,
+                    rotation + q * q,
+                    last + dp.z * dp.z,
+                ),
+                (largest_first.max(aa), largest_second.max(bb)),
             )
         },
     );
-    let speed_sq = first.x + first.y + first.z;
-    let angular_speed_sq = first.w + second.x + second.y;
-    let deltas = second.z + second.w + rotation.element_sum() + last;
-    speed_sq <= bounds.speed_sq && angular_speed_sq <= bounds.angular_speed_sq && deltas.is_finite()
+    let speed_sq = largest_first.x + largest_first.y + largest_first.z;
+    let angular_speed_sq = largest_first.w + largest_second.x + largest_second.y;
+    let finite =
+        (first.element_sum() + second.element_sum() + rotation.element_sum() + last).is_finite();
+    speed_sq <= bounds.speed_sq && angular_speed_sq <= bounds.angular_speed_sq && finite
 }
 
 /// Whether a solved body's velocities are within the bounds and its pose deltas finite.
@@ -372,6 +380,32 @@ mod tests {
         ) {
             // Each body at most √75 m/s and √12 rad/s: 64 of them sum to at most 4,800 and 768.
             prop_assert!(all_solved_within(&bounds(), &states));
+        }
+    }
+
+    /// Many bodies each near the bounds pass the check over all (a sum of their squares would exceed the
+    /// bounds and send every step to the body-by-body search), and one NaN or infinity among them fails it.
+    #[test]
+    fn many_bodies_near_the_bounds_pass_and_one_not_finite_fails() {
+        let near = SolverBody {
+            linear_velocity: Vec3::new(0.0, 99.0, 10.0),
+            angular_velocity: Vec3::new(49.0, 0.0, 5.0),
+            delta_position: Vec3::new(1.0e3, -1.0e3, 1.0e3),
+            ..SolverBody::STATIC
+        };
+        let bounds = bounds();
+        let mut states = vec![near; 100_000];
+        assert!(solved_within(&bounds, &near));
+        assert!(all_solved_within(&bounds, &states));
+        for bad in [f32::NAN, f32::INFINITY] {
+            let mut broken = near;
+            broken.delta_position.z = bad;
+            states[50_000] = broken;
+            assert!(!all_solved_within(&bounds, &states), "{bad}");
+            broken = near;
+            broken.angular_velocity.y = bad;
+            states[50_000] = broken;
+            assert!(!all_solved_within(&bounds, &states), "{bad}");
         }
     }
 

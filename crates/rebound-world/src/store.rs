@@ -15,7 +15,9 @@ use crate::report::StepReport;
 use crate::state::{JointEntry, WorldState};
 use core::sync::atomic::{AtomicBool, Ordering};
 use rebound_constraints::{JointState, JointStates};
-use rebound_dynamics::{BodyParams, Motion, RigidBody, SolverBody};
+use rebound_dynamics::{BodyParams, ContactSolver, Motion, RigidBody, SolverBody};
+#[cfg(feature = "parallel")]
+use rebound_math::Disjoint;
 use rebound_math::glam::Vec3A;
 use rebound_math::{Vec3, par};
 
@@ -47,24 +49,9 @@ pub(crate) fn store_impulses(
     // `pushed` holds collide's verdict for each manifold (a carried resting contact keeps its touching).
     c.pushed.resize(c.manifolds.len(), false);
     let (manifolds, pushed, sources) = (&mut c.manifolds, &mut c.pushed, &s.contact_sources);
-    // `x·0` is 0 for a finite `x` and NaN otherwise: the sum of the impulses' products is zero exactly when
-    // every impulse stored is finite.
-    let mut zero_if_finite = Vec3::ZERO;
-    s.contact_solver
-        .for_each_point_result(|contact, k, normal, tangent, max| {
-            let Some(&source) = sources.get(contact) else {
-                return;
-            };
-            if let Some(point) = manifolds[source].points.get_mut(k) {
-                point.normal_impulse = normal;
-                point.tangent_impulse = tangent;
-                zero_if_finite += tangent * 0.0 + Vec3::splat(normal * 0.0);
-            }
-            pushed[source] |= max > 0.0;
-        });
     // Never a non-finite impulse into the state (the next step would warm start from it): the quarantine
     // reruns a step whose bodies went non-finite, so this guards a fault only.
-    if zero_if_finite != Vec3::ZERO {
+    if !read_back_impulses(&s.contact_solver, sources, manifolds, pushed) {
         zero_non_finite_impulses(manifolds);
     }
     s.broken.clear();
@@ -81,6 +68,77 @@ pub(crate) fn store_impulses(
         }
     }
     core::mem::swap(&mut state.manifolds, &mut c.manifolds);
+}
+
+/// The solver's impulses into the manifolds they came from (solver contact `i` is manifold `sources[i]`),
+/// and into `pushed` whether each pushed; returns whether every impulse stored is finite.
+fn read_back_impulses(
+    solver: &ContactSolver,
+    sources: &[usize],
+    manifolds: &mut [ContactManifold],
+    pushed: &mut [bool],
+) -> bool {
+    #[cfg(feature = "parallel")]
+    if par::is_parallel() && sources.len() >= MIN_CONTACTS_ON_POOL {
+        return read_back_on_pool(solver, sources, manifolds, pushed);
+    }
+    // `x·0` is 0 for a finite `x` and NaN otherwise: the sum of the impulses' products is zero exactly when
+    // every impulse stored is finite.
+    let mut zero_if_finite = Vec3::ZERO;
+    solver.for_each_point_result(|contact, k, normal, tangent, max| {
+        let Some(&source) = sources.get(contact) else {
+            return;
+        };
+        if let Some(point) = manifolds[source].points.get_mut(k) {
+            point.normal_impulse = normal;
+            point.tangent_impulse = tangent;
+            zero_if_finite += tangent * 0.0 + Vec3::splat(normal * 0.0);
+        }
+        pushed[source] |= max > 0.0;
+    });
+    zero_if_finite == Vec3::ZERO
+}
+
+/// Solver contacts below which the impulses are read back on one thread even on a pool.
+#[cfg(feature = "parallel")]
+const MIN_CONTACTS_ON_POOL: usize = 256;
+
+/// [`read_back_impulses`] over the pool: each manifold is written by the one call that reads back its
+/// solver contact's points, the same values as on one thread. A non-finite impulse is rare: one flag,
+/// written only then.
+#[cfg(feature = "parallel")]
+#[expect(
+    unsafe_code,
+    reason = "each manifold written by the one task that reads back its contact (rebound_math::Disjoint)"
+)]
+fn read_back_on_pool(
+    solver: &ContactSolver,
+    sources: &[usize],
+    manifolds: &mut [ContactManifold],
+    pushed: &mut [bool],
+) -> bool {
+    let finite = AtomicBool::new(true);
+    let (manifolds, pushed) = (Disjoint::new(manifolds), Disjoint::new(pushed));
+    solver.for_each_point_result_on_pool(|contact, k, normal, tangent, max| {
+        let Some(&source) = sources.get(contact) else {
+            return;
+        };
+        // SAFETY: solver contacts come from distinct manifolds (`sources` is strictly increasing), and all
+        // calls for one contact are made one after the other on one thread
+        // (`ContactSolver::for_each_point_result_on_pool`): no two threads hold one manifold or flag.
+        let (manifold, was_pushed) = unsafe { (manifolds.get_mut(source), pushed.get_mut(source)) };
+        if let Some(point) = manifold.and_then(|m| m.points.get_mut(k)) {
+            point.normal_impulse = normal;
+            point.tangent_impulse = tangent;
+            if !(normal.is_finite() && tangent.is_finite()) {
+                finite.store(false, Ordering::Relaxed);
+            }
+        }
+        if let Some(was_pushed) = was_pushed {
+            *was_pushed |= max > 0.0;
+        }
+    });
+    finite.into_inner()
 }
 
 /// Stage *finalize*: poses and velocities back into the bodies. Returns whether every moving body written

@@ -214,6 +214,27 @@ impl ContactSolver {
     /// in one iteration this step (N·s) — what contact events report as the hit strength. For a caller that
     /// keeps its own contacts: one pass gives it everything [`ContactSolver::store_impulses`] writes and more.
     pub fn for_each_point_result(&self, mut f: impl FnMut(usize, usize, f32, Vec3, f32)) {
+        self.scalar_point_results(&mut f);
+        self.batches.for_each_point_result(f);
+    }
+
+    /// [`ContactSolver::for_each_point_result`] with the batched manifolds' points read back over the thread
+    /// pool (the scalar path's first, on this thread): `f` is called once for every point, and all calls for
+    /// one source contact are made on one thread, one after the other, so calls for different sources may
+    /// write apart at once. The order of the calls is the pool's; what each is given is not.
+    pub fn for_each_point_result_on_pool(
+        &self,
+        f: impl Fn(usize, usize, f32, Vec3, f32) + Sync + Send,
+    ) {
+        self.scalar_point_results(&mut |source, k, normal, tangent, max| {
+            f(source, k, normal, tangent, max);
+        });
+        self.batches.for_each_point_result_on_pool(&f);
+    }
+
+    /// [`ContactSolver::for_each_point_result`] of the manifolds the scalar path solves.
+    #[inline(always)]
+    fn scalar_point_results(&self, f: &mut impl FnMut(usize, usize, f32, Vec3, f32)) {
         for &index in &self.scalar {
             let c = &self.contacts[index];
             let patch = self.patches.get(c.patch).copied().unwrap_or_default();
@@ -233,7 +254,6 @@ impl ContactSolver {
                 f(c.source, k, p.normal_impulse, tangent, p.max_normal_impulse);
             }
         }
-        self.batches.for_each_point_result(f);
     }
 }
 

@@ -50,6 +50,15 @@ pub struct StackLoads {
     g: f32,
 }
 
+/// A manifold found to be a support ([`StackLoads::support`]): its lower and upper bodies and the upward
+/// cosine of its normal from the lower to the upper.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Support {
+    lower: u32,
+    upper: u32,
+    cosine: f32,
+}
+
 /// A support: a resting manifold whose normal points up, seen as a link from the lower body to the upper.
 #[derive(Debug, Clone, Copy)]
 struct Link {
@@ -119,26 +128,59 @@ impl StackLoads {
     /// solver moves; otherwise (a body with itself too) it is dropped.
     #[inline]
     pub fn add(&mut self, manifold: usize, c: &Contact, params: &[BodyParams]) {
+        if let Some(support) = self.support(c, params) {
+            self.link(manifold, support, params);
+        }
+    }
+
+    /// Whether manifold `c` is a support, as [`StackLoads::add`] judges it, and which way up: reads the
+    /// manifold alone, so a caller may judge its manifolds on several threads and link the supports found
+    /// in manifold order after ([`StackLoads::link`]). `None` before [`StackLoads::begin`].
+    #[inline]
+    #[must_use]
+    pub fn support(&self, c: &Contact, params: &[BodyParams]) -> Option<Support> {
         let cosine = c.normal.dot(self.up);
         let (lower, upper, cosine) = if cosine >= SUPPORT_COSINE {
             (c.body_a, c.body_b, cosine)
         } else if -cosine >= SUPPORT_COSINE {
             (c.body_b, c.body_a, -cosine)
         } else {
-            return;
+            return None;
         };
         if !c.points().iter().any(|p| p.separation < Self::RESTING_GAP) {
-            return;
+            return None;
         }
-        let (Some(pl), Some(pu)) = (params.get(lower), params.get(upper)) else {
+        let pu = params.get(upper)?;
+        if lower >= params.len() || lower == upper || pu.inv_mass <= 0.0 {
+            // Nothing to hand down: no body, or one the solver does not move.
+            return None;
+        }
+        Some(Support {
+            lower: lower as u32,
+            upper: upper as u32,
+            cosine,
+        })
+    }
+
+    /// Links manifold `manifold` as the support [`StackLoads::support`] found it to be (body indices into
+    /// `params`): what [`StackLoads::add`] does with a support. The order of the calls is the order of the
+    /// hand-down's sums.
+    #[inline]
+    pub fn link(&mut self, manifold: usize, support: Support, params: &[BodyParams]) {
+        let Support {
+            lower,
+            upper,
+            cosine,
+        } = support;
+        let (lower, upper) = (lower as usize, upper as usize);
+        let Some(pl) = params.get(lower) else {
             return;
         };
-        if lower == upper || pu.inv_mass <= 0.0 {
-            // Nothing to hand down: no body, or one the solver does not move.
-            return;
-        }
         if self.level.len() < params.len() {
             self.grow(params.len());
+        }
+        if upper >= self.level.len() {
+            return;
         }
         let index = self.links.len() as u32;
         self.links.push(Link {

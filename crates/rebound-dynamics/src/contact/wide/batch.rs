@@ -232,7 +232,8 @@ pub(crate) fn build(
 ) {
     let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
     let lanes = [lane(0), lane(1), lane(2), lane(3)];
-    let headers = lanes.map(|c| c.copied().unwrap_or(EMPTY_LANE));
+    // By reference: an empty lane reads the one `EMPTY_LANE` (no header is copied).
+    let headers: [&PreparedContact; LANES] = lanes.map(|c| c.unwrap_or(&EMPTY_LANE));
     let slot_count = lanes
         .iter()
         .flatten()
@@ -621,22 +622,17 @@ impl Batch {
         LaneVelocities { va, wa, vb, wb }
     }
 
-    /// The lanes' bodies, by reference (the transposes read the 16-byte groups they need, not whole states);
-    /// empty lanes see [`SolverBody::STATIC`].
+    /// The lanes' bodies, by reference (the transposes read the 16-byte groups they need, not whole states).
+    /// An empty lane reads body 0 (its indices are [`EMPTY_LANE`]'s): with zero masses, normal and rows it
+    /// applies no impulse, whatever it reads, and its velocities are never written back, so no lane's result
+    /// depends on what an empty one reads, and no branch per lane is needed.
     #[inline(always)]
     fn states<'a>(
         &self,
         index: &[u32; LANES],
         bodies: &'a [SolverBody],
     ) -> [&'a SolverBody; LANES] {
-        let lane = |k: usize| {
-            if k < usize::from(self.lanes) {
-                bodies.get(index[k] as usize).unwrap_or(&SolverBody::STATIC)
-            } else {
-                &SolverBody::STATIC
-            }
-        };
-        [lane(0), lane(1), lane(2), lane(3)]
+        index.map(|i| bodies.get(i as usize).unwrap_or(&SolverBody::STATIC))
     }
 
     /// [`Batch::states`] of bodies that other threads may be writing: bodies A and B of every lane.
