@@ -187,8 +187,9 @@ impl JointSolver {
             topology,
             ..
         } = self;
-        // No joint, no path: nothing to search (a world of contacts alone walks no per-body array).
-        if !settings.direct_chains || joints.is_empty() {
+        // No joint that can join a path, no path and no graph: nothing to search (a world of contacts or of
+        // springs alone walks no per-body array).
+        if !settings.direct_chains || !joints.iter().any(|j| j.kind.is_direct_capable()) {
             topology.clear();
             return;
         }
