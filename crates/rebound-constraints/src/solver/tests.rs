@@ -355,7 +355,7 @@ fn paths_kept_from_the_last_step_are_those_a_fresh_search_finds() {
         ladder.0.push(body.clone());
     }
     for (joint, pair) in deck.1.iter().zip(&deck.2) {
-        ladder.1.push(joint.clone());
+        ladder.1.push(*joint);
         ladder.2.push(JointBodies {
             a: pair.a + offset,
             b: pair.b + offset,
