@@ -13,7 +13,6 @@ use super::link::{LANES, Link, Mode};
 use super::row::{MAX_ROWS, Real, Row, displace_body};
 use crate::part::clamp_impulse;
 use rebound_dynamics::{Softness, SolverBody};
-use rebound_math::glam::BVec4A;
 use rebound_math::{Mat4, Vec3, Vec4};
 
 impl Link {
@@ -392,8 +391,9 @@ fn coupling_columns<const N: usize, const FIRST: usize>(
         let m = Mat4::from_cols(column(0, p), column(1, p), column(2, p), column(3, p)).transpose();
         [m.x_axis, m.y_axis, m.z_axis]
     });
-    let live_at = |j: usize| FIRST + j < N && next_live.get(FIRST + j) == Some(&true);
-    let in_system = BVec4A::new(live_at(0), live_at(1), live_at(2), live_at(3));
+    let in_system: [bool; LANES] =
+        core::array::from_fn(|j| FIRST + j < N && next_live.get(FIRST + j) == Some(&true));
+    let in_system = lane_mask(&Vec4::ZERO.cmpeq(Vec4::ZERO), in_system);
     for ((i, [u0, u1]), out) in rows.iter().enumerate().zip(c.iter_mut()) {
         let x = t[0][0] * u0.x + t[1][0] * u1.x;
         let y = t[0][1] * u0.y + t[1][1] * u1.y;
@@ -411,4 +411,12 @@ fn coupling_columns<const N: usize, const FIRST: usize>(
             }
         }
     }
+}
+
+/// The lane mask of `flags`, of the type `like` is: glam's mask of a `Vec4` comparison, which differs with
+/// and without its SIMD (`enhanced-determinism`).
+#[inline(always)]
+fn lane_mask<M: From<[bool; LANES]>>(like: &M, flags: [bool; LANES]) -> M {
+    let _ = like;
+    M::from(flags)
 }
