@@ -7,6 +7,7 @@
     reason = "dense block algebra reads as the formulas with indices"
 )]
 
+use super::factor::Block;
 use super::factor::REGULARIZATION;
 use super::link::{LANES, Link, Mode};
 use super::row::{MAX_ROWS, Real, Row, displace_body};
@@ -238,17 +239,9 @@ impl Link {
                     }
                     _ => [Vec4::ZERO; 2],
                 });
-            for i in 0..N {
-                let (sl, sa) = (jacobian[i][shared], jacobian[i][shared + 1]);
-                for j in 0..N {
-                    c[i][j] = if live[i] && next_live[j] {
-                        let [wl, wa] = next_impulses[j];
-                        Real::from((sl * wl + sa * wa).element_sum())
-                    } else {
-                        0.0
-                    };
-                }
-            }
+            let sides: [[Vec4; 2]; N] =
+                core::array::from_fn(|i| [jacobian[i][shared], jacobian[i][shared + 1]]);
+            fill_coupling::<N>(c, &sides, &next_impulses, (live, next_live));
             return;
         }
         let next_sides: [[Vec4; 2]; N] = core::array::from_fn(|j| match next.rows.rows.get(j) {
@@ -258,17 +251,9 @@ impl Link {
             }
             _ => [Vec4::ZERO; 2],
         });
-        for i in 0..N {
-            let (wl, wa) = (inverse[i][shared], inverse[i][shared + 1]);
-            for j in 0..N {
-                c[i][j] = if live[i] && next_live[j] {
-                    let [sl, sa] = next_sides[j];
-                    Real::from((sl * wl + sa * wa).element_sum())
-                } else {
-                    0.0
-                };
-            }
-        }
+        let impulses: [[Vec4; 2]; N] =
+            core::array::from_fn(|i| [inverse[i][shared], inverse[i][shared + 1]]);
+        fill_coupling::<N>(c, &impulses, &next_sides, (live, next_live));
     }
 
     /// Writes `M⁻¹·Jᵀ` of the first `N` rows into `impulse` ([`Link::impulse`]: zero for a row not in the
@@ -367,4 +352,71 @@ impl Link {
         b.linear_velocity += change[2].truncate();
         b.angular_velocity += change[3].truncate();
     }
+}
+
+/// The coupling block `C` of [`Link::fill_blocks`] over the first `N` rows: `Cᵢⱼ = (uᵢ·vⱼ)`, with `uᵢ` the two
+/// 4-lane vectors of row `i` of one link and `vⱼ` those of row `j` of its neighbour on the shared body (one of
+/// them a side of a row's Jacobian, the other `M⁻¹·Jᵀ` of a row; w = 0), 0 where row `i` or row `j` is not
+/// in the system (`live`).
+///
+/// Each entry is the lane products' sum `a = u₀∘v₀ + u₁∘v₁` added up as `(a.x + a.y) + (a.z + a.w)` — what
+/// `(u₀ * v₀ + u₁ * v₁).element_sum()` gives with glam's SIMD (and, as `a.w` is +0, without it) — but four
+/// entries at a time: the neighbour's vectors of four rows transposed, so that each lane of one product is
+/// one entry's. The same operations on the same values in each lane, so the same bits, in about half the
+/// instructions of an entry at a time (an entry's horizontal sum is three of them).
+#[inline(always)]
+fn fill_coupling<const N: usize>(
+    c: &mut Block,
+    rows: &[[Vec4; 2]; N],
+    columns: &[[Vec4; 2]; N],
+    live: ([bool; MAX_ROWS], [bool; MAX_ROWS]),
+) {
+    coupling_columns::<N, 0>(c, rows, columns, live);
+    if N > LANES {
+        coupling_columns::<N, LANES>(c, rows, columns, live);
+    }
+}
+
+/// The columns `FIRST..FIRST + 4` (those below `N`) of [`fill_coupling`]'s block.
+#[inline(always)]
+fn coupling_columns<const N: usize, const FIRST: usize>(
+    c: &mut Block,
+    rows: &[[Vec4; 2]; N],
+    columns: &[[Vec4; 2]; N],
+    (live, next_live): ([bool; MAX_ROWS], [bool; MAX_ROWS]),
+) {
+    // t[p][k]: component k (x, y, z) of vector p of the four columns (0 past `N`), one column a lane.
+    let column = |j: usize, p: usize| columns.get(FIRST + j).map_or(Vec4::ZERO, |v| v[p]);
+    let t: [[Vec4; 3]; 2] = core::array::from_fn(|p| {
+        let m = Mat4::from_cols(column(0, p), column(1, p), column(2, p), column(3, p)).transpose();
+        [m.x_axis, m.y_axis, m.z_axis]
+    });
+    let in_system: [bool; LANES] =
+        core::array::from_fn(|j| FIRST + j < N && next_live.get(FIRST + j) == Some(&true));
+    let in_system = lane_mask(&Vec4::ZERO.cmpeq(Vec4::ZERO), in_system);
+    for ((i, [u0, u1]), out) in rows.iter().enumerate().zip(c.iter_mut()) {
+        let x = t[0][0] * u0.x + t[1][0] * u1.x;
+        let y = t[0][1] * u0.y + t[1][1] * u1.y;
+        let z = t[0][2] * u0.z + t[1][2] * u1.z;
+        let sum = (x + y) + (z + Vec4::ZERO);
+        let entries = if live[i] {
+            Vec4::select(in_system, sum, Vec4::ZERO)
+        } else {
+            Vec4::ZERO
+        };
+        let entries = entries.as_dvec4().to_array();
+        for (j, (out, entry)) in out.iter_mut().skip(FIRST).zip(entries).enumerate() {
+            if FIRST + j < N {
+                *out = entry;
+            }
+        }
+    }
+}
+
+/// The lane mask of `flags`, of the type `like` is: glam's mask of a `Vec4` comparison, which differs with
+/// and without its SIMD (`enhanced-determinism`).
+#[inline(always)]
+fn lane_mask<M: From<[bool; LANES]>>(like: &M, flags: [bool; LANES]) -> M {
+    let _ = like;
+    M::from(flags)
 }

@@ -44,6 +44,49 @@ pub(crate) struct Topology {
     visited: Vec<bool>,
     /// Scratch of [`Topology::find_closed`]: per body, the joints and tethers acting on it.
     touches: Vec<u32>,
+    /// What the last search read of the joints ([`Topology::keeps`]).
+    inputs: SearchInputs,
+}
+
+/// What the path and graph search and [`Topology::find_closed`] read of one joint: its bodies, which of them
+/// move ([`dynamic_bodies`]), whether its rows can join the direct solve and how many they are, and whether
+/// all of them do.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(crate) struct JointShape {
+    bodies: [usize; 2],
+    moves: [bool; 2],
+    capable: bool,
+    rows: usize,
+    whole: bool,
+}
+
+impl JointShape {
+    /// The shape of a joint between the bodies of `pair`, able to join a path if `capable`, with `rows`
+    /// direct rows, all of them in the direct solve if `whole`.
+    #[inline]
+    pub fn new(pair: &BodyPair, capable: bool, rows: usize, whole: bool) -> Self {
+        let [a, b] = dynamic_bodies(pair);
+        Self {
+            bodies: [pair.index_a, pair.index_b],
+            moves: [a.is_some(), b.is_some()],
+            capable,
+            rows,
+            whole,
+        }
+    }
+}
+
+/// The joints' shapes and the body count the paths were last searched for, and whether the closed paths
+/// were last counted without tethers: a step whose joints have the same shapes finds the same paths, graphs
+/// and closed paths (the searches read nothing else), so it keeps them ([`Topology::keeps`]).
+#[derive(Debug, Clone, Default)]
+struct SearchInputs {
+    shapes: Vec<JointShape>,
+    body_count: usize,
+    /// Whether `shapes` are those the current paths were found for.
+    found: bool,
+    /// Whether the current closed paths were counted for these paths with no tether acting.
+    closed_alone: bool,
 }
 
 impl Topology {
@@ -52,6 +95,34 @@ impl Topology {
         self.paths.clear();
         self.path_joints.clear();
         self.graph_of.clear();
+        self.inputs.found = false;
+    }
+
+    /// Records the shapes of this step's joints (`shapes`, in joint order) among `body_count` bodies, and
+    /// returns whether the paths found for the last step's serve this one: the same shapes, the paths found
+    /// for them, and no graph among them (a graph's [`DirectGraph`] is made again with the search). If not,
+    /// the caller searches again ([`Topology::find_paths_and_graphs`]) and counts the closed paths again.
+    pub fn keeps(
+        &mut self,
+        body_count: usize,
+        shapes: impl ExactSizeIterator<Item = JointShape>,
+    ) -> bool {
+        let inputs = &mut self.inputs;
+        let mut same =
+            inputs.found && inputs.body_count == body_count && inputs.shapes.len() == shapes.len();
+        inputs.shapes.resize(shapes.len(), JointShape::default());
+        for (kept, shape) in inputs.shapes.iter_mut().zip(shapes) {
+            same &= *kept == shape;
+            *kept = shape;
+        }
+        inputs.body_count = body_count;
+        let keeps = same && self.graph_of.iter().all(Option::is_none);
+        // Found for these shapes once the caller has searched (or kept the paths).
+        inputs.found = true;
+        if !keeps {
+            inputs.closed_alone = false;
+        }
+        keeps
     }
 
     /// The graph path `path` is, if it is one ([`Topology::find_paths_and_graphs`]).
@@ -70,7 +141,10 @@ impl Topology {
         pair: impl Fn(usize) -> &'p BodyPair,
         capable: impl Fn(usize) -> bool,
     ) {
-        self.clear();
+        // The lists alone, not what the last search read ([`Topology::keeps`] records it).
+        self.paths.clear();
+        self.path_joints.clear();
+        self.graph_of.clear();
         self.degree.clear();
         self.degree.resize(body_count, 0);
         self.incident.clear();
@@ -194,7 +268,9 @@ impl Topology {
     /// Marks each path closed or not: a path is closed when every member's rows are all in the direct solve
     /// (`whole(i)` of its joints) and each of its dynamic bodies is acted on by the path's joints alone — of
     /// all the joints `pair(0..count)` and the tethers' pairs `others`, no other acts on it. Fixed and
-    /// kinematic bodies (zero inverse mass and inertia) take no impulse and may be shared.
+    /// kinematic bodies (zero inverse mass and inertia) take no impulse and may be shared. The marks of the
+    /// last count stand, uncounted, for paths kept with their joints' shapes ([`Topology::keeps`]) when no
+    /// tether acts now or then (the shapes hold what the count reads of the joints).
     pub fn find_closed<'p>(
         &mut self,
         body_count: usize,
@@ -203,6 +279,12 @@ impl Topology {
         others: impl Iterator<Item = &'p BodyPair>,
         whole: impl Fn(usize) -> bool,
     ) {
+        let mut others = others.peekable();
+        let alone = others.peek().is_none();
+        if alone && self.inputs.closed_alone && self.inputs.found {
+            return;
+        }
+        self.inputs.closed_alone = alone;
         let Self {
             paths,
             path_joints,

@@ -8,7 +8,7 @@ use crate::joint::{Joint, JointBodies};
 use crate::part::rotation_error;
 use crate::path::resize_links;
 use crate::path::tether::Edge;
-use crate::path::topology::Topology;
+use crate::path::topology::{JointShape, Topology};
 use crate::state::JointState;
 use core::sync::atomic::{AtomicBool, Ordering};
 use rebound_dynamics::{BodyParams, SolverBody, StepContext};
@@ -187,19 +187,32 @@ impl JointSolver {
             topology,
             ..
         } = self;
-        // No joint, no path: nothing to search (a world of contacts alone walks no per-body array).
-        if !settings.direct_chains || joints.is_empty() {
+        // No joint that can join a path, no path and no graph: nothing to search (a world of contacts or of
+        // springs alone walks no per-body array).
+        if !settings.direct_chains || !joints.iter().any(|j| j.kind.is_direct_capable()) {
             topology.clear();
             return;
         }
         let joints_ref = &*joints;
-        topology.find_paths_and_graphs(
-            body_count,
-            joints_ref.len(),
-            |i| &joints_ref[i].pair,
-            |i| joints_ref[i].kind.is_direct_capable(),
-            |i| joints_ref[i].kind.direct_row_count(),
-        );
+        // The same joints between the same bodies as in the last step: the same paths (a deck or a chain
+        // keeps its joints from step to step), not searched again.
+        let shapes = joints_ref.iter().map(|j| {
+            JointShape::new(
+                &j.pair,
+                j.kind.is_direct_capable(),
+                j.kind.direct_row_count(),
+                j.kind.is_solved_directly_whole(),
+            )
+        });
+        if !topology.keeps(body_count, shapes) {
+            topology.find_paths_and_graphs(
+                body_count,
+                joints_ref.len(),
+                |i| &joints_ref[i].pair,
+                |i| joints_ref[i].kind.is_direct_capable(),
+                |i| joints_ref[i].kind.direct_row_count(),
+            );
+        }
         for (path, range) in topology.paths.iter().enumerate() {
             for &index in &topology.path_joints[range.clone()] {
                 joints[index].path = Some(path);

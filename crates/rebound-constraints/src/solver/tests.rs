@@ -264,6 +264,138 @@ fn a_path_is_closed_only_if_nothing_else_acts_on_its_dynamic_bodies() {
     );
 }
 
+/// A solver prepared step after step keeps its paths, graphs and closed marks while its joints keep their
+/// shapes, and finds them again when they change: after each of a run of changed scenes (a joint added, one
+/// not solved directly, a motor, a plank made fixed, the joints reordered, a rope chain, a ladder and a deck
+/// between two fixed bodies that are graphs), prepared once and again unchanged, it has the topology of a
+/// solver prepared on that scene alone.
+#[test]
+fn paths_kept_from_the_last_step_are_those_a_fresh_search_finds() {
+    let settings = SolverSettings::default();
+    let ctx = StepContext::new(1.0 / 60.0, &settings);
+    let topology = |solver: &JointSolver| {
+        let t = &solver.topology;
+        (
+            t.paths.clone(),
+            t.path_joints.clone(),
+            t.closed.clone(),
+            t.graph_of.clone(),
+        )
+    };
+    let prepare = |solver: &mut JointSolver, (bodies, joints, pairs): &Scene| {
+        let solver_bodies: Vec<SolverBody> = bodies.iter().map(SolverBody::from_body).collect();
+        let params: Vec<BodyParams> = bodies.iter().map(BodyParams::from_body).collect();
+        let states = vec![JointState::default(); joints.len()];
+        solver.prepare(joints, &states, pairs, &solver_bodies, &params, &ctx);
+    };
+    type Scene = (Vec<RigidBody>, Vec<Joint>, Vec<JointBodies>);
+    let mut scenes: Vec<Scene> = Vec::new();
+    // Four planks hanging from a fixed body by hinges: a path (the deck between two fixed bodies has
+    // more rows than degrees of freedom, a graph).
+    let mut deck = hinge_deck(1.0);
+    scenes.push(deck.clone());
+    deck.0.pop();
+    deck.1.pop();
+    deck.2.pop();
+    scenes.push(deck.clone());
+    // A rope from the left anchor to a ball: a second path.
+    let mut with_rope = deck.clone();
+    with_rope.0.push(
+        RigidBody::new(&BodyDesc::dynamic().with_position(Vec3::new(0.0, -1.0, 0.0))).unwrap(),
+    );
+    with_rope.1.push(Joint::new(Rope::new(1.0).unwrap()));
+    with_rope.2.push(JointBodies {
+        a: 0,
+        b: with_rope.0.len() - 1,
+    });
+    scenes.push(with_rope.clone());
+    // A prismatic joint on a plank: the deck is not closed.
+    let mut with_prismatic = with_rope.clone();
+    with_prismatic.1.push(Joint::new(PrismaticJoint::new()));
+    with_prismatic.2.push(JointBodies {
+        a: 2,
+        b: with_prismatic.0.len() - 1,
+    });
+    scenes.push(with_prismatic);
+    // A motor on the third hinge (Gauss–Seidel beside the path).
+    let mut with_motor = deck.clone();
+    with_motor.1[2] = Joint::new(HingeJoint::new().with_motor(Motor::new(1.0, 10.0).unwrap()))
+        .with_local_anchors(Vec3::new(0.5, 0.0, 0.0), Vec3::new(-0.5, 0.0, 0.0))
+        .unwrap()
+        .with_local_axes(Vec3::Z, Vec3::Z)
+        .unwrap();
+    scenes.push(with_motor);
+    // The second plank fixed: two paths.
+    let mut pinned = deck.clone();
+    pinned.0[2] =
+        RigidBody::new(&BodyDesc::fixed().with_position(Vec3::new(1.5, 0.0, 0.0))).unwrap();
+    scenes.push(pinned);
+    // The joints in another order.
+    let mut reordered = with_rope.clone();
+    reordered.1.reverse();
+    reordered.2.reverse();
+    scenes.push(reordered);
+    // A chain of ropes hanging from a fixed body.
+    let mut chain: Scene = (
+        vec![RigidBody::new(&BodyDesc::fixed()).unwrap()],
+        Vec::new(),
+        Vec::new(),
+    );
+    for k in 1..=6 {
+        let ball = BodyDesc::dynamic().with_position(Vec3::new(0.0, -(k as f32), 0.0));
+        chain.0.push(RigidBody::new(&ball).unwrap());
+        chain.1.push(Joint::new(Rope::new(1.0).unwrap()));
+        chain.2.push(JointBodies { a: k - 1, b: k });
+    }
+    scenes.push(chain);
+    // Two decks side by side with rungs between their planks: a ladder, solved as a graph.
+    let mut ladder = deck.clone();
+    let offset = ladder.0.len();
+    for body in &deck.0 {
+        ladder.0.push(body.clone());
+    }
+    for (joint, pair) in deck.1.iter().zip(&deck.2) {
+        ladder.1.push(*joint);
+        ladder.2.push(JointBodies {
+            a: pair.a + offset,
+            b: pair.b + offset,
+        });
+    }
+    for k in [2, 3] {
+        ladder.1.push(Joint::new(BallJoint::new()));
+        ladder.2.push(JointBodies {
+            a: k,
+            b: k + offset,
+        });
+    }
+    scenes.push(ladder);
+    scenes.push(deck);
+    let mut kept = JointSolver::new();
+    let (mut graphs, mut kept_paths) = (false, 0);
+    for (k, scene) in scenes.iter().enumerate() {
+        for again in 0..2 {
+            prepare(&mut kept, scene);
+            let mut fresh = JointSolver::new();
+            prepare(&mut fresh, scene);
+            assert_eq!(
+                topology(&kept),
+                topology(&fresh),
+                "scene {k}, prepared {again}"
+            );
+            graphs |= kept.topology.graph_of.iter().any(Option::is_some);
+            let no_graph = kept.topology.graph_of.iter().all(Option::is_none);
+            if again == 1 && !kept.topology.paths.is_empty() && no_graph {
+                kept_paths += 1;
+            }
+        }
+    }
+    assert!(graphs, "the scenes have a graph");
+    assert!(
+        kept_paths >= 5,
+        "paths kept without a graph in {kept_paths} scenes"
+    );
+}
+
 /// A deck's hinge rows are kept into the next step — for the same joints, between the same bodies, with
 /// the same inverse masses — and dropped for a path with any of them changed.
 #[test]
