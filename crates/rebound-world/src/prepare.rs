@@ -147,6 +147,21 @@ fn solver_index_of(s: &mut Solver, bodies: &BodySet, handle: BodyHandle) -> Opti
     add_fixed(s, bodies, handle, slot)
 }
 
+/// The solver indices of `manifold`'s two bodies, when both have one ([`solver_index_of`]) and at least one
+/// of them is dynamic: the pairs that become solver contacts.
+#[inline]
+fn contact_pair(
+    s: &mut Solver,
+    bodies: &BodySet,
+    manifold: &ContactManifold,
+) -> Option<(usize, usize)> {
+    // Both looked up first: the second may number a fixed body even when the first has no index.
+    let ia = solver_index_of(s, bodies, manifold.body_a);
+    let ib = solver_index_of(s, bodies, manifold.body_b);
+    let (ia, ib) = (ia?, ib?);
+    (s.params[ia].is_dynamic() || s.params[ib].is_dynamic()).then_some((ia, ib))
+}
+
 /// [`solver_index_of`] for a body without a solver index yet (in slot `slot`): a fixed body gets the next
 /// one; `None` for any other.
 #[inline(never)]
@@ -195,14 +210,9 @@ pub(crate) fn build_contacts(
         s.stack_loads.begin(ctx.gravity);
     }
     for (source, manifold) in manifolds.iter().enumerate() {
-        let ia = solver_index_of(s, bodies, manifold.body_a);
-        let ib = solver_index_of(s, bodies, manifold.body_b);
-        let (Some(ia), Some(ib)) = (ia, ib) else {
+        let Some((ia, ib)) = contact_pair(s, bodies, manifold) else {
             continue;
         };
-        if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
-            continue;
-        }
         // Written in place in the list, point by point (not built aside and moved in); a new one is pushed
         // first while the list is short.
         if count == s.contacts.len() {
@@ -283,14 +293,9 @@ fn build_contacts_on_pool(
     s.contact_bodies.clear();
     let mut reports_forces = false;
     for (source, manifold) in manifolds.iter().enumerate() {
-        let ia = solver_index_of(s, bodies, manifold.body_a);
-        let ib = solver_index_of(s, bodies, manifold.body_b);
-        let (Some(ia), Some(ib)) = (ia, ib) else {
+        let Some((ia, ib)) = contact_pair(s, bodies, manifold) else {
             continue;
         };
-        if !s.params[ia].is_dynamic() && !s.params[ib].is_dynamic() {
-            continue;
-        }
         reports_forces |= manifold.force_event_threshold.is_some();
         s.contact_sources.push(source);
         s.contact_bodies.push((ia as u32, ib as u32));
