@@ -3,7 +3,7 @@
 //! entities of their own and name chassis and wheel. Headless: the schedule runner runs a fixed number of
 //! frames.
 //!
-//! Run: `cargo run -p rebound-bevy --example car`
+//! Run: `cargo run -p rebound-bevy --example drive`
 
 #![allow(clippy::print_stdout, reason = "an example prints its results")]
 #![allow(
