@@ -326,6 +326,22 @@ mod tests {
     use rebound_math::Vec3;
     use rebound_math::par::rayon;
 
+    /// Steps `world` `steps` times on a pool of `threads` threads: the phases of its last plan and the
+    /// state's digest.
+    fn stepped_on_pool(mut world: World, threads: usize, steps: usize) -> (usize, u64) {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap_or_else(|e| panic!("no pool: {e}"));
+        for _ in 0..steps {
+            pool.install(|| world.step(1.0 / 60.0));
+        }
+        (
+            world.scratch.solver.plan.phase_count(),
+            world.state_digest(),
+        )
+    }
+
     /// A field of `pairs` separate springs (as the `springs` scene, stretched to 1.5 m of 1 m rest length),
     /// stepped `steps` times on a pool of `threads` threads: the phases of its last plan and the state's digest.
     fn spring_field(pairs: usize, threads: usize, steps: usize) -> (usize, u64) {
@@ -351,17 +367,7 @@ mod tests {
                 .insert_joint(Joint::new(spring), a, b)
                 .unwrap_or_else(|e| panic!("joint: {e}"));
         }
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap_or_else(|e| panic!("no pool: {e}"));
-        for _ in 0..steps {
-            pool.install(|| world.step(1.0 / 60.0));
-        }
-        (
-            world.scratch.solver.plan.phase_count(),
-            world.state_digest(),
-        )
+        stepped_on_pool(world, threads, steps)
     }
 
     #[test]
@@ -393,17 +399,7 @@ mod tests {
             .unwrap_or_else(|e| panic!("joint: {e}"));
             previous = Some(ball);
         }
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap_or_else(|e| panic!("no pool: {e}"));
-        for _ in 0..steps {
-            pool.install(|| world.step(1.0 / 60.0));
-        }
-        (
-            world.scratch.solver.plan.phase_count(),
-            world.state_digest(),
-        )
+        stepped_on_pool(world, threads, steps)
     }
 
     #[test]
