@@ -62,10 +62,14 @@ pub(crate) fn collide<B: CollisionBackend>(
     // for the same input: the sort is deterministic). The key reads no number, so the manifolds the walk
     // below rejects (`is_usable`) sort like the others.
     // A backend that writes its manifolds in order (the facade's, for one collider per body) leaves
-    // nothing to sort: on the pool the order is checked chunk by chunk and the sort's own pass skipped.
-    let in_order = par::is_parallel()
-        && manifolds.len() > pool::MANIFOLDS_PER_CHUNK
-        && pool::is_sorted_on_pool(&mut manifolds, &mut c.chunks);
+    // nothing to sort, on one thread or many alike (on the pool the order is checked chunk by chunk), so
+    // equal keys keep the backend's order on both paths.
+    let on_pool = par::is_parallel() && manifolds.len() > pool::MANIFOLDS_PER_CHUNK;
+    let in_order = if on_pool {
+        pool::is_sorted_on_pool(&mut manifolds, &mut c.chunks)
+    } else {
+        manifolds.is_sorted_by_key(ContactManifold::order_key)
+    };
     if !in_order {
         manifolds.sort_unstable_by_key(ContactManifold::order_key);
     }
