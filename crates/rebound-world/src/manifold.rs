@@ -242,19 +242,34 @@ impl ContactManifold {
     /// slots past them left as they were (as after [`ContactManifold::renew`]).
     #[inline]
     pub fn renew_from(&mut self, other: &Self) {
-        let used = other.point_count.min(MAX_MANIFOLD_POINTS);
-        self.body_a = other.body_a;
-        self.body_b = other.body_b;
-        self.key = other.key;
-        self.point_count = other.point_count;
-        self.normal = other.normal;
-        self.friction = other.friction;
-        self.restitution = other.restitution;
-        self.rolling_friction = other.rolling_friction;
-        self.surface_velocity = other.surface_velocity;
-        self.force_event_threshold = other.force_event_threshold;
-        self.points[..used].copy_from_slice(&other.points[..used]);
-        self.basis = other.basis;
+        // Every field named, so that a field added to the manifold is not forgotten here.
+        let Self {
+            body_a,
+            body_b,
+            key,
+            point_count,
+            normal,
+            friction,
+            restitution,
+            rolling_friction,
+            surface_velocity,
+            force_event_threshold,
+            points,
+            basis,
+        } = other;
+        let used = (*point_count).min(MAX_MANIFOLD_POINTS);
+        self.body_a = *body_a;
+        self.body_b = *body_b;
+        self.key = *key;
+        self.point_count = *point_count;
+        self.normal = *normal;
+        self.friction = *friction;
+        self.restitution = *restitution;
+        self.rolling_friction = *rolling_friction;
+        self.surface_velocity = *surface_velocity;
+        self.force_event_threshold = *force_event_threshold;
+        self.points[..used].copy_from_slice(&points[..used]);
+        self.basis = *basis;
     }
 
     /// Sets the point slots past [`ContactManifold::point_count`] to their default (for a snapshot, whose
