@@ -171,6 +171,10 @@ pub(crate) fn sort_parts(
         |r, sorted, scratch| {
             let base = r * width;
             let key = |&(h1, h2): &Pair| {
+                // The key holds both slots only while each is below `slot_count`.
+                debug_assert!(
+                    (h1.0.index as usize) < slot_count && (h2.0.index as usize) < slot_count
+                );
                 (((h1.0.index as usize - base) as u64) << second_bits) | u64::from(h2.0.index)
             };
             let sources = part_starts
