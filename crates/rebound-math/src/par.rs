@@ -236,6 +236,9 @@ pub fn for_each_part_zip_mut<T, U, F>(
     let (Some(out), Some(with)) = (out.get_mut(..total), with.get_mut(..total)) else {
         return;
     };
+    // The pool's halving measures parts from `starts[0]`, the loop below from 0: the same parts only for
+    // starts ascending from 0, as documented.
+    debug_assert!(starts.first().is_none_or(|&s| s == 0) && starts.is_sorted());
     #[cfg(feature = "parallel")]
     if is_parallel() && starts.len() > 1 {
         parts::split(out, with, starts, 0, &f);
@@ -376,9 +379,9 @@ pub(crate) mod spin {
     use std::sync::atomic::{AtomicU8, Ordering};
 
     /// Spins, a pause each, a thread waits for the other half of a join (or a team member for a phase)
-    /// before it yields its core: 2^16 are 0.2 to a few milliseconds (a pause takes 10 to 140 cycles, by
-    /// processor), longer than any wait between two tasks of one step when each thread has a core, so the
-    /// yield only comes into play when the pool has more threads than the machine has free cores.
+    /// before it yields its core: a count, not a time, chosen longer than any wait between two tasks of one
+    /// step when each thread has a core, so the yield only comes into play when the pool has more threads
+    /// than the machine has free cores.
     pub(crate) const SPINS: u64 = 1 << 16;
 
     /// Spins between two looks for the pool's pending tasks: a waiting thread takes up a task within a
@@ -520,8 +523,8 @@ mod awake {
     use std::sync::atomic::{AtomicBool, Ordering};
 
     /// Failed looks for pending work, a pause after each, between two yields of the core while a spinner
-    /// waits: a count, not a time. 4,096 looks (each a try at every queue of the pool) are about a
-    /// millisecond, longer than the serial stretches of a step, so the spinner keeps its core through the
+    /// waits: a count, not a time, chosen longer than the serial stretches of a step (each look is a try at
+    /// every queue of the pool), so the spinner keeps its core through the
     /// step (a yield can hand the core to another process for a whole time slice) and only gives it away
     /// now and then when the step's thread keeps it waiting longer.
     const LOOKS_BEFORE_YIELD: u32 = 1 << 12;

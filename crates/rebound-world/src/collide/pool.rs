@@ -22,7 +22,7 @@ use rebound_dynamics::RigidBody;
 use rebound_math::Mat3;
 use rebound_math::par::{self, MIN_ITEMS_PER_TASK};
 
-/// Manifolds per chunk of the walk (a manifold takes a few hundred instructions).
+/// Manifolds per chunk of the walk: enough work per chunk to outweigh handing it to another thread.
 pub(super) const MANIFOLDS_PER_CHUNK: usize = 256;
 
 /// What one chunk's walk found.

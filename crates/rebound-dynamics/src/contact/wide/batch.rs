@@ -232,7 +232,7 @@ pub(crate) fn build(
 ) {
     let lane = |i: usize| group.get(i).map(|&index| &contacts[index]);
     let lanes = [lane(0), lane(1), lane(2), lane(3)];
-    // By reference: an empty lane reads the one `EMPTY_LANE` (no header is copied).
+    // Read in place; an empty lane reads `EMPTY_LANE`.
     let headers: [&PreparedContact; LANES] = lanes.map(|c| c.unwrap_or(&EMPTY_LANE));
     let slot_count = lanes
         .iter()
@@ -625,7 +625,9 @@ impl Batch {
     /// The lanes' bodies, by reference (the transposes read the 16-byte groups they need, not whole states).
     /// An empty lane reads body 0 (its indices are [`EMPTY_LANE`]'s): with zero masses, normal and rows it
     /// applies no impulse, whatever it reads, and its velocities are never written back, so no lane's result
-    /// depends on what an empty one reads, and no branch per lane is needed.
+    /// depends on what an empty one reads, and no branch per lane is needed (an empty lane's own rows may
+    /// then hold any value; nothing reads lanes past the batch's `lanes`). [`Batch::shared_states`] keeps the
+    /// branch: there another thread may be writing body 0 while the lane reads it.
     #[inline(always)]
     fn states<'a>(
         &self,
