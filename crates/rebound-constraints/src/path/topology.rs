@@ -1,8 +1,9 @@
 //! Stage *prepare*, path discovery: which joints form the paths the direct solve takes, in path order
 //! ([`Topology::find_paths`]), how consecutive members share a body ([`Topology::shared_with_next`]), and
 //! which paths are *closed* — solved entirely by the direct solve, with nothing else acting on their dynamic
-//! bodies ([`Topology::find_closed`]). It sees joints only as body pairs and two flags given by the solver:
-//! whether a joint's rows can join a path, and whether all of them do.
+//! bodies ([`Topology::find_closed`]). It sees joints only as body pairs, their direct row counts and two
+//! flags given by the solver: whether a joint's rows can join a path, and whether all of them do; it keeps
+//! its last search while those are unchanged ([`Topology::keeps`]).
 
 use super::graph::DirectGraph;
 use crate::pair::{BodyPair, dynamic_bodies};

@@ -290,8 +290,8 @@ fn paths_kept_from_the_last_step_are_those_a_fresh_search_finds() {
     };
     type Scene = (Vec<RigidBody>, Vec<Joint>, Vec<JointBodies>);
     let mut scenes: Vec<Scene> = Vec::new();
-    // Four planks hanging from a fixed body by hinges: a path (the deck between two fixed bodies has
-    // more rows than degrees of freedom, a graph).
+    // The deck between two fixed bodies (more rows than degrees of freedom: a graph), then, its last body
+    // and hinge taken off, four planks hanging from a fixed body by hinges: a path.
     let mut deck = hinge_deck(1.0);
     scenes.push(deck.clone());
     deck.0.pop();
