@@ -362,8 +362,8 @@ impl Link {
 /// Each entry is the lane products' sum `a = u₀∘v₀ + u₁∘v₁` added up as `(a.x + a.y) + (a.z + a.w)` — what
 /// `(u₀ * v₀ + u₁ * v₁).element_sum()` gives with glam's SIMD (and, as `a.w` is +0, without it) — but four
 /// entries at a time: the neighbour's vectors of four rows transposed, so that each lane of one product is
-/// one entry's. The same operations on the same values in each lane, so the same bits, in about half the
-/// instructions of an entry at a time (an entry's horizontal sum is three of them).
+/// one entry's. The same operations on the same values in each lane, so the same bits, without a horizontal
+/// sum per entry. The rows' and columns' fourth components must be +0 (they are built from three).
 #[inline(always)]
 fn fill_coupling<const N: usize>(
     c: &mut Block,
@@ -371,6 +371,12 @@ fn fill_coupling<const N: usize>(
     columns: &[[Vec4; 2]; N],
     live: ([bool; MAX_ROWS], [bool; MAX_ROWS]),
 ) {
+    debug_assert!(
+        rows.iter()
+            .chain(columns)
+            .flatten()
+            .all(|v| v.w.to_bits() == 0)
+    );
     coupling_columns::<N, 0>(c, rows, columns, live);
     if N > LANES {
         coupling_columns::<N, LANES>(c, rows, columns, live);
