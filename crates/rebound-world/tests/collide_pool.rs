@@ -154,7 +154,8 @@ fn the_pool_walk_keeps_matches_and_counts_as_one_thread_does() {
             assert_eq!(*capped, 0);
             assert_eq!(contacts.len(), 902 - 26 - 2);
         }
-        // The repeated key: three manifolds kept, the first warm-started from last step's first.
+        // The repeated key: three manifolds kept (which old one each warm-starts from is held to the one-thread
+        // walk by the comparison below).
         let repeated = contacts
             .iter()
             .filter(|m| m.points()[0].feature_id == 254)
