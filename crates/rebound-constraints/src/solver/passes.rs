@@ -49,7 +49,11 @@ impl JointSolver {
     /// Stage *warm start* (every substep): applies the impulses accumulated in the last substep again, along
     /// the current directions.
     pub fn warm_start(&self, solver_bodies: &mut [SolverBody]) {
-        for j in &self.joints {
+        for j in self
+            .warm_started
+            .iter()
+            .filter_map(|&index| self.joints.get(index))
+        {
             // The bodies in place: a warm start changes velocities only (`prepare` never keeps a joint whose
             // two bodies are one).
             let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
@@ -134,10 +138,6 @@ impl JointSolver {
                 let Some(j) = self.joints.get_mut(index) else {
                     continue;
                 };
-                // Springs act in the bias pass only: skip them in the relax pass without touching the bodies.
-                if !j.kind.acts_in(bias) {
-                    continue;
-                }
                 // The bodies in place (a pass changes velocities only).
                 let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
                     continue;
