@@ -167,6 +167,49 @@ impl AxisPart {
     }
 }
 
+/// [`AxisPart`] between the two centres of mass (`r_a = r_b = 0`, [`BodyPair::is_between_centres`]): `J =
+/// [ −nᵀ  0  nᵀ  0 ]`, no angular side, so neither its velocity nor its impulse touches an angular velocity,
+/// and `K = 1/m_a + 1/m_b` does not change within a step (the caller keeps [`AxisPart::effective_mass`] of
+/// the same pair). The same values as [`AxisPart`] of zero lever arms, without its products of zeros: a
+/// spring between two balls runs it every substep.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CentreAxis {
+    axis: Vec3,
+}
+
+impl CentreAxis {
+    /// The row along `dist`'s unit axis.
+    #[inline]
+    #[must_use]
+    pub(crate) fn along(dist: &Distance) -> Self {
+        Self { axis: dist.axis }
+    }
+
+    /// `Ċ = n·(v_b − v_a)` (m/s).
+    #[inline]
+    #[must_use]
+    pub(crate) fn velocity(&self, a: &SolverBody, b: &SolverBody) -> f32 {
+        self.axis.dot(b.linear_velocity - a.linear_velocity)
+    }
+
+    /// Applies `impulse` (N·s) along the axis, `+` on B and `−` on A, as [`AxisPart::apply`]; zero applies
+    /// nothing.
+    #[inline]
+    pub(crate) fn apply(
+        &self,
+        pair: &BodyPair,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        impulse: f32,
+    ) {
+        if impulse == 0.0 {
+            return;
+        }
+        a.linear_velocity -= self.axis * (impulse * pair.inv_mass_a);
+        b.linear_velocity += self.axis * (impulse * pair.inv_mass_b);
+    }
+}
+
 /// The part's `J = [ −nᵀ   −(r_a × n)ᵀ   nᵀ   (r_b × n)ᵀ ]` along the unit `axis` n with lever arms `r_a`,
 /// `r_b` (m), as A's and B's sides: the one statement of the part's Jacobian.
 #[inline(always)]
