@@ -57,12 +57,10 @@ pub struct JointSolver {
     pub(super) joints: Vec<PreparedJoint>,
     /// Per prepared joint, what only *prepare* and *store impulses* read (its break limits, its tether).
     pub(super) records: Vec<JointRecord>,
-    /// The joints a Gauss–Seidel pass visits (indices into `joints`, in order): those on no direct path, and
-    /// hinges on one that have limit, motor or spring rows. A rope chain or a bridge solved directly has none.
+    /// The joints a Gauss–Seidel pass visits (indices into `joints`, in order): those on no direct path but
+    /// springs, and hinges on one that have limit, motor or spring rows. A rope chain or a bridge solved
+    /// directly has none, nor has a field of springs.
     pub(super) iterated: Vec<usize>,
-    /// The joints *warm start* visits (indices into `joints`, in order): all but the springs, whose substep
-    /// is *apply forces* alone.
-    pub(super) warm_started: Vec<usize>,
     /// Long-range tethers of chains hanging from fixed bodies (see [`crate::path::tether`]).
     pub(super) tethers: Vec<Tether>,
     /// Scratch: the joints as graph edges, and the graph search's buffers.
@@ -113,7 +111,6 @@ impl Default for JointSolver {
             joints: Vec::new(),
             records: Vec::new(),
             iterated: Vec::new(),
-            warm_started: Vec::new(),
             tethers: Vec::new(),
             edges: Vec::new(),
             graph: JointGraph::default(),

@@ -49,11 +49,11 @@ impl JointSolver {
     /// Stage *warm start* (every substep): applies the impulses accumulated in the last substep again, along
     /// the current directions.
     pub fn warm_start(&self, solver_bodies: &mut [SolverBody]) {
-        for j in self
-            .warm_started
-            .iter()
-            .filter_map(|&index| self.joints.get(index))
-        {
+        for j in &self.joints {
+            // A spring's substep is *apply forces* alone: its bodies are not even looked up.
+            if j.kind.acts_in_no_pass() {
+                continue;
+            }
             // The bodies in place: a warm start changes velocities only (`prepare` never keeps a joint whose
             // two bodies are one).
             let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {

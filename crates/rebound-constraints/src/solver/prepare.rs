@@ -272,10 +272,9 @@ impl JointSolver {
         );
     }
 
-    /// The joints a Gauss–Seidel pass visits: all but the springs and the ones whose rows a path solves
-    /// entirely (a hinge on a path with coordinate rows — limit, motor, spring — keeps them in the pass); and
-    /// the joints *warm start* visits: all but the springs. A field of springs so runs no empty visit in the
-    /// passes.
+    /// The joints a Gauss–Seidel pass visits: all but the springs (whose substep is *apply forces* alone)
+    /// and the ones whose rows a path solves entirely (a hinge on a path with coordinate rows — limit, motor,
+    /// spring — keeps them in the pass).
     pub(super) fn list_iterated(&mut self) {
         self.iterated.clear();
         self.iterated.extend(
@@ -283,14 +282,6 @@ impl JointSolver {
                 .iter()
                 .enumerate()
                 .filter(|(_, j)| j.kind.is_iterated(j.path.is_some()))
-                .map(|(index, _)| index),
-        );
-        self.warm_started.clear();
-        self.warm_started.extend(
-            self.joints
-                .iter()
-                .enumerate()
-                .filter(|(_, j)| !j.kind.acts_in_no_pass())
                 .map(|(index, _)| index),
         );
     }
