@@ -225,3 +225,62 @@ fn jacobian(axis: Vec3, r_a: Vec3, r_b: Vec3) -> [Side; 2] {
         },
     ]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn vec3() -> impl Strategy<Value = Vec3> {
+        (-10.0f32..10.0, -10.0f32..10.0, -10.0f32..10.0).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    fn body() -> impl Strategy<Value = SolverBody> {
+        (vec3(), vec3()).prop_map(|(linear_velocity, angular_velocity)| SolverBody {
+            linear_velocity,
+            angular_velocity,
+            ..SolverBody::STATIC
+        })
+    }
+
+    fn bits(body: &SolverBody) -> [u32; 6] {
+        let (v, w) = (body.linear_velocity, body.angular_velocity);
+        [v.x, v.y, v.z, w.x, w.y, w.z].map(f32::to_bits)
+    }
+
+    proptest! {
+        /// `CentreAxis` is `AxisPart` of zero lever arms: the same velocity along the axis, and the same
+        /// velocities after an impulse, to the bit.
+        #[test]
+        fn the_centre_axis_is_the_axis_part_of_zero_lever_arms(
+            (a, b) in (body(), body()),
+            (inv_mass_a, inv_mass_b) in (0.0f32..4.0, 0.01f32..4.0),
+            (inertia_a, inertia_b) in (vec3(), vec3()),
+            d in vec3().prop_filter("a direction", |d| d.length() > 1e-3),
+            impulse in -50.0f32..50.0,
+        ) {
+            let pair = BodyPair {
+                inv_mass_a,
+                inv_mass_b,
+                inv_inertia_a: rebound_math::Mat3::from_diagonal(inertia_a.abs()),
+                inv_inertia_b: rebound_math::Mat3::from_diagonal(inertia_b.abs()),
+                ..BodyPair::default()
+            };
+            let dist = Distance {
+                anchors: crate::pair::Anchors { r_a: Vec3::ZERO, r_b: Vec3::ZERO, d },
+                axis: d.normalize(),
+                length: d.length(),
+            };
+            let (general, centre) = (AxisPart::along(&pair, &dist), CentreAxis::along(&dist));
+            prop_assert_eq!(
+                general.velocity(&a, &b).to_bits(),
+                centre.velocity(&a, &b).to_bits()
+            );
+            let (mut a1, mut b1, mut a2, mut b2) = (a, b, a, b);
+            general.apply(&pair, &mut a1, &mut b1, impulse);
+            centre.apply(&pair, &mut a2, &mut b2, impulse);
+            prop_assert_eq!(bits(&a1), bits(&a2));
+            prop_assert_eq!(bits(&b1), bits(&b2));
+        }
+    }
+}
