@@ -76,6 +76,9 @@ fn count_scenes(threads: usize, report: &mut Report) {
         let Some(mut scene) = built else {
             panic!("scene {name} does not build");
         };
+        // Every step on the pool, however small the scene.
+        #[cfg(feature = "parallel")]
+        scene.world_mut().set_min_work_for_threads(0);
         for _ in 0..WARM_UP {
             scene.step();
         }

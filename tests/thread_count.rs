@@ -30,6 +30,8 @@ fn digest_on(name: &str, pool: &ThreadPool) -> (u64, usize) {
     let mut scene = scenes::build(name, SceneOptions::default())
         .expect("the scene builds")
         .expect("a peer scene");
+    // Every step on the pool, however small the scene.
+    scene.world_mut().set_min_work_for_threads(0);
     let mut contacts = 0;
     for _ in 0..STEPS {
         contacts = pool.install(|| scene.step()).contact_count;
@@ -62,6 +64,7 @@ fn peer_scenes_have_one_digest_for_1_2_3_and_8_threads() {
 /// batches: split among threads).
 fn ball_pile() -> PhysicsWorld {
     let mut world = PhysicsWorld::new(WorldSettings::default()).expect("default settings");
+    world.set_min_work_for_threads(0);
     let ground = world.insert_body(BodyDesc::fixed()).expect("a fixed body");
     world
         .insert_collider(ColliderDesc::cuboid(Vec3::new(50.0, 0.5, 50.0)), ground)
@@ -112,6 +115,7 @@ fn a_world_steps_on_its_own_pool_with_the_same_bits() {
 #[test]
 fn a_thread_count_of_zero_is_refused_and_changes_nothing() {
     let mut world = PhysicsWorld::new(WorldSettings::default()).expect("default settings");
+    world.set_min_work_for_threads(0);
     let error = world.set_thread_count(0);
     assert!(
         matches!(error, Err(Error::ThreadPool { count: 0, .. })),
@@ -125,6 +129,7 @@ fn a_thread_count_of_zero_is_refused_and_changes_nothing() {
 /// to the plate's velocity; the plate must come out of the step with the same bits for any thread count.
 fn balls_on_a_turning_plate() -> PhysicsWorld {
     let mut world = PhysicsWorld::new(WorldSettings::default()).expect("default settings");
+    world.set_min_work_for_threads(0);
     let plate = world
         .insert_body(
             BodyDesc::kinematic()
@@ -171,6 +176,7 @@ fn a_kinematic_body_shared_by_batches_on_threads_keeps_the_bits_of_one_thread() 
 /// substep).
 fn ball_pile_of_every_pass() -> PhysicsWorld {
     let mut world = PhysicsWorld::new(WorldSettings::default()).expect("default settings");
+    world.set_min_work_for_threads(0);
     let ground = world.insert_body(BodyDesc::fixed()).expect("a fixed body");
     world
         .insert_collider(ColliderDesc::cuboid(Vec3::new(50.0, 0.5, 50.0)), ground)
@@ -218,4 +224,39 @@ fn a_pile_with_locks_bounces_and_force_events_keeps_the_bits_of_one_thread() {
     for threads in [2, 3, 8] {
         assert_eq!(run(threads), one, "{threads} threads");
     }
+}
+
+/// A scene smaller than `MIN_WORK_FOR_THREADS` (the bridge: 150 bodies) runs its steps on one thread even on
+/// a pool of two, by default, and ends in the state of every step on the pool and of one thread.
+#[test]
+fn a_small_scene_steps_on_one_thread_with_the_bits_of_the_pool() {
+    let run = |threads: usize, min_work: usize| {
+        let mut scene = scenes::build("bridge", SceneOptions::default())
+            .expect("the scene builds")
+            .expect("a peer scene");
+        assert_eq!(
+            scene.world().min_work_for_threads(),
+            rebound::MIN_WORK_FOR_THREADS
+        );
+        scene.world_mut().set_min_work_for_threads(min_work);
+        let pool = pool(threads);
+        let mut report = None;
+        for _ in 0..STEPS {
+            report = Some(pool.install(|| scene.step()));
+        }
+        let report = report.expect("steps ran");
+        let work = report.awake_body_count + report.contact_count;
+        (scene.world().state_digest(), work)
+    };
+    let (gated, work) = run(2, rebound::MIN_WORK_FOR_THREADS);
+    assert!(
+        work < rebound::MIN_WORK_FOR_THREADS,
+        "the bridge moved {work} bodies and manifolds: not a small scene"
+    );
+    assert_eq!(run(2, 0).0, gated, "on the pool the bridge ends elsewhere");
+    assert_eq!(
+        run(1, 0).0,
+        gated,
+        "on one thread the bridge ends elsewhere"
+    );
 }

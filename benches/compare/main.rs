@@ -428,6 +428,8 @@ fn rebound_alone(args: &Args) -> Result<(), String> {
                         "bodies": last.bodies,
                         "joints": last.joints,
                         "ms_median": ms,
+                        "profile_ms": Phases::mean(&runs.iter().filter_map(|r| r.phases).collect::<Vec<_>>())
+                            .entries().iter().map(|&(k, v)| (k.to_owned(), json!(v))).collect::<Map<_, _>>(),
                         "quality": Json::Object(last.quality.iter().cloned().collect()),
                     },
                 })

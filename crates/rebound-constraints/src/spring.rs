@@ -45,7 +45,7 @@
 use crate::error::ConstraintError;
 use crate::error::{check_not_nan, check_ordered};
 use crate::pair::BodyPair;
-use crate::part::AxisPart;
+use crate::part::{AxisPart, CentreAxis};
 use crate::soft_spring::{OscillatorStep, SoftSpring};
 use rebound_dynamics::SolverBody;
 use rebound_math::Vec3;
@@ -359,6 +359,19 @@ impl PreparedSpring {
         h: f32,
     ) -> f32 {
         let dist = pair.distance_known(a, b, self.fallback_axis, self.between_centres);
+        let c = dist.length - self.spring.rest_length;
+        // Anchored at both centres of mass: no lever arm, so the row has no angular side and its effective
+        // mass is prepare's for the whole step.
+        if self.between_centres
+            && let Some(prepared) = self.step
+            && prepared.h.to_bits() == h.to_bits()
+        {
+            let part = CentreAxis::along(&dist);
+            let speed = part.velocity(a, b);
+            let impulse = self.capped(prepared.step.impulse(prepared.effective_mass, speed, c), h);
+            part.apply(pair, a, b, impulse);
+            return impulse;
+        }
         let part = AxisPart::along(pair, &dist);
         let impulse = match self.spring.model {
             SpringModel::Soft(spring) => {
@@ -367,16 +380,21 @@ impl PreparedSpring {
                     Some(prepared) if prepared.holds_for(effective_mass, h) => prepared.step,
                     _ => spring.oscillator_step(effective_mass, h),
                 };
-                let c = dist.length - self.spring.rest_length;
                 let speed = part.velocity(a, b);
-                let impulse = step.impulse(effective_mass, speed, c);
-                impulse
-                    .max(self.spring.min_force * h)
-                    .min(self.spring.max_force * h)
+                self.capped(step.impulse(effective_mass, speed, c), h)
             }
             SpringModel::Force { .. } => self.force(&part, dist.length, a, b).unwrap_or(0.0) * h,
         };
         part.apply(pair, a, b, impulse);
         impulse
+    }
+
+    /// The soft model's impulse `impulse` (N·s) clamped to the force caps over a substep of `h` (s),
+    /// `[min_force·h, max_force·h]`.
+    #[inline]
+    fn capped(&self, impulse: f32, h: f32) -> f32 {
+        impulse
+            .max(self.spring.min_force * h)
+            .min(self.spring.max_force * h)
     }
 }

@@ -19,18 +19,68 @@ use rayon::prelude::*;
 pub const MIN_ITEMS_PER_TASK: usize = 64;
 
 /// Whether the helpers spread work over threads here: the parallel build inside a pool of more than one
-/// thread (the pool installed around the call, else rayon's global pool). Always `false` in the serial
-/// build.
+/// thread (the pool installed around the call, else rayon's global pool), outside [`serially`]. Always
+/// `false` in the serial build.
 #[inline]
 #[must_use]
 pub fn is_parallel() -> bool {
     #[cfg(feature = "parallel")]
     {
-        rayon::current_num_threads() > 1
+        rayon::current_num_threads() > 1 && !serial::is_on()
     }
     #[cfg(not(feature = "parallel"))]
     {
         false
+    }
+}
+
+/// Runs `f` with every helper on this thread: inside, [`is_parallel`] is `false`. The results are the same
+/// bits as on the pool (they are for any number of threads); a step too small to gain from a second thread
+/// runs so, without waking one.
+pub fn serially<R>(f: impl FnOnce() -> R) -> R {
+    #[cfg(feature = "parallel")]
+    {
+        let _on = serial::Guard::new();
+        f()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        f()
+    }
+}
+
+#[cfg(feature = "parallel")]
+mod serial {
+    use std::cell::Cell;
+
+    std::thread_local! {
+        /// Whether this thread runs inside [`super::serially`].
+        static ON: Cell<bool> = const { Cell::new(false) };
+    }
+
+    /// Whether this thread runs inside [`super::serially`].
+    #[inline]
+    pub(super) fn is_on() -> bool {
+        ON.with(Cell::get)
+    }
+
+    /// Sets the flag while it lives, and puts the one before back when dropped (a panic inside included).
+    pub(super) struct Guard {
+        before: bool,
+    }
+
+    impl Guard {
+        pub(super) fn new() -> Self {
+            Self {
+                before: ON.with(|on| on.replace(true)),
+            }
+        }
+    }
+
+    impl Drop for Guard {
+        fn drop(&mut self) {
+            ON.with(|on| on.set(self.before));
+        }
     }
 }
 

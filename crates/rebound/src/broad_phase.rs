@@ -689,6 +689,7 @@ mod tests {
         let cloud = |threads: usize| {
             let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
             world.set_thread_count(threads).unwrap();
+            world.set_min_work_for_threads(0);
             let ground = world.insert_body(BodyDesc::fixed()).unwrap();
             world
                 .insert_collider(ColliderDesc::cuboid(Vec3::new(20.0, 0.5, 20.0)), ground)

@@ -63,6 +63,8 @@ pub use error::{Error, ShapeError};
 pub use events::Event;
 pub use hooks::{ContactEdit, ContactHooks, ContactPair, ContactPointEdit};
 pub use one_way::OneWayPlatform;
+#[cfg(feature = "parallel")]
+pub use physics_world::MIN_WORK_FOR_THREADS;
 pub use physics_world::PhysicsWorld;
 pub use query::{PickHit, PointHit, QueryFilter, RayHit, ShapeHit};
 pub use shape::{ColliderShape, MAX_SHAPE_COORDINATE};

@@ -24,6 +24,8 @@ mod joints;
 mod queries;
 #[cfg(feature = "parallel")]
 mod threads;
+#[cfg(feature = "parallel")]
+pub use threads::MIN_WORK_FOR_THREADS;
 
 /// Counter behind the per-world collider handle generation base (as the world's own for bodies and joints).
 static NEXT_WORLD: AtomicU32 = AtomicU32::new(1);
@@ -64,6 +66,13 @@ pub struct PhysicsWorld {
     /// The pool the step runs on (`None`: rayon's global pool, or the one installed around the call).
     #[cfg(feature = "parallel")]
     thread_pool: Option<Arc<rebound_math::par::rayon::ThreadPool>>,
+    /// The last step's bodies moved plus contact manifolds solved (`None` before the first step): below
+    /// `min_work_for_threads` the next step runs on one thread.
+    #[cfg(feature = "parallel")]
+    last_work: Option<usize>,
+    /// See [`PhysicsWorld::set_min_work_for_threads`].
+    #[cfg(feature = "parallel")]
+    min_work_for_threads: usize,
 }
 
 impl PhysicsWorld {
@@ -87,6 +96,10 @@ impl PhysicsWorld {
             sweep: SweepScratch::default(),
             #[cfg(feature = "parallel")]
             thread_pool: None,
+            #[cfg(feature = "parallel")]
+            last_work: None,
+            #[cfg(feature = "parallel")]
+            min_work_for_threads: MIN_WORK_FOR_THREADS,
         })
     }
 
@@ -257,8 +270,16 @@ impl PhysicsWorld {
     }
 
     /// One step on the current thread pool (see [`PhysicsWorld::set_thread_pool`]), with the pool's other
-    /// threads kept awake between its parallel sections (`par::with_pool_awake`).
+    /// threads kept awake between its parallel sections (`par::with_pool_awake`); on this thread alone
+    /// (`par::serially`) after a step smaller than [`PhysicsWorld::set_min_work_for_threads`] says.
     fn step_here(&mut self, dt: f32) -> StepReport {
+        #[cfg(feature = "parallel")]
+        if self
+            .last_work
+            .is_some_and(|work| work < self.min_work_for_threads)
+        {
+            return rebound_math::par::serially(|| self.step_awake(dt));
+        }
         rebound_math::par::with_pool_awake(|| self.step_awake(dt))
     }
 
@@ -266,6 +287,10 @@ impl PhysicsWorld {
     fn step_awake(&mut self, dt: f32) -> StepReport {
         let mut report = self.world.step(dt);
         report.hook_failure_count = self.world.backend().hook_failures;
+        #[cfg(feature = "parallel")]
+        if report.skipped.is_none() {
+            self.last_work = Some(report.awake_body_count + report.contact_count);
+        }
         let narrow_phase = &self.world.backend().narrow_phase;
         self.events
             .extend(self.world.events().iter().map(|&event| match event {

@@ -72,6 +72,9 @@ fn joint_between(world: &PhysicsWorld, kind: JointKind, a: BodyHandle, b: BodyHa
 
 fn mixed_scene() -> Mixed {
     let mut world = PhysicsWorld::new(WorldSettings::default()).unwrap();
+    // With the `parallel` feature, every step on the pool, however small the scene.
+    #[cfg(feature = "parallel")]
+    world.set_min_work_for_threads(0);
     let w = &mut world;
     fixed(
         w,

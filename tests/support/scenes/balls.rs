@@ -81,6 +81,10 @@ impl Scene for Balls {
         &self.world
     }
 
+    fn world_mut(&mut self) -> &mut PhysicsWorld {
+        &mut self.world
+    }
+
     fn step(&mut self) -> StepReport {
         self.world.step(super::DT)
     }

@@ -255,6 +255,10 @@ impl Scene for Bridge {
         &self.world
     }
 
+    fn world_mut(&mut self) -> &mut PhysicsWorld {
+        &mut self.world
+    }
+
     fn step(&mut self) -> StepReport {
         self.world.step(super::DT)
     }

@@ -79,6 +79,9 @@ pub trait Scene: Send {
     /// The world.
     fn world(&self) -> &PhysicsWorld;
 
+    /// The world, for settings that change no result (its thread pool and when a step uses it).
+    fn world_mut(&mut self) -> &mut PhysicsWorld;
+
     /// One step of [`DT`]: the only call a benchmark times.
     fn step(&mut self) -> StepReport;
 

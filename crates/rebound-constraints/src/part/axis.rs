@@ -167,6 +167,49 @@ impl AxisPart {
     }
 }
 
+/// [`AxisPart`] between the two centres of mass (`r_a = r_b = 0`, [`BodyPair::is_between_centres`]): `J =
+/// [ −nᵀ  0  nᵀ  0 ]`, no angular side, so neither its velocity nor its impulse touches an angular velocity,
+/// and `K = 1/m_a + 1/m_b` does not change within a step (the caller keeps [`AxisPart::effective_mass`] of
+/// the same pair). The same values as [`AxisPart`] of zero lever arms, without its products of zeros: a
+/// spring between two balls runs it every substep.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct CentreAxis {
+    axis: Vec3,
+}
+
+impl CentreAxis {
+    /// The row along `dist`'s unit axis.
+    #[inline]
+    #[must_use]
+    pub(crate) fn along(dist: &Distance) -> Self {
+        Self { axis: dist.axis }
+    }
+
+    /// `Ċ = n·(v_b − v_a)` (m/s).
+    #[inline]
+    #[must_use]
+    pub(crate) fn velocity(&self, a: &SolverBody, b: &SolverBody) -> f32 {
+        self.axis.dot(b.linear_velocity - a.linear_velocity)
+    }
+
+    /// Applies `impulse` (N·s) along the axis, `+` on B and `−` on A, as [`AxisPart::apply`]; zero applies
+    /// nothing.
+    #[inline]
+    pub(crate) fn apply(
+        &self,
+        pair: &BodyPair,
+        a: &mut SolverBody,
+        b: &mut SolverBody,
+        impulse: f32,
+    ) {
+        if impulse == 0.0 {
+            return;
+        }
+        a.linear_velocity -= self.axis * (impulse * pair.inv_mass_a);
+        b.linear_velocity += self.axis * (impulse * pair.inv_mass_b);
+    }
+}
+
 /// The part's `J = [ −nᵀ   −(r_a × n)ᵀ   nᵀ   (r_b × n)ᵀ ]` along the unit `axis` n with lever arms `r_a`,
 /// `r_b` (m), as A's and B's sides: the one statement of the part's Jacobian.
 #[inline(always)]
@@ -181,4 +224,63 @@ fn jacobian(axis: Vec3, r_a: Vec3, r_b: Vec3) -> [Side; 2] {
             angular: r_b.cross(axis),
         },
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn vec3() -> impl Strategy<Value = Vec3> {
+        (-10.0f32..10.0, -10.0f32..10.0, -10.0f32..10.0).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+    }
+
+    fn body() -> impl Strategy<Value = SolverBody> {
+        (vec3(), vec3()).prop_map(|(linear_velocity, angular_velocity)| SolverBody {
+            linear_velocity,
+            angular_velocity,
+            ..SolverBody::STATIC
+        })
+    }
+
+    fn bits(body: &SolverBody) -> [u32; 6] {
+        let (v, w) = (body.linear_velocity, body.angular_velocity);
+        [v.x, v.y, v.z, w.x, w.y, w.z].map(f32::to_bits)
+    }
+
+    proptest! {
+        /// `CentreAxis` is `AxisPart` of zero lever arms: the same velocity along the axis, and the same
+        /// velocities after an impulse, to the bit.
+        #[test]
+        fn the_centre_axis_is_the_axis_part_of_zero_lever_arms(
+            (a, b) in (body(), body()),
+            (inv_mass_a, inv_mass_b) in (0.0f32..4.0, 0.01f32..4.0),
+            (inertia_a, inertia_b) in (vec3(), vec3()),
+            d in vec3().prop_filter("a direction", |d| d.length() > 1e-3),
+            impulse in -50.0f32..50.0,
+        ) {
+            let pair = BodyPair {
+                inv_mass_a,
+                inv_mass_b,
+                inv_inertia_a: rebound_math::Mat3::from_diagonal(inertia_a.abs()),
+                inv_inertia_b: rebound_math::Mat3::from_diagonal(inertia_b.abs()),
+                ..BodyPair::default()
+            };
+            let dist = Distance {
+                anchors: crate::pair::Anchors { r_a: Vec3::ZERO, r_b: Vec3::ZERO, d },
+                axis: d.normalize(),
+                length: d.length(),
+            };
+            let (general, centre) = (AxisPart::along(&pair, &dist), CentreAxis::along(&dist));
+            prop_assert_eq!(
+                general.velocity(&a, &b).to_bits(),
+                centre.velocity(&a, &b).to_bits()
+            );
+            let (mut a1, mut b1, mut a2, mut b2) = (a, b, a, b);
+            general.apply(&pair, &mut a1, &mut b1, impulse);
+            centre.apply(&pair, &mut a2, &mut b2, impulse);
+            prop_assert_eq!(bits(&a1), bits(&a2));
+            prop_assert_eq!(bits(&b1), bits(&b2));
+        }
+    }
 }

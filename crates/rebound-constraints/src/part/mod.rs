@@ -49,6 +49,7 @@ mod swing_twist;
 pub use align::AlignPart;
 pub use angle::AnglePart;
 pub use axis::AxisPart;
+pub(crate) use axis::CentreAxis;
 pub(crate) use distance::{Bound, DistanceLink, DistanceRow};
 pub use pivot_angle::PivotAnglePart;
 pub use point::PointPart;

@@ -208,7 +208,8 @@ fn block_step<const N: usize>(
         }
     }
     let mut rhs = if split { r } else { [0.0; MAX_ROWS] };
-    each(done, |prev| {
+    // A loop, not `each`'s closure: the closure of this body and the one of `S` below were compiled as calls.
+    for prev in done.into_iter().flatten() {
         // rhs = r̃ − Wₚᵀ·yₚ, a row of W at a time (contiguous, so the rows pair into SIMD lanes).
         for k in 0..N {
             let (w, y) = (&prev.w[k], prev.y[k]);
@@ -225,7 +226,7 @@ fn block_step<const N: usize>(
                 }
             }
         }
-    });
+    }
     if !split {
         let soft = link.soft_rhs(&r, &k_lambda);
         for row in 0..N {
@@ -240,11 +241,11 @@ fn block_step<const N: usize>(
         for row in 0..N {
             for col in row..N {
                 let mut value = link.b_block[row][col];
-                each(done, |prev| {
+                for prev in done.into_iter().flatten() {
                     for k in 0..N {
                         value -= (prev.w[k][row] * prev.inv_pivot[k]) * prev.w[k][col];
                     }
-                });
+                }
                 s[row][col] = value;
             }
         }

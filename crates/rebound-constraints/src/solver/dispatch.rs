@@ -21,7 +21,7 @@ use crate::spring::PreparedSpring;
 use crate::stage::Stage;
 use crate::state::JointState;
 use crate::wheel::PreparedWheel;
-use rebound_dynamics::{Bias, SolverBody, StepContext};
+use rebound_dynamics::{SolverBody, StepContext};
 use rebound_math::{Vec3, real};
 
 /// A joint kind prepared for the substeps.
@@ -168,13 +168,6 @@ impl Prepared {
         }
     }
 
-    /// Whether the joint acts in a pass of `bias`: springs act in neither (their whole substep is the
-    /// *apply forces* stage, see [`crate::spring`]).
-    #[inline]
-    pub(super) fn acts_in(&self, _bias: Bias) -> bool {
-        !self.acts_in_no_pass()
-    }
-
     /// Whether the joint acts in no pass but *apply forces* (a spring: its warm start and its visits in
     /// *solve* and *relax* do nothing).
     #[inline]
@@ -182,11 +175,12 @@ impl Prepared {
         matches!(self, Self::Spring(_))
     }
 
-    /// Whether a Gauss–Seidel pass visits the joint: a joint on no path, and a hinge on one for its motor
-    /// and the limits the path does not solve, if it has any (the path solves the rest; its spring acts in
-    /// *apply forces*).
+    /// Whether a Gauss–Seidel pass visits the joint: a joint on no path but a spring (which acts in *apply
+    /// forces* alone), and a hinge on one for its motor and the limits the path does not solve, if it has any
+    /// (the path solves the rest; its spring acts in *apply forces*).
     pub(super) fn is_iterated(&self, on_path: bool) -> bool {
         match self {
+            Self::Spring(_) => false,
             Self::Hinge(hinge) => !on_path || !hinge.is_solved_directly_whole(),
             Self::LimitedBall(ball) => !on_path || ball.is_iterated_on_path(),
             _ => !on_path,

@@ -57,8 +57,9 @@ pub struct JointSolver {
     pub(super) joints: Vec<PreparedJoint>,
     /// Per prepared joint, what only *prepare* and *store impulses* read (its break limits, its tether).
     pub(super) records: Vec<JointRecord>,
-    /// The joints a Gauss–Seidel pass visits (indices into `joints`, in order): those on no direct path, and
-    /// hinges on one that have limit, motor or spring rows. A rope chain or a bridge solved directly has none.
+    /// The joints a Gauss–Seidel pass visits (indices into `joints`, in order): those on no direct path but
+    /// springs, and hinges on one that have limit, motor or spring rows. A rope chain or a bridge solved
+    /// directly has none, nor has a field of springs.
     pub(super) iterated: Vec<usize>,
     /// Long-range tethers of chains hanging from fixed bodies (see [`crate::path::tether`]).
     pub(super) tethers: Vec<Tether>,

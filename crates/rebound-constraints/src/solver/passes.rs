@@ -50,6 +50,10 @@ impl JointSolver {
     /// the current directions.
     pub fn warm_start(&self, solver_bodies: &mut [SolverBody]) {
         for j in &self.joints {
+            // A spring's substep is *apply forces* alone: its bodies are not even looked up.
+            if j.kind.acts_in_no_pass() {
+                continue;
+            }
             // The bodies in place: a warm start changes velocities only (`prepare` never keeps a joint whose
             // two bodies are one).
             let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
@@ -134,10 +138,6 @@ impl JointSolver {
                 let Some(j) = self.joints.get_mut(index) else {
                     continue;
                 };
-                // Springs act in the bias pass only: skip them in the relax pass without touching the bodies.
-                if !j.kind.acts_in(bias) {
-                    continue;
-                }
                 // The bodies in place (a pass changes velocities only).
                 let Some([a, b]) = j.pair.bodies_mut(solver_bodies) else {
                     continue;

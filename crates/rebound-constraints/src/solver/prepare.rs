@@ -272,8 +272,9 @@ impl JointSolver {
         );
     }
 
-    /// The joints a Gauss–Seidel pass visits: all but the ones whose rows a path solves entirely (a hinge on a
-    /// path with coordinate rows — limit, motor, spring — keeps them in the pass).
+    /// The joints a Gauss–Seidel pass visits: all but the springs (whose substep is *apply forces* alone)
+    /// and the ones whose rows a path solves entirely (a hinge on a path with coordinate rows — limit, motor,
+    /// spring — keeps them in the pass).
     pub(super) fn list_iterated(&mut self) {
         self.iterated.clear();
         self.iterated.extend(

@@ -253,3 +253,37 @@ fn a_panicking_half_of_a_join_reaches_the_caller() {
     assert!(result.is_err());
     assert_eq!(pool.install(|| join(|| 1, || 2)), (1, 2));
 }
+
+#[test]
+fn serially_runs_every_helper_on_the_calling_thread_and_ends_with_the_call() {
+    on_pools(|| {
+        let before = is_parallel();
+        let caller = std::thread::current().id();
+        let mut items = vec![0_u32; 1000];
+        let (inside, same_thread) = serially(|| {
+            let same = std::sync::atomic::AtomicBool::new(true);
+            for_each_mut(&mut items, 8, |i, x| {
+                *x = i as u32;
+                if std::thread::current().id() != caller {
+                    same.store(false, std::sync::atomic::Ordering::Relaxed);
+                }
+            });
+            (is_parallel(), same.into_inner())
+        });
+        assert!(!inside, "is_parallel inside serially");
+        assert!(
+            same_thread,
+            "a helper inside serially ran on another thread"
+        );
+        assert!(items.iter().enumerate().all(|(i, &x)| x == i as u32));
+        assert_eq!(is_parallel(), before, "serially left the flag set");
+        // A panic inside puts the flag back too.
+        let caught = std::panic::catch_unwind(|| serially(|| panic!("inside")));
+        assert!(caught.is_err());
+        assert_eq!(
+            is_parallel(),
+            before,
+            "a panic inside serially left the flag set"
+        );
+    });
+}

@@ -8,6 +8,12 @@ use crate::{Error, PhysicsWorld};
 use rebound_math::par::rayon::{ThreadPool, ThreadPoolBuilder};
 use std::sync::Arc;
 
+/// The default of [`PhysicsWorld::set_min_work_for_threads`]: bodies moved plus contact manifolds solved in
+/// the last step below which a step runs on one thread. In a scene this small (a 500-link chain, a 150-body
+/// bridge) a stage's halves are a few microseconds each, and handing them between cores costs more than the
+/// second core gives (`docs/performance.md`, "Threads").
+pub const MIN_WORK_FOR_THREADS: usize = 1024;
+
 impl PhysicsWorld {
     /// Steps on `pool` from now on (shared with whatever else uses it), or with `None` on the pool current
     /// where [`PhysicsWorld::step`] is called: rayon's global pool (one thread per core), or the one a
@@ -36,6 +42,19 @@ impl PhysicsWorld {
             })?;
         self.thread_pool = Some(Arc::new(pool));
         Ok(())
+    }
+
+    /// Runs a step on the calling thread alone, even on a pool of several, when the step before moved
+    /// fewer than `work` bodies and contact manifolds together (default [`MIN_WORK_FOR_THREADS`], 1,024; 0:
+    /// every step on the pool). The results are the same bits either way; only the time differs.
+    pub fn set_min_work_for_threads(&mut self, work: usize) {
+        self.min_work_for_threads = work;
+    }
+
+    /// See [`PhysicsWorld::set_min_work_for_threads`].
+    #[must_use]
+    pub fn min_work_for_threads(&self) -> usize {
+        self.min_work_for_threads
     }
 
     /// The pool set with [`PhysicsWorld::set_thread_pool`] or [`PhysicsWorld::set_thread_count`], if any.
