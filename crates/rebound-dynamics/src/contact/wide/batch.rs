@@ -87,9 +87,7 @@ impl TwistX4 {
 /// centre and spread. One per batch, at the batch's index.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct BatchInfo {
-    /// Indices of the manifolds (into the solver's prepared contacts); the batch's `lanes` first are used.
-    pub(crate) contacts: [u32; LANES],
-    /// Each lane's source contact (`PreparedContact::source`).
+    /// Each lane's source contact (`PreparedContact::source`); the batch's `lanes` first are used.
     pub(crate) sources: [u32; LANES],
     /// Each lane's number of points (0 in an empty lane).
     pub(crate) point_counts: [u32; LANES],
@@ -367,9 +365,7 @@ pub(crate) fn build(
         });
     }
     sink.patch(patch);
-    let index = |i: usize| group.get(i).map_or(0, |&index| index as u32);
     sink.info(BatchInfo {
-        contacts: [0, 1, 2, 3].map(index),
         sources: headers.map(|c| c.source as u32),
         point_counts: headers.map(|c| c.point_count as u32),
         center_a,

@@ -5,7 +5,7 @@
 use super::coloring::CHUNK;
 use super::lanes::Vec3x4;
 use crate::contact::patch::{Patch, PatchShare};
-use crate::contact::prepared::PrepareInput;
+use crate::contact::prepared::{PrepareInput, PreparedContact};
 use crate::contact::scalar::PreparedPoint;
 use crate::contact::{Contact, ContactPoint, ContactSolver};
 use crate::{Bias, BodyDesc, BodyParams, RigidBody, SolverBody, SolverSettings, StepContext};
@@ -66,6 +66,14 @@ fn scene(n: usize) -> (Vec<SolverBody>, Vec<BodyParams>, Vec<Contact>) {
         }
     }
     (bodies, params, contacts)
+}
+
+/// The header the solver made of `input.contacts[source]` (a wide manifold: no rolling resistance), which
+/// it keeps only while it builds the manifold's batch.
+fn header(source: usize, input: &PrepareInput<'_>) -> PreparedContact {
+    let c = &input.contacts[source];
+    let (pa, pb) = (&input.params[c.body_a], &input.params[c.body_b]);
+    PreparedContact::new(source, c, pa, pb, None, input.ctx)
 }
 
 /// Runs one substep's contact passes, wide or all scalar.
@@ -132,9 +140,8 @@ fn lanes_are_prepared_bit_for_bit_as_the_scalar_points() {
     for (b, batch) in wide.batches.iter().enumerate() {
         let info = &wide.infos[b];
         let lanes = usize::from(batch.lanes);
-        for (l, &index) in info.contacts[..lanes].iter().enumerate() {
-            let c = &solver.contacts[index as usize];
-            assert_eq!(info.sources[l] as usize, c.source);
+        for (l, &source) in info.sources[..lanes].iter().enumerate() {
+            let c = &header(source as usize, &input);
             assert_eq!(info.point_counts[l] as usize, c.point_count);
             let points = contacts[c.source].points();
             let lane_of = |v: &Vec3x4| v.lane(l);
@@ -211,12 +218,12 @@ fn check_batches(n: usize) {
         unique.sort_unstable();
         unique.dedup();
         assert_eq!(unique.len(), lanes.len(), "a body twice in one batch");
-        for &c in &info.contacts[..used] {
+        for &c in &info.sources[..used] {
             solved[c as usize] += 1;
         }
     }
-    for &c in &solver.scalar {
-        solved[c] += 1;
+    for c in &solver.contacts {
+        solved[c.source] += 1;
     }
     assert!(solved.iter().all(|&n| n == 1), "every manifold solved once");
     assert!(!solver.batches.batches.is_empty());
@@ -232,6 +239,12 @@ fn lanes_read_back_the_scalar_friction_shares_bit_for_bit() {
     solver.warm_start(&mut bodies);
     solver.solve(&mut bodies, &ctx, Bias::On);
     solver.solve(&mut bodies, &ctx, Bias::Off);
+    let input = PrepareInput {
+        contacts: &contacts,
+        bodies: &bodies,
+        params: &params,
+        ctx: &ctx,
+    };
     let wide = &solver.batches;
     let mut expected = Vec::new();
     for (b, batch) in wide.batches.iter().enumerate() {
@@ -240,7 +253,7 @@ fn lanes_read_back_the_scalar_friction_shares_bit_for_bit() {
             .twist
             .then(|| wide.twists[batch.first_twist as usize].impulse);
         for l in 0..usize::from(batch.lanes) {
-            let c = &solver.contacts[info.contacts[l] as usize];
+            let c = &header(info.sources[l] as usize, &input);
             let share = PatchShare::new(
                 c.normal,
                 c.tangents,
