@@ -152,12 +152,12 @@ fn lanes_are_prepared_bit_for_bit_as_the_scalar_points() {
                 "every manifold of the scene has two points or more"
             );
             let twist = wide.twists[batch.first_twist as usize];
-            assert_eq!(bits(lane_of(&info.center_a)), bits(patch.center_a));
+            assert_eq!(bits(lane_of(&twist.center_a)), bits(patch.center_a));
             assert_eq!(bits(lane_of(&x4.wt_a[0])), bits(patch.wt_a[0]));
             assert_eq!(bits(lane_of(&x4.wt_b[1])), bits(patch.wt_b[1]));
             assert_eq!(bits(lane_of(&twist.twist_b)), bits(patch.twist_b));
             for (wide, scalar) in [
-                (info.spread, patch.spread),
+                (twist.spread, patch.spread),
                 (x4.tangent_mass[0], patch.tangent_mass[0]),
                 (x4.tangent_mass[1], patch.tangent_mass[1]),
                 (x4.tangent_impulse[0], patch.tangent_impulse.x),
@@ -249,22 +249,24 @@ fn lanes_read_back_the_scalar_friction_shares_bit_for_bit() {
     let mut expected = Vec::new();
     for (b, batch) in wide.batches.iter().enumerate() {
         let (info, patch) = (&wide.infos[b], &wide.patches[b]);
-        let twist = batch
-            .twist
-            .then(|| wide.twists[batch.first_twist as usize].impulse);
+        assert!(
+            batch.twist,
+            "every manifold of the scene has two points or more"
+        );
+        let twist = &wide.twists[batch.first_twist as usize];
         for l in 0..usize::from(batch.lanes) {
             let c = &header(info.sources[l] as usize, &input);
             let share = PatchShare::new(
                 c.normal,
                 c.tangents,
                 [patch.tangent_impulse[0][l], patch.tangent_impulse[1][l]],
-                twist.map_or(0.0, |t| t[l]),
-                info.spread[l],
+                twist.impulse[l],
+                twist.spread[l],
                 c.point_count,
             );
             for k in 0..c.point_count {
                 let slot = &wide.slots[batch.first_slot as usize + k];
-                let rho = slot.anchor_a.lane(l) - info.center_a.lane(l);
+                let rho = slot.anchor_a.lane(l) - twist.center_a.lane(l);
                 expected.push((c.source, k, share.at(rho)));
             }
         }
