@@ -85,7 +85,7 @@ impl ContactSolver {
         if par::is_parallel() {
             self.headers.reserve(contacts.len());
             if !prepare_on_pool(contacts, params, body_count, ctx, &mut self.headers) {
-                skipped = push_headers(&mut rest, usize::MAX, &input, self);
+                skipped = push_headers(&mut rest, usize::MAX, body_count, &input, self);
             }
             self.coloring
                 .build(&self.headers, &input, &mut self.batches, &mut self.contacts);
@@ -93,7 +93,7 @@ impl ContactSolver {
             self.coloring.begin(params.len(), false, &mut self.batches);
             let mut first = 0;
             loop {
-                skipped += push_headers(&mut rest, CHUNK, &input, self);
+                skipped += push_headers(&mut rest, CHUNK, body_count, &input, self);
                 if self.headers.is_empty() {
                     break;
                 }
@@ -262,22 +262,20 @@ impl ContactSolver {
     }
 }
 
-/// The headers of the contacts `rest` yields, onto `solver.headers` until it holds `limit`, with their
-/// rolling-resistance blocks numbered in contact order; malformed contacts — a body index out of range, a
-/// body against itself, a normal that is not finite — are passed over and counted (the return value).
+/// The headers of the contacts `rest` yields, onto `solver.headers` (shorter than `limit`) until it holds
+/// `limit`, with their rolling-resistance blocks numbered in contact order; malformed contacts — a body index
+/// of `body_count` or more, a body against itself, a normal that is not finite — are passed over and counted
+/// (the return value).
 #[inline(always)]
 fn push_headers<'a>(
     rest: &mut impl Iterator<Item = (usize, &'a Contact)>,
     limit: usize,
+    body_count: usize,
     input: &PrepareInput<'a>,
     solver: &mut ContactSolver,
 ) -> usize {
     let (params, ctx) = (input.params, input.ctx);
-    let body_count = input.bodies.len().min(params.len());
     let mut skipped = 0;
-    if solver.headers.len() >= limit {
-        return 0;
-    }
     for (source, contact) in rest {
         if contact.body_a >= body_count
             || contact.body_b >= body_count
