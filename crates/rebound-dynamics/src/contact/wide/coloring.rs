@@ -83,8 +83,12 @@ impl Coloring {
         self.pool_groups.clear();
         self.pool_members.clear();
         self.group_ends.clear();
-        self.used.clear();
-        self.used.resize(body_count, 0);
+        // Each chunk's end clears every bit its manifolds set (`flush`): between colourings the array is all
+        // zero, so it only grows, and a step writes no more of it than its manifolds' bodies.
+        debug_assert!(self.used.iter().all(|&used| used == 0));
+        if self.used.len() < body_count {
+            self.used.resize(body_count, 0);
+        }
         for members in &mut self.members {
             members.clear();
         }
