@@ -153,8 +153,9 @@ pub(crate) fn emit_events(
     // Touching pairs with their approach speeds, sorted by pair: O(m log m) for m manifolds.
     buffers.touching_speeds.clear();
     for ((m, &was_pushed), &speed) in state.manifolds.iter().zip(pushed).zip(approach_speeds) {
-        // Touching: overlapping, or pushed this step (a speculative contact that closed its gap, a bounce).
-        if m.is_touching() || was_pushed {
+        // Touching: pushed this step (a speculative contact that closed its gap, a bounce), or overlapping.
+        // The flag first: a manifold that pushed (most that touch) is not read past its bodies.
+        if was_pushed || m.is_touching() {
             let pair = if m.body_a <= m.body_b {
                 (m.body_a, m.body_b)
             } else {
