@@ -47,6 +47,9 @@ pub(crate) struct Topology {
     touches: Vec<u32>,
     /// What the last search read of the joints ([`Topology::keeps`]).
     inputs: SearchInputs,
+    /// The searches made so far ([`Topology::find_paths`] calls), for the tests of what is kept.
+    #[cfg(test)]
+    pub(crate) searches: usize,
 }
 
 /// What the path and graph search and [`Topology::find_closed`] read of one joint: its bodies, which of them
@@ -142,6 +145,10 @@ impl Topology {
         pair: impl Fn(usize) -> &'p BodyPair,
         capable: impl Fn(usize) -> bool,
     ) {
+        #[cfg(test)]
+        {
+            self.searches += 1;
+        }
         // The lists alone, not what the last search read ([`Topology::keeps`] records it).
         self.paths.clear();
         self.path_joints.clear();

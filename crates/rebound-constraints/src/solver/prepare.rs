@@ -298,6 +298,15 @@ impl JointSolver {
         if self.topology.paths.len() == 1 && self.topology.path_joints.len() == self.joints.len() {
             return;
         }
+        // Every tether starts with a tetherable joint at a body of zero inverse mass (the search's roots):
+        // without one (a field of springs, bodies joined to moving bodies only) the search would make none.
+        let starts_a_tether = |j: &PreparedJoint| {
+            j.kind.bounded_length().is_some()
+                && (j.pair.inv_mass_a == 0.0 || j.pair.inv_mass_b == 0.0)
+        };
+        if !self.joints.iter().any(starts_a_tether) {
+            return;
+        }
         self.edges.clear();
         self.edges.extend(self.joints.iter().map(|j| Edge {
             index_a: j.pair.index_a,
