@@ -7,7 +7,7 @@ use super::manifold::Contact;
 use super::patch::{Patch, PatchShare};
 use super::prepared::{PrepareInput, PreparedContact};
 use super::scalar::{self, PreparedPoint, Rolling};
-use super::wide::{self, Batches, CHUNK, Coloring};
+use super::wide::{self, Batches, Coloring};
 use crate::{BodyParams, SolverBody, StepContext};
 use core::sync::atomic::{AtomicBool, Ordering};
 use rebound_math::Vec3;
@@ -17,12 +17,6 @@ use rebound_math::par::{self, MIN_ITEMS_PER_TASK};
 /// step (no allocation once it has grown to the scene's contact count).
 #[derive(Debug, Clone, Default)]
 pub struct ContactSolver {
-    /// How many manifolds were prepared (wide and scalar).
-    pub(crate) prepared: usize,
-    /// The headers being coloured: on one thread a chunk's (`wide::coloring::CHUNK`), on a pool every
-    /// manifold's. A wide manifold's header is read only while its batch is built.
-    pub(crate) headers: Vec<PreparedContact>,
-    /// The manifolds the scalar path solves, after the batches, in manifold order.
     pub(crate) contacts: Vec<PreparedContact>,
     /// The scalar path's points, manifold after manifold.
     pub(crate) points: Vec<PreparedPoint>,
@@ -31,6 +25,8 @@ pub struct ContactSolver {
     pub(crate) rolling: Vec<Rolling>,
     /// The wide-solved manifolds, four at a time, colour after colour, with their rows (see `super::wide`).
     pub(crate) batches: Batches,
+    /// Indices of the manifolds the scalar path solves, after the batches.
+    pub(crate) scalar: Vec<usize>,
     pub(crate) coloring: Coloring,
 }
 
@@ -44,13 +40,13 @@ impl ContactSolver {
     /// The number of prepared manifolds.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.prepared
+        self.contacts.len()
     }
 
     /// Whether no manifold is prepared.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.prepared == 0
+        self.contacts.is_empty()
     }
 
     /// Stage *prepare*: computes tangents, effective masses, angular terms and pre-step normal velocities of
@@ -66,51 +62,47 @@ impl ContactSolver {
         params: &[BodyParams],
         ctx: &StepContext,
     ) -> usize {
-        self.headers.clear();
         self.contacts.clear();
         self.points.clear();
         self.patches.clear();
         self.rolling.clear();
+        self.contacts.reserve(contacts.len());
         let body_count = bodies.len().min(params.len());
+        let mut skipped = 0;
+        let on_pool = par::is_parallel()
+            && prepare_on_pool(contacts, params, body_count, ctx, &mut self.contacts);
+        // One after the other where the pool did not prepare them.
+        if !on_pool {
+            for (source, contact) in contacts.iter().enumerate() {
+                if contact.body_a >= body_count
+                    || contact.body_b >= body_count
+                    || contact.body_a == contact.body_b
+                    || !contact.normal.is_finite()
+                {
+                    skipped += 1;
+                    continue;
+                }
+                let (pa, pb) = (&params[contact.body_a], &params[contact.body_b]);
+                let rolling = (contact.rolling_friction > 0.0).then(|| {
+                    self.rolling
+                        .push(Rolling::new(contact.rolling_friction, pa, pb));
+                    self.rolling.len() - 1
+                });
+                self.contacts
+                    .push(PreparedContact::new(source, contact, pa, pb, rolling, ctx));
+            }
+        }
+        // Wide manifolds get their points straight into their batch's lanes; the scalar ones here.
         let input = PrepareInput {
             contacts,
             bodies,
             params,
             ctx,
         };
-        // On a pool every header is made first (over it when none is malformed and none rolls) and the
-        // batches built over it from them; on one thread chunk by chunk.
-        let mut skipped = 0;
-        let mut rest = contacts.iter().enumerate();
-        if par::is_parallel() {
-            self.headers.reserve(contacts.len());
-            if !prepare_on_pool(contacts, params, body_count, ctx, &mut self.headers) {
-                skipped = push_headers(&mut rest, usize::MAX, body_count, &input, self);
-            }
-            self.coloring
-                .build(&self.headers, &input, &mut self.batches, &mut self.contacts);
-        } else {
-            self.coloring.begin(params.len(), false, &mut self.batches);
-            let mut first = 0;
-            loop {
-                skipped += push_headers(&mut rest, CHUNK, body_count, &input, self);
-                if self.headers.is_empty() {
-                    break;
-                }
-                self.coloring.color_chunk(
-                    &self.headers,
-                    first,
-                    &input,
-                    &mut self.batches,
-                    &mut self.contacts,
-                );
-                first += self.headers.len();
-                self.headers.clear();
-            }
-        }
-        self.prepared = contacts.len() - skipped;
-        // The scalar manifolds' points and patches.
-        for c in &mut self.contacts {
+        self.coloring
+            .build(&self.contacts, &input, &mut self.batches, &mut self.scalar);
+        for &index in &self.scalar {
+            let c = &mut self.contacts[index];
             let points = contacts[c.source].points();
             let patch = Patch::new(&input, c, points);
             c.first_point = self.points.len();
@@ -137,7 +129,7 @@ impl ContactSolver {
 
     /// Stage *warm start* of the manifolds the scalar path solves.
     pub(crate) fn warm_start_scalar(&self, bodies: &mut [SolverBody]) {
-        for c in &self.contacts {
+        for c in self.scalar.iter().map(|&i| &self.contacts[i]) {
             scalar::warm_start(
                 c,
                 &self.points[c.first_point..c.first_point + c.point_count],
@@ -170,7 +162,8 @@ impl ContactSolver {
         ctx: &StepContext,
         bias: Bias,
     ) {
-        for c in &self.contacts {
+        for &index in &self.scalar {
+            let c = &self.contacts[index];
             scalar::solve(
                 c,
                 &mut self.points[c.first_point..c.first_point + c.point_count],
@@ -202,7 +195,8 @@ impl ContactSolver {
     /// so the accumulated impulses after each substep, summed, plus the bounce, are what the point pushed with
     /// over the step: what contact force events report.
     pub fn for_each_normal_impulse(&self, mut f: impl FnMut(usize, usize, f32, f32)) {
-        for c in &self.contacts {
+        for &index in &self.scalar {
+            let c = &self.contacts[index];
             for (k, p) in self.points[c.first_point..][..c.point_count]
                 .iter()
                 .enumerate()
@@ -241,7 +235,8 @@ impl ContactSolver {
     /// [`ContactSolver::for_each_point_result`] of the manifolds the scalar path solves.
     #[inline(always)]
     fn scalar_point_results(&self, f: &mut impl FnMut(usize, usize, f32, Vec3, f32)) {
-        for c in &self.contacts {
+        for &index in &self.scalar {
+            let c = &self.contacts[index];
             let patch = self.patches.get(c.patch).copied().unwrap_or_default();
             let share = PatchShare::new(
                 c.normal,
@@ -260,46 +255,6 @@ impl ContactSolver {
             }
         }
     }
-}
-
-/// The headers of the contacts `rest` yields, onto `solver.headers` (shorter than `limit`) until it holds
-/// `limit`, with their rolling-resistance blocks numbered in contact order; malformed contacts — a body index
-/// of `body_count` or more, a body against itself, a normal that is not finite — are passed over and counted
-/// (the return value).
-#[inline(always)]
-fn push_headers<'a>(
-    rest: &mut impl Iterator<Item = (usize, &'a Contact)>,
-    limit: usize,
-    body_count: usize,
-    input: &PrepareInput<'a>,
-    solver: &mut ContactSolver,
-) -> usize {
-    let (params, ctx) = (input.params, input.ctx);
-    let mut skipped = 0;
-    for (source, contact) in rest {
-        if contact.body_a >= body_count
-            || contact.body_b >= body_count
-            || contact.body_a == contact.body_b
-            || !contact.normal.is_finite()
-        {
-            skipped += 1;
-            continue;
-        }
-        let (pa, pb) = (&params[contact.body_a], &params[contact.body_b]);
-        let rolling = (contact.rolling_friction > 0.0).then(|| {
-            solver
-                .rolling
-                .push(Rolling::new(contact.rolling_friction, pa, pb));
-            solver.rolling.len() - 1
-        });
-        solver
-            .headers
-            .push(PreparedContact::new(source, contact, pa, pb, rolling, ctx));
-        if solver.headers.len() == limit {
-            break;
-        }
-    }
-    skipped
 }
 
 /// Every contact's [`PreparedContact`] into `out`, in order, over the pool, when none is malformed and none

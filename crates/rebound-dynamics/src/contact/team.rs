@@ -57,7 +57,7 @@ impl ContactSolver {
                 twists: Disjoint::new(&mut batches.twists),
             },
             group_ends: &this.coloring.group_ends,
-            scalar: !this.contacts.is_empty(),
+            scalar: !this.scalar.is_empty(),
             solver,
             borrow: PhantomData,
         })

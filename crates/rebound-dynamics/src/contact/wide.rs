@@ -30,5 +30,5 @@ mod results;
 mod tests;
 
 pub(crate) use batch::Batches;
-pub(crate) use coloring::{CHUNK, Coloring};
+pub(crate) use coloring::Coloring;
 pub(crate) use groups::{BATCHES_PER_CHUNK, SharedRows, solve_batches, warm_start_batches};

@@ -5,9 +5,8 @@
 //!
 //! Hot and cold: the passes stream every batch twelve times a step (four substeps of warm start, solve and
 //! relax), so what they read — [`Batch`], its [`PatchX4`], its point slots and, for manifolds of two points or
-//! more, the first two lines of its [`TwistX4`] — holds nothing else; what only the read-back needs is in
-//! [`BatchInfo`] (which manifolds) and the twist row's last line (the patch centre and spread, of use only
-//! with two points or more). Indices are `u32`.
+//! more, its [`TwistX4`] — holds nothing else; what only the read-back needs (which manifolds, the patch
+//! centre and spread) is in [`BatchInfo`]. Indices are `u32`.
 
 use super::lanes::{LANES, LaneStates, Mask4, Mat3x4, PointLanes, Vec3x4, gather1, gather3};
 use crate::contact::bias::Bias;
@@ -62,9 +61,7 @@ impl PatchX4 {
 }
 
 /// A batch's twist row about the normal in each lane: only batches with a manifold of two points or more
-/// have one (a lone point has no lever to resist twist with). Three cache lines: the passes read the first
-/// two; the third holds what only the read-back needs, the patch's centre and spread, which a batch of
-/// one-point manifolds (a pile of balls) has no use for: its points are their own centres.
+/// have one (a lone point has no lever to resist twist with). Two cache lines.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[repr(C, align(64))]
 pub(crate) struct TwistX4 {
@@ -74,33 +71,32 @@ pub(crate) struct TwistX4 {
     /// `I⁻¹·n` of each body.
     pub(crate) twist_a: Vec3x4,
     pub(crate) twist_b: Vec3x4,
-    /// The patch centre relative to body A's centre of mass (m).
-    pub(crate) center_a: Vec3x4,
-    /// `Σ|ρ|²` over the points, `ρ` a point's offset from the centre (m²).
-    pub(crate) spread: Vec4,
 }
 
 impl TwistX4 {
-    /// No twist row: zero impulse and spread (what a batch without one reports).
+    /// No twist row: zero impulse (what a batch without one reports).
     pub(crate) const EMPTY: Self = Self {
         impulse: Vec4::ZERO,
         mass: Vec4::ZERO,
         twist_a: Vec3x4::ZERO,
         twist_b: Vec3x4::ZERO,
-        center_a: Vec3x4::ZERO,
-        spread: Vec4::ZERO,
     };
 }
 
-/// What the read-back of a batch needs and its passes do not: which manifolds its lanes hold (the patch's
-/// centre and spread, which matter only with two points or more, are in its [`TwistX4`]). One per batch, at
-/// the batch's index.
+/// What the read-back of a batch needs and its passes do not: which manifolds its lanes hold, and its patch's
+/// centre and spread. One per batch, at the batch's index.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub(crate) struct BatchInfo {
-    /// Each lane's source contact (`PreparedContact::source`); the batch's `lanes` first are used.
+    /// Indices of the manifolds (into the solver's prepared contacts); the batch's `lanes` first are used.
+    pub(crate) contacts: [u32; LANES],
+    /// Each lane's source contact (`PreparedContact::source`).
     pub(crate) sources: [u32; LANES],
     /// Each lane's number of points (0 in an empty lane).
     pub(crate) point_counts: [u32; LANES],
+    /// The patch centre relative to body A's centre of mass (m).
+    pub(crate) center_a: Vec3x4,
+    /// `Σ|ρ|²` over the points, `ρ` a point's offset from the centre (m²).
+    pub(crate) spread: Vec4,
 }
 
 /// Up to four manifolds without a moving body in common, solved side by side: what the passes read of them.
@@ -137,7 +133,7 @@ pub(crate) struct Batch {
 }
 
 const _: () = assert!(size_of::<PointX4>() == 6 * 64 && size_of::<Batch>() == 5 * 64);
-const _: () = assert!(size_of::<PatchX4>() == 7 * 64 && size_of::<TwistX4>() == 3 * 64);
+const _: () = assert!(size_of::<PatchX4>() == 7 * 64 && size_of::<TwistX4>() == 2 * 64);
 
 /// The wide path's arrays: the batches and, at each batch's index, its patch and its read-back info; the point
 /// slots and twist rows the batches index. Reused from step to step.
@@ -368,14 +364,16 @@ pub(crate) fn build(
             mass: invert(normal.dot(&twist_a) + normal.dot(&twist_b), present),
             twist_a,
             twist_b,
-            center_a,
-            spread,
         });
     }
     sink.patch(patch);
+    let index = |i: usize| group.get(i).map_or(0, |&index| index as u32);
     sink.info(BatchInfo {
+        contacts: [0, 1, 2, 3].map(index),
         sources: headers.map(|c| c.source as u32),
         point_counts: headers.map(|c| c.point_count as u32),
+        center_a,
+        spread,
     });
     sink.batch(Batch {
         normal,

@@ -104,8 +104,8 @@ impl Batches {
             z: Vec4::select(many, linear.z / count, linear.z),
         };
         let rate = Vec4::select(
-            many & twist.spread.cmpgt(Vec4::ZERO),
-            twist.impulse / twist.spread,
+            many & info.spread.cmpgt(Vec4::ZERO),
+            twist.impulse / info.spread,
             Vec4::ZERO,
         );
         // `PatchShare::at`: the linear share, plus `(n × ρ)·rate` where the rate is not zero.
@@ -113,7 +113,7 @@ impl Batches {
         let mut shares = [[Vec3::ZERO; LANES]; MAX_CONTACT_POINTS];
         for (share, slot) in shares.iter_mut().zip(points) {
             let value = if twisting.any() {
-                let rho = slot.anchor_a.sub(&twist.center_a);
+                let rho = slot.anchor_a.sub(&info.center_a);
                 let turned = linear.add(&batch.normal.cross(&rho).scale(rate));
                 Vec3x4 {
                     x: Vec4::select(twisting, turned.x, linear.x),

@@ -5,7 +5,7 @@
 use super::coloring::CHUNK;
 use super::lanes::Vec3x4;
 use crate::contact::patch::{Patch, PatchShare};
-use crate::contact::prepared::{PrepareInput, PreparedContact};
+use crate::contact::prepared::PrepareInput;
 use crate::contact::scalar::PreparedPoint;
 use crate::contact::{Contact, ContactPoint, ContactSolver};
 use crate::{Bias, BodyDesc, BodyParams, RigidBody, SolverBody, SolverSettings, StepContext};
@@ -66,14 +66,6 @@ fn scene(n: usize) -> (Vec<SolverBody>, Vec<BodyParams>, Vec<Contact>) {
         }
     }
     (bodies, params, contacts)
-}
-
-/// The header the solver made of `input.contacts[source]` (a wide manifold: no rolling resistance), which
-/// it keeps only while it builds the manifold's batch.
-fn header(source: usize, input: &PrepareInput<'_>) -> PreparedContact {
-    let c = &input.contacts[source];
-    let (pa, pb) = (&input.params[c.body_a], &input.params[c.body_b]);
-    PreparedContact::new(source, c, pa, pb, None, input.ctx)
 }
 
 /// Runs one substep's contact passes, wide or all scalar.
@@ -140,8 +132,9 @@ fn lanes_are_prepared_bit_for_bit_as_the_scalar_points() {
     for (b, batch) in wide.batches.iter().enumerate() {
         let info = &wide.infos[b];
         let lanes = usize::from(batch.lanes);
-        for (l, &source) in info.sources[..lanes].iter().enumerate() {
-            let c = &header(source as usize, &input);
+        for (l, &index) in info.contacts[..lanes].iter().enumerate() {
+            let c = &solver.contacts[index as usize];
+            assert_eq!(info.sources[l] as usize, c.source);
             assert_eq!(info.point_counts[l] as usize, c.point_count);
             let points = contacts[c.source].points();
             let lane_of = |v: &Vec3x4| v.lane(l);
@@ -152,12 +145,12 @@ fn lanes_are_prepared_bit_for_bit_as_the_scalar_points() {
                 "every manifold of the scene has two points or more"
             );
             let twist = wide.twists[batch.first_twist as usize];
-            assert_eq!(bits(lane_of(&twist.center_a)), bits(patch.center_a));
+            assert_eq!(bits(lane_of(&info.center_a)), bits(patch.center_a));
             assert_eq!(bits(lane_of(&x4.wt_a[0])), bits(patch.wt_a[0]));
             assert_eq!(bits(lane_of(&x4.wt_b[1])), bits(patch.wt_b[1]));
             assert_eq!(bits(lane_of(&twist.twist_b)), bits(patch.twist_b));
             for (wide, scalar) in [
-                (twist.spread, patch.spread),
+                (info.spread, patch.spread),
                 (x4.tangent_mass[0], patch.tangent_mass[0]),
                 (x4.tangent_mass[1], patch.tangent_mass[1]),
                 (x4.tangent_impulse[0], patch.tangent_impulse.x),
@@ -218,12 +211,12 @@ fn check_batches(n: usize) {
         unique.sort_unstable();
         unique.dedup();
         assert_eq!(unique.len(), lanes.len(), "a body twice in one batch");
-        for &c in &info.sources[..used] {
+        for &c in &info.contacts[..used] {
             solved[c as usize] += 1;
         }
     }
-    for c in &solver.contacts {
-        solved[c.source] += 1;
+    for &c in &solver.scalar {
+        solved[c] += 1;
     }
     assert!(solved.iter().all(|&n| n == 1), "every manifold solved once");
     assert!(!solver.batches.batches.is_empty());
@@ -239,34 +232,26 @@ fn lanes_read_back_the_scalar_friction_shares_bit_for_bit() {
     solver.warm_start(&mut bodies);
     solver.solve(&mut bodies, &ctx, Bias::On);
     solver.solve(&mut bodies, &ctx, Bias::Off);
-    let input = PrepareInput {
-        contacts: &contacts,
-        bodies: &bodies,
-        params: &params,
-        ctx: &ctx,
-    };
     let wide = &solver.batches;
     let mut expected = Vec::new();
     for (b, batch) in wide.batches.iter().enumerate() {
         let (info, patch) = (&wide.infos[b], &wide.patches[b]);
-        assert!(
-            batch.twist,
-            "every manifold of the scene has two points or more"
-        );
-        let twist = &wide.twists[batch.first_twist as usize];
+        let twist = batch
+            .twist
+            .then(|| wide.twists[batch.first_twist as usize].impulse);
         for l in 0..usize::from(batch.lanes) {
-            let c = &header(info.sources[l] as usize, &input);
+            let c = &solver.contacts[info.contacts[l] as usize];
             let share = PatchShare::new(
                 c.normal,
                 c.tangents,
                 [patch.tangent_impulse[0][l], patch.tangent_impulse[1][l]],
-                twist.impulse[l],
-                twist.spread[l],
+                twist.map_or(0.0, |t| t[l]),
+                info.spread[l],
                 c.point_count,
             );
             for k in 0..c.point_count {
                 let slot = &wide.slots[batch.first_slot as usize + k];
-                let rho = slot.anchor_a.lane(l) - twist.center_a.lane(l);
+                let rho = slot.anchor_a.lane(l) - info.center_a.lane(l);
                 expected.push((c.source, k, share.at(rho)));
             }
         }
