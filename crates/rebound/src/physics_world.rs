@@ -66,8 +66,8 @@ pub struct PhysicsWorld {
     /// The pool the step runs on (`None`: rayon's global pool, or the one installed around the call).
     #[cfg(feature = "parallel")]
     thread_pool: Option<Arc<rebound_math::par::rayon::ThreadPool>>,
-    /// The last step's bodies moved plus contact manifolds solved (`None` before the first step): below
-    /// `min_work_for_threads` the next step runs on one thread.
+    /// The last step's bodies moved plus contact manifolds solved (`None` before the first step, when the
+    /// body count stands for it): below `min_work_for_threads` the next step runs on one thread.
     #[cfg(feature = "parallel")]
     last_work: Option<usize>,
     /// See [`PhysicsWorld::set_min_work_for_threads`].
@@ -273,11 +273,9 @@ impl PhysicsWorld {
     /// threads kept awake between its parallel sections (`par::with_pool_awake`); on this thread alone
     /// (`par::serially`) after a step smaller than [`PhysicsWorld::set_min_work_for_threads`] says.
     fn step_here(&mut self, dt: f32) -> StepReport {
+        // Before the first step, the bodies stand for the work.
         #[cfg(feature = "parallel")]
-        if self
-            .last_work
-            .is_some_and(|work| work < self.min_work_for_threads)
-        {
+        if self.last_work.unwrap_or_else(|| self.world.bodies().len()) < self.min_work_for_threads {
             return rebound_math::par::serially(|| self.step_awake(dt));
         }
         rebound_math::par::with_pool_awake(|| self.step_awake(dt))

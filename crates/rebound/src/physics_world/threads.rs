@@ -45,8 +45,9 @@ impl PhysicsWorld {
     }
 
     /// Runs a step on the calling thread alone, even on a pool of several, when the step before moved
-    /// fewer than `work` bodies and contact manifolds together (default [`MIN_WORK_FOR_THREADS`], 1,024; 0:
-    /// every step on the pool). The results are the same bits either way; only the time differs.
+    /// fewer than `work` bodies and contact manifolds together (the first step: when the world has fewer
+    /// bodies) (default [`MIN_WORK_FOR_THREADS`], 1,024; 0: every step on the pool). The results are the same
+    /// bits either way; only the time differs.
     pub fn set_min_work_for_threads(&mut self, work: usize) {
         self.min_work_for_threads = work;
     }
