@@ -226,10 +226,10 @@ fn a_pile_with_locks_bounces_and_force_events_keeps_the_bits_of_one_thread() {
     }
 }
 
-/// A scene smaller than `MIN_WORK_FOR_THREADS` (the bridge: 150 bodies) runs its steps on one thread even on
-/// a pool of two, by default, and ends in the state of every step on the pool and of one thread.
+/// A scene below `MIN_WORK_FOR_THREADS` (the bridge: 150 bodies), whose steps run on one thread by default
+/// even on a pool of two, ends in the state of every step on the pool and of one thread.
 #[test]
-fn a_small_scene_steps_on_one_thread_with_the_bits_of_the_pool() {
+fn a_scene_below_the_work_bound_ends_in_the_state_of_the_pool_and_of_one_thread() {
     let run = |threads: usize, min_work: usize| {
         let mut scene = scenes::build("bridge", SceneOptions::default())
             .expect("the scene builds")

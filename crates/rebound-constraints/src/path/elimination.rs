@@ -208,7 +208,8 @@ fn block_step<const N: usize>(
         }
     }
     let mut rhs = if split { r } else { [0.0; MAX_ROWS] };
-    // A loop, not `each`'s closure: the closure of this body and the one of `S` below were compiled as calls.
+    // Plain loops over `done` here and in `S` below, not `each`: a closure this long is compiled as a call
+    // inside the entry loops.
     for prev in done.into_iter().flatten() {
         // rhs = r̃ − Wₚᵀ·yₚ, a row of W at a time (contiguous, so the rows pair into SIMD lanes).
         for k in 0..N {
