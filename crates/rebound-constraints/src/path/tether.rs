@@ -65,6 +65,20 @@ pub(crate) struct Edge {
     pub path: Option<usize>,
 }
 
+/// Whether a body of inverse mass `inv_mass` (1/kg) is a root of the search: fixed or kinematic.
+#[inline]
+fn is_root(inv_mass: f32) -> bool {
+    inv_mass == 0.0
+}
+
+/// Whether a joint that allows its anchors `length` apart (`None`: no bound, [`Edge::length`]), between
+/// bodies of inverse masses `inv_masses` (1/kg), can be the first joint of a tether: it bounds the distance
+/// and one of its bodies is a root. Every tether starts with one, so without one the search makes none.
+#[inline]
+pub(crate) fn starts_a_tether(length: Option<f32>, (inv_mass_a, inv_mass_b): (f32, f32)) -> bool {
+    length.is_some() && (is_root(inv_mass_a) || is_root(inv_mass_b))
+}
+
 /// What the search found about one body.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Node {
@@ -137,7 +151,7 @@ impl JointGraph {
         self.queue.clear();
         for e in joints {
             for (index, inv_mass) in [(e.index_a, e.inv_mass_a), (e.index_b, e.inv_mass_b)] {
-                if inv_mass == 0.0 && self.nodes[index].depth != 0 {
+                if is_root(inv_mass) && self.nodes[index].depth != 0 {
                     self.nodes[index] = Node {
                         depth: 0,
                         root: index,

@@ -7,7 +7,7 @@ use super::joint_solver::JointSolver;
 use crate::joint::{Joint, JointBodies};
 use crate::part::rotation_error;
 use crate::path::resize_links;
-use crate::path::tether::Edge;
+use crate::path::tether::{Edge, starts_a_tether};
 use crate::path::topology::{JointShape, Topology};
 use crate::state::JointState;
 use core::sync::atomic::{AtomicBool, Ordering};
@@ -298,13 +298,15 @@ impl JointSolver {
         if self.topology.paths.len() == 1 && self.topology.path_joints.len() == self.joints.len() {
             return;
         }
-        // Every tether starts with a tetherable joint at a body of zero inverse mass (the search's roots):
-        // without one (a field of springs, bodies joined to moving bodies only) the search would make none.
-        let starts_a_tether = |j: &PreparedJoint| {
-            j.kind.bounded_length().is_some()
-                && (j.pair.inv_mass_a == 0.0 || j.pair.inv_mass_b == 0.0)
+        // No joint that can start a tether (a field of springs, bodies joined to moving bodies only): the
+        // search would make none.
+        let starts = |j: &PreparedJoint| {
+            starts_a_tether(
+                j.kind.bounded_length(),
+                (j.pair.inv_mass_a, j.pair.inv_mass_b),
+            )
         };
-        if !self.joints.iter().any(starts_a_tether) {
+        if !self.joints.iter().any(starts) {
             return;
         }
         self.edges.clear();
