@@ -82,21 +82,34 @@ fn read_back_impulses(
     if par::is_parallel() && sources.len() >= MIN_CONTACTS_ON_POOL {
         return read_back_on_pool(solver, sources, manifolds, pushed);
     }
-    // `x·0` is 0 for a finite `x` and NaN otherwise: the sum of the impulses' products is zero exactly when
-    // every impulse stored is finite.
-    let mut zero_if_finite = Vec3::ZERO;
+    let mut finite = true;
     solver.for_each_point_result(|contact, k, normal, tangent, max| {
         let Some(&source) = sources.get(contact) else {
             return;
         };
-        if let Some(point) = manifolds[source].points.get_mut(k) {
-            point.normal_impulse = normal;
-            point.tangent_impulse = tangent;
-            zero_if_finite += tangent * 0.0 + Vec3::splat(normal * 0.0);
+        finite &= store_point(manifolds.get_mut(source), k, normal, tangent);
+        if let Some(was_pushed) = pushed.get_mut(source) {
+            *was_pushed |= max > 0.0;
         }
-        pushed[source] |= max > 0.0;
     });
-    zero_if_finite == Vec3::ZERO
+    finite
+}
+
+/// Point `k`'s impulses `normal` (N·s) and `tangent` into `manifold`; returns whether both are finite (true
+/// when there is no such point).
+#[inline(always)]
+fn store_point(
+    manifold: Option<&mut ContactManifold>,
+    k: usize,
+    normal: f32,
+    tangent: Vec3,
+) -> bool {
+    let Some(point) = manifold.and_then(|m| m.points.get_mut(k)) else {
+        return true;
+    };
+    point.normal_impulse = normal;
+    point.tangent_impulse = tangent;
+    normal.is_finite() & tangent.is_finite()
 }
 
 /// Solver contacts below which the impulses are read back on one thread even on a pool.
@@ -127,12 +140,8 @@ fn read_back_on_pool(
         // calls for one contact are made one after the other on one thread
         // (`ContactSolver::for_each_point_result_on_pool`): no two threads hold one manifold or flag.
         let (manifold, was_pushed) = unsafe { (manifolds.get_mut(source), pushed.get_mut(source)) };
-        if let Some(point) = manifold.and_then(|m| m.points.get_mut(k)) {
-            point.normal_impulse = normal;
-            point.tangent_impulse = tangent;
-            if !(normal.is_finite() && tangent.is_finite()) {
-                finite.store(false, Ordering::Relaxed);
-            }
+        if !store_point(manifold, k, normal, tangent) {
+            finite.store(false, Ordering::Relaxed);
         }
         if let Some(was_pushed) = was_pushed {
             *was_pushed |= max > 0.0;
