@@ -491,16 +491,16 @@ pub(crate) mod spin {
         threads: usize,
         f: &(dyn Fn(usize, &mut [T]) + Sync),
     ) {
-        if threads <= 1 || items.len() < 2 * min_len.max(1) {
-            f(start, items);
-            return;
-        }
-        let left = threads / 2;
-        let mid = items.len() * left / threads;
-        let (a, b) = items.split_at_mut(mid);
-        join(
-            || split_mut(a, start, min_len, left, f),
-            || split_mut(b, start + mid, min_len, threads - left, f),
+        // [`split_both_mut`] beside an empty second list.
+        split_both_mut::<T, (), _>(
+            items,
+            &mut [],
+            start,
+            min_len,
+            threads,
+            &|start, part, _| {
+                f(start, part);
+            },
         );
     }
 
