@@ -32,14 +32,20 @@ fn for_each_visits_every_item_once() {
     assert!(items.iter().all(|&x| x == 1));
 }
 
+/// A pool of `threads` threads (the parallel build).
+#[cfg(feature = "parallel")]
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap_or_else(|e| panic!("no pool: {e}"))
+}
+
 /// Runs `f` on pools of 1, 2 and 3 threads (the parallel build; the serial build runs it once).
 fn on_pools(f: impl Fn() + Send + Sync) {
     #[cfg(feature = "parallel")]
     for threads in [1, 2, 3] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap_or_else(|e| panic!("no pool: {e}"));
+        let pool = pool(threads);
         pool.install(&f);
     }
     #[cfg(not(feature = "parallel"))]
@@ -129,10 +135,7 @@ fn with_pool_awake_returns_what_f_returns() {
 #[test]
 fn with_pool_awake_on_pools_of_any_size() {
     for threads in [1, 2, 3, 8] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap_or_else(|e| panic!("no pool: {e}"));
+        let pool = pool(threads);
         let sums = pool.install(|| {
             with_pool_awake(|| {
                 (0..50)
@@ -153,10 +156,7 @@ fn with_pool_awake_on_pools_of_any_size() {
 #[cfg(feature = "parallel")]
 #[test]
 fn with_pool_awake_ends_its_spinner_when_f_panics() {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .unwrap_or_else(|e| panic!("no pool: {e}"));
+    let pool = pool(2);
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         pool.install(|| with_pool_awake(|| panic!("f fails")));
     }));
@@ -187,10 +187,7 @@ fn sum_by_joins(range: std::ops::Range<u64>) -> u64 {
 #[test]
 fn for_each_visits_every_item_once_on_pools_of_any_size() {
     for threads in [2, 3, 8] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap_or_else(|e| panic!("no pool: {e}"));
+        let pool = pool(threads);
         for len in [0, 1, 63, 64, 65, 129, 1000] {
             pool.install(for_each_visits_every_item_once_of(len));
         }
@@ -231,10 +228,7 @@ fn for_each_visits_every_item_once_of(len: usize) -> impl FnOnce() + Send {
 #[test]
 fn nested_joins_on_pools_of_any_size() {
     for threads in [1, 2, 3, 8] {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap_or_else(|e| panic!("no pool: {e}"));
+        let pool = pool(threads);
         let sum = pool.install(|| with_pool_awake(|| sum_by_joins(0..10_000)));
         assert_eq!(sum, (0..10_000).sum::<u64>(), "{threads} threads");
     }
@@ -243,10 +237,7 @@ fn nested_joins_on_pools_of_any_size() {
 #[cfg(feature = "parallel")]
 #[test]
 fn a_panicking_half_of_a_join_reaches_the_caller() {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .unwrap_or_else(|e| panic!("no pool: {e}"));
+    let pool = pool(2);
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         pool.install(|| join(|| sum_by_joins(0..1_000), || panic!("b fails")))
     }));
